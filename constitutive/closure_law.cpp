@@ -1,0 +1,124 @@
+#include "closure_law.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace rockjoint::constitutive
+{
+
+const char* to_string(Status status)
+{
+  switch (status)
+  {
+  case Status::contact: return "contact";
+  case Status::open: return "open";
+  case Status::validity_limit: return "validity_limit";
+  case Status::beyond_maximum_closure: return "beyond_maximum_closure";
+  case Status::invalid_closure: return "invalid_closure";
+  }
+  return "unknown";
+}
+
+ClosureResponse ClosureLaw::evaluate(double closure) const
+{
+  if (std::isnan(closure))
+  {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    return {nan, nan, nan, nan, Status::invalid_closure};
+  }
+  if (closure <= 0.0)
+    return {};
+  return evaluate_contact(closure);
+}
+
+ClosureResponse ClosureLaw::beyond_maximum_closure(double contact_area_ratio)
+{
+  const double inf = std::numeric_limits<double>::infinity();
+  return {inf, inf, contact_area_ratio, 0.0, Status::beyond_maximum_closure};
+}
+
+void ClosureLaw::evaluate(std::span<const double> closure, std::span<double> normal_stress,
+                          std::span<double> normal_stiffness, std::span<double> area_ratio,
+                          std::span<Status> status) const
+{
+  const std::size_t n = closure.size();
+  if (normal_stress.size() != n || normal_stiffness.size() != n
+      || (!area_ratio.empty() && area_ratio.size() != n)
+      || (!status.empty() && status.size() != n))
+  {
+    throw std::invalid_argument("ClosureLaw::evaluate: output arrays must have the size of "
+                                "the closure array ("
+                                + std::to_string(n) + ")");
+  }
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const ClosureResponse r = evaluate(closure[i]);
+    normal_stress[i] = r.normal_stress;
+    normal_stiffness[i] = r.normal_stiffness;
+    if (!area_ratio.empty())
+      area_ratio[i] = r.contact_area_ratio;
+    if (!status.empty())
+      status[i] = r.status;
+  }
+}
+
+double ClosureLaw::closure_at_stress(double target) const
+{
+  if (!(target >= 0.0) || std::isinf(target))
+  {
+    std::ostringstream msg;
+    msg << name() << ": normal stress " << target
+        << " Pa has no closure; it must be finite and >= 0";
+    throw std::invalid_argument(msg.str());
+  }
+  if (target == 0.0)
+    return 0.0;
+
+  // Bracket [lo, hi] with σ(lo) < target <= σ(hi).
+  const double dmax = maximum_closure();
+  double lo = 0.0;
+  double hi = std::isfinite(dmax) ? 0.5 * dmax : 1e-6;
+  ClosureResponse rhi = evaluate(hi);
+  for (int it = 0; rhi.normal_stress < target; ++it)
+  {
+    if (rhi.status == Status::validity_limit || rhi.status == Status::beyond_maximum_closure
+        || it > 2000)
+    {
+      std::ostringstream msg;
+      msg << name() << ": normal stress " << target
+          << " Pa is beyond the law's admissible range (maximum closure " << dmax << " m)";
+      throw std::domain_error(msg.str());
+    }
+    lo = hi;
+    // Double towards infinity, or halve the distance to a finite maximum closure.
+    hi = std::isfinite(dmax) ? 0.5 * (hi + dmax) : 2.0 * hi;
+    if (std::isfinite(dmax) && (dmax - hi) <= 1e-15 * dmax)
+      hi = dmax;
+    rhi = evaluate(hi);
+  }
+
+  // Safeguarded Newton on r(Δ) = σ(Δ) - target.
+  double x = hi;
+  ClosureResponse rx = rhi;
+  for (int it = 0; it < 400; ++it)
+  {
+    const double res = rx.normal_stress - target;
+    if (res == 0.0)
+      return x;
+    if (res > 0.0)
+      hi = x;
+    else
+      lo = x;
+    double xn = x - res / rx.normal_stiffness;
+    if (!(xn > lo && xn < hi) || !std::isfinite(xn))
+      xn = 0.5 * (lo + hi);
+    if (std::abs(xn - x) <= 1e-15 * std::abs(xn) || hi - lo <= 1e-15 * hi)
+      return xn;
+    x = xn;
+    rx = evaluate(x);
+  }
+  return x;
+}
+
+} // namespace rockjoint::constitutive
