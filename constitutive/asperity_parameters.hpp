@@ -1,0 +1,31 @@
+#pragma once
+/// @file asperity_parameters.hpp
+/// Statistical description of the composite topography used by the asperity models
+/// (GW, Tang substrate, Tang & Jiao), theory §2-§3.
+
+#include "closure_law.hpp"
+
+namespace rockjoint::constitutive
+{
+
+/// Summit statistics of the composite topography of a joint, SI units.
+struct AsperityParameters
+{
+  double composite_modulus; ///< E* [Pa], 1/E* = (1-ν1²)/E1 + (1-ν2²)/E2 (theory §1)
+  double summit_density;    ///< η [1/m²], summits per unit nominal area
+  double summit_radius;     ///< β [m], mean summit radius of curvature
+  double summit_height_std; ///< σ_s [m], standard deviation of summit heights
+};
+
+/// A closure law built on a population of Hertzian summits (GW and its descendants). It
+/// provides a contact-area ratio and exposes the statistics the interaction cell of Tang &
+/// Jiao needs (Eq. (1): R = β and σ_s; Eq. (2): A/A0).
+class AsperityLaw : public ClosureLaw
+{
+public:
+  bool provides_contact_area() const override { return true; }
+  /// The summit statistics this law was built from.
+  virtual AsperityParameters asperity_parameters() const = 0;
+};
+
+} // namespace rockjoint::constitutive

@@ -1,0 +1,1 @@
+"""CLI commands: one module each, exposing add_parser(subparsers)."""
