@@ -1,0 +1,1 @@
+"""rockjoint.meshes: gmsh builders of rock blocks cut by joints (sources live in meshes/)."""
