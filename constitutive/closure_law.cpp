@@ -16,6 +16,7 @@ const char* to_string(Status status)
   case Status::validity_limit: return "validity_limit";
   case Status::beyond_maximum_closure: return "beyond_maximum_closure";
   case Status::invalid_closure: return "invalid_closure";
+  case Status::quadrature_not_converged: return "quadrature_not_converged";
   }
   return "unknown";
 }
@@ -28,7 +29,7 @@ ClosureResponse ClosureLaw::evaluate(double closure) const
     return {nan, nan, nan, nan, Status::invalid_closure};
   }
   if (closure <= 0.0)
-    return {};
+    return evaluate_open(closure);
   return evaluate_contact(closure);
 }
 

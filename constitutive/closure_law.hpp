@@ -4,7 +4,8 @@
 ///
 /// Conventions (docs/theory.md §0): SI units (Pa, m); compression positive; the closure
 /// Δ [m] is the relative normal approach of the two walls *net of the intact rock's own
-/// deformation*. Δ <= 0 is an open joint: σ = 0, k = 0, A/A0 = 0, never NaN. Every law is
+/// deformation*. Δ <= 0 is an open joint: σ = 0, k = 0, A/A0 = 0, never NaN (a law may
+/// instead document a residual stiffness there: TabulatedLaw, for FE use). Every law is
 /// continuous at Δ = 0 (σ(0) = 0); laws whose model carries a seating stress return the
 /// stress in excess of it (see seating_stress()).
 
@@ -25,6 +26,7 @@ enum class Status : int
   validity_limit = 2,   ///< the model's validity limit was passed; response frozen at the limit
   beyond_maximum_closure = 3, ///< Δ >= maximum closure (e.g. V_m): σ, k = +inf
   invalid_closure = 4,  ///< Δ is NaN: response is NaN
+  quadrature_not_converged = 5, ///< an integral missed its tolerance: best estimate returned
 };
 
 /// Human-readable name of a status.
@@ -109,6 +111,10 @@ protected:
   /// maximum_closure() handles Δ >= maximum_closure() itself (status
   /// beyond_maximum_closure or validity_limit).
   virtual ClosureResponse evaluate_contact(double closure) const = 0;
+
+  /// Response for Δ <= 0 (open joint). Default: the library's convention σ = k = 0. A law
+  /// may document a residual stiffness instead (TabulatedLaw: σ = k_res Δ, k = k_res).
+  virtual ClosureResponse evaluate_open(double /*closure*/) const { return {}; }
 
   /// The response for Δ at or past a hard closure limit: σ = k = +inf.
   static ClosureResponse beyond_maximum_closure(double contact_area_ratio = 0.0);

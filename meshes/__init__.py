@@ -1,1 +1,8 @@
-"""rockjoint.meshes: gmsh builders of rock blocks cut by joints (sources live in meshes/)."""
+"""rockjoint.meshes: gmsh builders of rock blocks cut by joints, node splitting and the JointedMesh.
+
+Sources live in the repository's meshes/ folder; the build copies them to rockjoint/meshes.
+"""
+from .builders import BOUNDARY_TAGS, JOINT_TAG_OFFSET, column, jointed_block  # noqa: F401
+from .joint_geometry import Joint, joint_set, unit_normal  # noqa: F401
+from .jointed_mesh import FORMAT_VERSION, JointedMesh  # noqa: F401
+from .node_splitting import build_jointed_mesh, split_nodes  # noqa: F401

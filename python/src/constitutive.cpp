@@ -67,7 +67,8 @@ void declare_constitutive(py::module_& m)
       .value("open", Status::open)
       .value("validity_limit", Status::validity_limit)
       .value("beyond_maximum_closure", Status::beyond_maximum_closure)
-      .value("invalid_closure", Status::invalid_closure);
+      .value("invalid_closure", Status::invalid_closure)
+      .value("quadrature_not_converged", Status::quadrature_not_converged);
 
   py::class_<Parameter>(m, "Parameter")
       .def_readonly("name", &Parameter::name)

@@ -1,0 +1,408 @@
+#include "summit_population_law.hpp"
+#include "population_quadrature.hpp"
+#include "substrate.hpp"
+#include "validation.hpp"
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
+
+namespace rockjoint::constitutive
+{
+
+namespace
+{
+constexpr double inf = std::numeric_limits<double>::infinity();
+
+/// Default reference: mean summit height + this many σ_s (theory §7 example).
+constexpr double automatic_reference_offset = 3.5;
+
+/// Root t̃ (dimensionless, lengths in σ_s) of μ t³ + t² = w, and dg/dw.
+struct Root
+{
+  double t, derivative;
+};
+inline Root root(double w, double mu)
+{
+  if (!(w > 0.0))
+    return {0.0, 0.0};
+  const double sw = std::sqrt(w);
+  if (mu == 0.0)
+    return {sw, 1.0};
+  const double t = sw * substrate::reduction_factor(mu * sw);
+  return {t, 1.0 / (1.0 + 1.5 * mu * t)};
+}
+
+/// root() through a small per-thread memo. The stiffness, area and rate integrals of the
+/// substrate law run over the same interval with the same Gauss-Kronrod nodes, so two of
+/// every three cubic solves are repeats (the solve costs ~50 ns, ten times an exp).
+/// Direct-mapped on the bits of (w, μ): a hit returns the identical value, so results do not
+/// depend on the cache state.
+inline Root cached_root(double w, double mu)
+{
+  struct Entry
+  {
+    double w = -1.0, mu = -1.0;
+    Root value{0.0, 0.0};
+  };
+  constexpr std::size_t size = 1024;
+  thread_local std::array<Entry, size> cache;
+  const std::uint64_t bits
+      = std::bit_cast<std::uint64_t>(w) ^ (std::bit_cast<std::uint64_t>(mu) >> 7);
+  Entry& e = cache[(bits ^ (bits >> 17) ^ (bits >> 31)) % size];
+  if (e.w == w && e.mu == mu)
+    return e.value;
+  e = {w, mu, root(w, mu)};
+  return e.value;
+}
+} // namespace
+
+SummitPopulationLaw::SummitPopulationLaw(const std::string& owner, const AsperityParameters& p,
+                                         HeightDistribution distribution,
+                                         double deflection_coefficient,
+                                         std::optional<double> base_radius,
+                                         const SeatingReference& reference,
+                                         double quadrature_tolerance)
+    : _parameters(p), _distribution(distribution), _deflection_coefficient(deflection_coefficient),
+      _tolerance(quadrature_tolerance)
+{
+  validation::positive(owner, "composite_modulus", p.composite_modulus, "Pa");
+  validation::positive(owner, "summit_density", p.summit_density, "1/m^2");
+  validation::positive(owner, "summit_radius", p.summit_radius, "m");
+  validation::positive(owner, "summit_height_std", p.summit_height_std, "m");
+  if (distribution == HeightDistribution::empirical)
+    throw std::invalid_argument(owner
+                                + ": parameter 'distribution' = empirical needs a list "
+                                  "of summits (EmpiricalSummits), not statistics");
+  check_common(owner, base_radius);
+  const double E = p.composite_modulus, eta = p.summit_density, beta = p.summit_radius,
+               ss = p.summit_height_std;
+  _stress_scale = (4.0 / 3.0) * E * eta * std::sqrt(beta) * ss * std::sqrt(ss);
+  _stiffness_scale = 2.0 * E * eta * std::sqrt(beta) * std::sqrt(ss);
+  _area_scale = std::numbers::pi * eta * beta * ss;
+  _rate_scale = std::numbers::pi * eta * beta;
+  _mu = _compliance_factor * std::sqrt(beta) * std::sqrt(ss);
+  set_reference(owner, reference);
+}
+
+SummitPopulationLaw::SummitPopulationLaw(const std::string& owner, double composite_modulus,
+                                         EmpiricalSummits summits, double deflection_coefficient,
+                                         std::optional<double> base_radius,
+                                         const SeatingReference& reference,
+                                         double quadrature_tolerance)
+    : _parameters{validation::positive(owner, "composite_modulus", composite_modulus, "Pa"),
+                  summits.summit_density(), summits.mean_radius(), summits.height_std()},
+      _distribution(HeightDistribution::empirical), _summits(std::move(summits)),
+      _deflection_coefficient(deflection_coefficient), _tolerance(quadrature_tolerance)
+{
+  check_common(owner, base_radius);
+  set_reference(owner, reference);
+}
+
+void SummitPopulationLaw::check_common(const std::string& owner, std::optional<double> base_radius)
+{
+  validation::in_range(owner, "quadrature_tolerance", _tolerance, "", 0.0, 1.0);
+  validation::non_negative(owner, "deflection_coefficient", _deflection_coefficient, "");
+  // Default r0: half the mean summit spacing 1/√η (theory §4 [choice]).
+  _base_radius = base_radius ? validation::positive(owner, "base_radius", *base_radius, "m")
+                             : 0.5 / std::sqrt(_parameters.summit_density);
+  _compliance_factor = _deflection_coefficient / _base_radius;
+}
+
+std::vector<Parameter> SummitPopulationLaw::parameters() const
+{
+  return {{"composite_modulus", _parameters.composite_modulus, "Pa"},
+          {"summit_density", _parameters.summit_density, "1/m^2"},
+          {"summit_radius", _parameters.summit_radius, "m"},
+          {"summit_height_std", _parameters.summit_height_std, "m"},
+          {"reference_separation", _reference_separation, "m"},
+          {"seating_stress", _seating_stress, "Pa"},
+          {"quadrature_tolerance", _tolerance, ""}};
+}
+
+void SummitPopulationLaw::set_reference(const std::string& owner, const SeatingReference& reference)
+{
+  const double ss = _parameters.summit_height_std;
+  double automatic
+      = _summits ? _summits->highest()
+                 : ss * (summit_heights::standard_mean(_distribution) + automatic_reference_offset);
+  switch (reference.kind)
+  {
+  case SeatingReference::Kind::automatic: _reference_separation = automatic; break;
+  case SeatingReference::Kind::separation:
+    _reference_separation = validation::finite(owner, "reference_separation", reference.value, "m");
+    break;
+  case SeatingReference::Kind::stress:
+  {
+    const double target = validation::positive(owner, "seating_stress", reference.value, "Pa");
+    // σ_model(d) decreases strictly (where positive) from +∞ (d -> -∞) to 0. Bracket by
+    // doubling steps from the automatic reference, then Newton on ln σ (the Gaussian tail
+    // makes ln σ nearly quadratic in d), bisecting whenever Newton leaves the bracket.
+    double scale = ss > 0.0 ? ss : 1e-3 * _parameters.summit_radius;
+    auto stress = [&](double d) { return response_at_separation(d).normal_stress; };
+    double lo, hi; // σ(lo) >= target > σ(hi)
+    double step = scale;
+    int it = 0;
+    if (stress(automatic) >= target)
+    {
+      lo = automatic;
+      for (hi = lo + step; stress(hi) >= target; hi = lo + step)
+      {
+        lo = hi;
+        step *= 2.0;
+        if (++it > 2000)
+          validation::fail(owner, "seating_stress", target, "Pa", "reachable by the model");
+      }
+    }
+    else
+    {
+      hi = automatic;
+      for (lo = hi - step; stress(lo) < target; lo = hi - step)
+      {
+        hi = lo;
+        step *= 2.0;
+        if (++it > 2000 || !std::isfinite(lo))
+          validation::fail(owner, "seating_stress", target, "Pa", "reachable by the model");
+      }
+    }
+    double x = lo;
+    for (it = 0; it < 400; ++it)
+    {
+      const ClosureResponse r = response_at_separation(x);
+      if (r.normal_stress == target)
+        break;
+      if (r.normal_stress > target)
+        lo = x;
+      else
+        hi = x;
+      double xn = x + std::log(r.normal_stress / target) * r.normal_stress / r.normal_stiffness;
+      if (!(xn > lo && xn < hi))
+        xn = 0.5 * (lo + hi);
+      const double tiny = 1e-15 * std::max(std::abs(xn), scale);
+      if (std::abs(xn - x) <= tiny || hi - lo <= tiny)
+      {
+        x = xn;
+        break;
+      }
+      x = xn;
+    }
+    _reference_separation = x;
+    break;
+  }
+  }
+  const ClosureResponse seat = response_at_separation(_reference_separation);
+  _seating_stress = seat.normal_stress;
+  if (!std::isfinite(_seating_stress))
+    validation::fail(owner, "reference_separation", _reference_separation, "m",
+                     "such that the seating stress is finite");
+}
+
+ClosureResponse SummitPopulationLaw::response_at_separation(double separation) const
+{
+  if (std::isnan(separation))
+  {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    return {nan, nan, nan, nan, Status::invalid_closure};
+  }
+  if (_summits)
+    return empirical_response(separation, false, 0.0);
+  const double h = separation / _parameters.summit_height_std;
+  return parametric_response(h, inf, 0.0);
+}
+
+ClosureResponse SummitPopulationLaw::evaluate_contact(double closure) const
+{
+  // Δ = +∞: every summit crushed, σ = k = +∞ (maximum_closure() is +∞).
+  if (std::isinf(closure))
+    return beyond_maximum_closure(inf);
+  if (_summits)
+    return empirical_response(_reference_separation - closure, true, closure);
+  const double ss = _parameters.summit_height_std;
+  const double delta = closure / ss;
+  const double h_ref = _reference_separation / ss;
+  // Δ/σ_s overflows: every summit crushed, σ = k = +∞.
+  if (!std::isfinite(delta))
+    return beyond_maximum_closure(inf);
+  return parametric_response(h_ref - delta, h_ref, delta);
+}
+
+bool SummitPopulationLaw::quadrature_converged(double closure) const
+{
+  if (_summits || !(closure > 0.0) || std::isinf(closure))
+    return true;
+  const double ss = _parameters.summit_height_std;
+  const double delta = closure / ss, h_ref = _reference_separation / ss;
+  return !std::isfinite(delta) || parametric_moments(h_ref - delta, h_ref, delta).converged;
+}
+
+ClosureResponse SummitPopulationLaw::parametric_response(double h, double h_ref, double delta) const
+{
+  const Moments m = parametric_moments(h, h_ref, delta);
+  ClosureResponse r{_stress_scale * m.stress, _stiffness_scale * m.stiffness, _area_scale * m.area,
+                    _rate_scale * m.rate,
+                    m.converged ? Status::contact : Status::quadrature_not_converged};
+  // Beyond the range of double (a closure of metres on a nanometre roughness at E* of
+  // GPa can overflow σ): report it as a hard limit rather than NaN.
+  if (!std::isfinite(r.normal_stress) || !std::isfinite(r.normal_stiffness))
+    return beyond_maximum_closure(r.contact_area_ratio);
+  if (!std::isfinite(h_ref) && r.normal_stress == 0.0 && r.normal_stiffness == 0.0)
+    r.status = Status::open;
+  return r;
+}
+
+SummitPopulationLaw::Moments SummitPopulationLaw::parametric_moments(double h, double h_ref,
+                                                                     double delta) const
+{
+  using summit_heights::standard_density;
+  const HeightDistribution dist = _distribution;
+  const double mu = _mu;
+  const double tol = _tolerance;
+  const double cut = summit_heights::lower_cut(dist);
+  const double length = summit_heights::window_length(dist);
+  // Window above a singular point: where the density is not negligible (see lower_cut and
+  // window_length for the justification of the cut).
+  auto window_lo = [&](double s0) { return std::max(s0, cut); };
+  auto window_hi = [&](double lo) { return std::max(lo, 0.0) + length; };
+  const bool seated = std::isfinite(h_ref);
+  Moments m;
+
+  // Closed forms of plain GW (μ = 0): exponential (all), Gaussian area and rate.
+  bool have_stress = false, have_stiffness = false, have_area = false;
+  if (mu == 0.0 && dist == HeightDistribution::exponential)
+  {
+    const auto M = summit_heights::exponential_partial_moments(h);
+    m.stiffness = M.order1_2;
+    m.area = M.order1;
+    m.rate = M.order0;
+    have_stiffness = have_area = true;
+    constexpr double gamma_5_2 = 0.75 / std::numbers::inv_sqrtpi; // Γ(5/2) = 3√π/4
+    if (!seated)
+    {
+      m.stress = M.order3_2;
+      have_stress = true;
+    }
+    else if (h >= 0.0)
+    {
+      // Γ(5/2)(e^{-h} - e^{-h_ref}) = Γ(5/2) e^{-h} (1 - e^{-δ}), δ exact: no cancellation.
+      m.stress = gamma_5_2 * std::exp(-h) * -std::expm1(-delta);
+      have_stress = true;
+    }
+    else if (delta >= 0.5)
+    {
+      // M(h) >= e^{0.5}... M(h_ref): at most ~1 digit lost.
+      m.stress = M.order3_2 - summit_heights::exponential_partial_moments(h_ref).order3_2;
+      have_stress = true;
+    }
+  }
+  else if (mu == 0.0 && dist == HeightDistribution::gaussian)
+  {
+    m.area = summit_heights::gaussian_first_moment(h);
+    m.rate = summit_heights::gaussian_survival(h);
+    have_area = true;
+  }
+
+  auto density = [dist](double s) { return standard_density(dist, s); };
+  const double lo = window_lo(h);
+  const double hi = window_hi(lo);
+
+  if (!have_stiffness)
+  {
+    auto f = [&](double w, double s)
+    {
+      const Root r = cached_root(w, mu);
+      return r.t * r.derivative * density(s);
+    };
+    const auto q = quadrature::integrate_from_singularity(f, h, lo, hi, tol);
+    m.stiffness = q.value;
+    m.converged = m.converged && q.converged;
+  }
+  if (!have_area)
+  {
+    auto fa = [&](double w, double s)
+    {
+      const Root r = cached_root(w, mu);
+      return r.t * r.t * density(s);
+    };
+    auto fr = [&](double w, double s) { return cached_root(w, mu).derivative * density(s); };
+    const auto qa = quadrature::integrate_from_singularity(fa, h, lo, hi, tol);
+    const auto qr = quadrature::integrate_from_singularity(fr, h, lo, hi, tol);
+    m.area = qa.value;
+    m.rate = qr.value;
+    m.converged = m.converged && qa.converged && qr.converged;
+  }
+  if (!have_stress)
+  {
+    // Piece 1: summits between the two planes, h < s <= h_ref: full load g(s-h)^{3/2}.
+    auto f1 = [&](double w, double s)
+    {
+      const double t = root(w, mu).t;
+      return t * t * t * density(s);
+    };
+    const auto q1 = quadrature::integrate_from_singularity(f1, h, lo, std::min(h_ref, hi), tol);
+    m.stress = q1.value;
+    m.converged = m.converged && q1.converged;
+    if (seated)
+    {
+      // Piece 2: summits already touching at seating, s > h_ref: the load increase
+      // g(v+δ)^{3/2} - g(v)^{3/2}, v = s - h_ref, formed without cancellation.
+      auto f2 = [&](double v, double s)
+      {
+        const double ta = root(v + delta, mu).t;
+        const double tb = cached_root(v, mu).t; // same nodes at every closure: memo hits
+        return substrate::cube_difference(ta, tb, mu, delta) * density(s);
+      };
+      const double lo2 = window_lo(h_ref);
+      const auto q2 = quadrature::integrate_from_singularity(f2, h_ref, lo2, window_hi(lo2), tol);
+      m.stress += q2.value;
+      m.converged = m.converged && q2.converged;
+    }
+  }
+  return m;
+}
+
+ClosureResponse SummitPopulationLaw::empirical_response(double separation, bool seated,
+                                                        double closure) const
+{
+  const EmpiricalSummits& S = *_summits;
+  const auto z = S.heights();
+  const auto beta = S.radii();
+  const auto sqrt_beta = S.sqrt_radii();
+  const double d0 = _reference_separation;
+  double sum_stress = 0.0, sum_stiffness = 0.0, sum_area = 0.0, sum_rate = 0.0;
+  // Heights decrease: the summits in contact are a prefix; w is the exact approach.
+  for (std::size_t i = 0; i < S.size(); ++i)
+  {
+    const double w = seated ? (z[i] - d0) + closure : z[i] - separation;
+    if (!(w > 0.0))
+      break;
+    const double c = _compliance_factor * sqrt_beta[i];
+    const substrate::HertzApproach a = substrate::hertz_approach(w, c);
+    // c = 0 keeps g = w exactly, so one summit reproduces Hertz to rounding.
+    const double g = a.hertz_part;
+    double cube = g * a.root;
+    if (seated && z[i] - d0 > 0.0)
+      cube = substrate::cube_difference(a.root, substrate::hertz_approach(z[i] - d0, c).root, c,
+                                        closure);
+    sum_stress += sqrt_beta[i] * cube;
+    sum_stiffness += sqrt_beta[i] * a.root * a.derivative;
+    sum_area += beta[i] * g;
+    sum_rate += beta[i] * a.derivative;
+  }
+  const double E = _parameters.composite_modulus, A0 = S.area();
+  ClosureResponse r{(4.0 / 3.0) * E / A0 * sum_stress, 2.0 * E / A0 * sum_stiffness,
+                    std::numbers::pi / A0 * sum_area, std::numbers::pi / A0 * sum_rate,
+                    Status::contact};
+  if (!std::isfinite(r.normal_stress) || !std::isfinite(r.normal_stiffness))
+    return beyond_maximum_closure(r.contact_area_ratio);
+  if (!seated && sum_stress == 0.0 && sum_stiffness == 0.0)
+    r.status = Status::open;
+  return r;
+}
+
+} // namespace rockjoint::constitutive

@@ -1,0 +1,332 @@
+"""Distribute a JointedMesh over MPI as a DOLFINx 0.5 mesh and pair the joint facets on every rank.
+
+Partitioning (dolfinx-0.5 field notes, "The recipe that worked" §2):
+1. owners from DOLFINx's default partitioner run on the *glued* cells (the split mesh has no facet
+   adjacency across joints, so partitioning it directly could separate a joint's two sides);
+2. the two cells of every joint facet (and chains of them: a cell with several joint facets) are
+   forced onto one rank, the owner of the lowest-numbered cell of the chain;
+3. ghost ranks from the facet adjacency of the *split* cells (never across the cut: ghosting across
+   it segfaults, dolfinx#1991; returning owners only builds a wrong mesh).
+So both cells of every pair are owned by the same rank and each pair is assembled there, once.
+
+Pairing uses cell->facet connectivity (not exterior_facet_indices, which returns owned facets only)
+and the glue map: two distinct local facets whose vertices have the same original (glued) nodes are
+the two sides of one joint facet. The glue of each local node is fetched from rank 0 through the
+node's original input index (``geometry.input_global_indices``).
+"""
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+import dolfinx
+import dolfinx.cpp as _cpp
+from dolfinx.io.gmshio import cell_perm_array, ufl_mesh
+from dolfinx.mesh import GhostMode, create_mesh, meshtags, meshtags_from_entities
+
+from ..meshes.jointed_mesh import JointedMesh
+from ..meshes.node_splitting import facet_keys
+
+_GMSH_CELL_ID = {"triangle": 2, "tetrahedron": 4}
+_ROOT = 0
+
+
+@dataclass
+class JointPairs:
+    """Joint facet pairs on this rank; each pair is held once, by the owner of its minus cell.
+
+    minus_cells, plus_cells: (n,) int32 local cell indices (both owned by this rank).
+    minus_local_facets, plus_local_facets: (n,) int32 local facet index within the cell
+        (0..nv-1 as DOLFINx numbers them: facet i is opposite vertex i).
+    joint_tags: (n,) int32 joint tag (physical group of the joint).
+    Minus side = the block with the lower block tag; the pair normal points from minus into plus.
+    Pairs are sorted by (joint tag, minus cell).
+    """
+
+    minus_cells: np.ndarray
+    minus_local_facets: np.ndarray
+    plus_cells: np.ndarray
+    plus_local_facets: np.ndarray
+    joint_tags: np.ndarray
+
+    def __len__(self) -> int:
+        return int(self.minus_cells.size)
+
+
+@dataclass
+class DistributedJointMesh:
+    """A distributed split mesh with block tags, named boundaries and local joint pairs.
+
+    mesh: the DOLFINx mesh (split nodes: the two sides of a joint are not connected).
+    cell_blocks: cell MeshTags (owned and ghost cells), values = block tags.
+    boundaries: facet MeshTags of the named exterior groups, values = boundary tags.
+    names: {"blocks": {tag: name}, "joints": {tag: name}, "boundaries": {tag: name}} (every rank).
+    pairs: the joint facet pairs assembled on this rank.
+    """
+
+    mesh: dolfinx.mesh.Mesh
+    cell_blocks: object
+    boundaries: object
+    names: dict
+    pairs: JointPairs
+
+    def boundary(self, name: str) -> np.ndarray:
+        """Local facet indices (int32, possibly empty on some ranks) of the boundary group ``name``."""
+        if not isinstance(name, str):
+            raise ValueError(f"boundary name must be a string, got {name!r}")
+        for tag, n in self.names["boundaries"].items():
+            if n == name:
+                return self.boundaries.indices[self.boundaries.values == tag].astype(np.int32)
+        raise KeyError(f"no boundary group named {name!r}; available: {sorted(self.names['boundaries'].values())}")
+
+    def block_tag(self, name: str) -> int:
+        """Tag of the block ``name`` (KeyError listing the available blocks)."""
+        return _tag(self.names, "blocks", name)
+
+    def joint_tag(self, name: str) -> int:
+        """Tag of the joint ``name`` (KeyError listing the available joints)."""
+        return _tag(self.names, "joints", name)
+
+
+def _tag(names: dict, kind: str, name: str) -> int:
+    for tag, n in names[kind].items():
+        if n == name:
+            return int(tag)
+    raise KeyError(f"no {kind[:-1]} named {name!r}; available: {sorted(names[kind].values())}")
+
+
+def distribute(jointed_mesh: JointedMesh | None, comm) -> DistributedJointMesh:
+    """Build the distributed mesh. Collective: rank 0 passes the JointedMesh, other ranks None.
+
+    Raises ValueError on every rank if rank 0 has no JointedMesh.
+    """
+    rank = comm.rank
+    _idle_barrier(comm)
+    if rank == _ROOT:
+        jm = jointed_mesh
+        if not isinstance(jm, JointedMesh):
+            header = {"error": f"distribute: rank 0 must pass a JointedMesh, got {type(jm).__name__}"}
+        else:
+            header = {"cell_type": jm.cell_type, "gdim": jm.gdim, "names": jm.names,
+                      "n_original": int(jm.glue.max()) + 1 if jm.glue.size else 0,
+                      "n_pairs": int(jm.joint_tags.size)}
+    else:
+        jm, header = None, None
+    header = comm.bcast(header, root=_ROOT)
+    if "error" in header:
+        raise ValueError(header["error"])
+    cell_type, gdim, names = header["cell_type"], header["gdim"], header["names"]
+    domain = ufl_mesh(_GMSH_CELL_ID[cell_type], gdim)
+    dolfinx_cell = _cpp.mesh.to_type(str(domain.ufl_cell()))
+    nv = 3 if cell_type == "triangle" else 4
+    perm = cell_perm_array(dolfinx_cell, nv)
+    facet_type = _cpp.mesh.cell_entity_type(dolfinx_cell, nv - 2, 0)
+    fperm = cell_perm_array(facet_type, nv - 1)
+
+    if rank == _ROOT:
+        cells = jm.cells[:, perm]
+        x = jm.points
+        partitioner = _JointPartitioner(jm, cells)
+    else:
+        cells = np.empty((0, nv), dtype=np.int64)
+        x = np.empty((0, gdim))
+        partitioner = _JointPartitioner(None, cells)
+    mesh = create_mesh(comm, cells, x, domain, GhostMode.shared_facet, partitioner)
+    topology = mesh.topology
+    tdim = topology.dim
+
+    # Block tag of every local cell, fetched from rank 0 through the original cell index.
+    original_cells = np.asarray(topology.original_cell_index, dtype=np.int64)
+    blocks = _fetch(comm, original_cells, jm.cell_blocks if rank == _ROOT else None)
+    ncells_local = topology.index_map(tdim).size_local + topology.index_map(tdim).num_ghosts
+    cell_blocks = meshtags(mesh, tdim, np.arange(ncells_local, dtype=np.int32), blocks.astype(np.int32))
+
+    # Facet tags: named boundaries and (minus sides of) joints, as gmshio.model_to_mesh does.
+    topology.create_connectivity(tdim - 1, tdim)
+    topology.create_connectivity(tdim, tdim - 1)
+    topology.create_connectivity(tdim - 1, 0)
+    boundaries = _facet_tags(mesh, jm.boundary_facets[:, fperm] if rank == _ROOT else np.empty((0, nv - 1), np.int64),
+                             jm.boundary_tags if rank == _ROOT else np.empty(0, np.int32))
+    joint_facets = _facet_tags(mesh, jm.joint_facets_minus[:, fperm] if rank == _ROOT
+                               else np.empty((0, nv - 1), np.int64),
+                               jm.joint_tags if rank == _ROOT else np.empty(0, np.int32))
+
+    # Glued (original) node of every local vertex, fetched through the node's input index.
+    node_glue = _fetch(comm, np.asarray(mesh.geometry.input_global_indices, dtype=np.int64),
+                       jm.glue if rank == _ROOT else None)
+    c2v = topology.connectivity(tdim, 0).array.reshape(-1, nv)
+    x_dofmap = mesh.geometry.dofmap.array.reshape(-1, nv)  # P1: geometry dof i of a cell = vertex i
+    vertex_glue = np.empty(topology.index_map(0).size_local + topology.index_map(0).num_ghosts, dtype=np.int64)
+    vertex_glue[c2v] = node_glue[x_dofmap]
+
+    pairs, error = _pair_facets(mesh, vertex_glue, blocks, joint_facets, header["n_original"])
+    errors = [e for e in comm.allgather(error) if e]  # raise on every rank, never leave one waiting
+    if errors:
+        raise RuntimeError("; ".join(errors))
+    return DistributedJointMesh(mesh=mesh, cell_blocks=cell_blocks, boundaries=boundaries, names=names, pairs=pairs)
+
+
+def _idle_barrier(comm, interval: float = 0.005) -> None:
+    """Barrier that sleeps while rank 0 is still meshing (MPI's busy wait would steal its core)."""
+    request = comm.Ibarrier()
+    while not request.Test():
+        time.sleep(interval)
+
+
+def _fetch(comm, indices: np.ndarray, values_on_root: np.ndarray | None) -> np.ndarray:
+    """values_on_root[indices] for this rank's indices (rank 0 answers every rank)."""
+    requests = comm.gather(indices, root=_ROOT)
+    replies = [values_on_root[r] for r in requests] if comm.rank == _ROOT else None
+    return comm.scatter(replies, root=_ROOT)
+
+
+def _facet_tags(mesh, facets: np.ndarray, values: np.ndarray):
+    tdim = mesh.topology.dim
+    local_entities, local_values = _cpp.io.distribute_entity_data(mesh._mesh, tdim - 1,
+                                                                  np.ascontiguousarray(facets, dtype=np.int64),
+                                                                  np.ascontiguousarray(values, dtype=np.int32))
+    adj = _cpp.graph.AdjacencyList_int32(np.ascontiguousarray(local_entities, dtype=np.int32).reshape(-1, tdim))
+    return meshtags_from_entities(mesh, tdim - 1, adj, np.asarray(local_values, dtype=np.int32))
+
+
+def _pair_facets(mesh, vertex_glue: np.ndarray, blocks: np.ndarray, joint_facets, n_original: int
+                 ) -> tuple[JointPairs, str | None]:
+    topology = mesh.topology
+    tdim = topology.dim
+    nv = tdim + 1
+    n_owned_cells = topology.index_map(tdim).size_local
+    f2v = topology.connectivity(tdim - 1, 0).array.reshape(-1, tdim)
+    c2f = topology.connectivity(tdim, tdim - 1).array.reshape(-1, nv)
+    f2c = topology.connectivity(tdim - 1, tdim)
+    keys = facet_keys(np.sort(vertex_glue[f2v], axis=1), max(n_original, 1))
+    order = np.argsort(keys, kind="stable")
+    dup = keys[order][1:] == keys[order][:-1]
+    fa, fb = order[:-1][dup], order[1:][dup]  # two local facets with the same original nodes
+    # On the split mesh each side of a joint facet belongs to exactly one cell.
+    f2c_first = np.asarray(f2c.array)[np.asarray(f2c.offsets)[:-1]]
+    ca, cb = f2c_first[fa].astype(np.int64), f2c_first[fb].astype(np.int64)
+    swap = blocks[ca] > blocks[cb]
+    fm, fp = np.where(swap, fb, fa), np.where(swap, fa, fb)
+    cm, cp = np.where(swap, cb, ca), np.where(swap, ca, cb)
+    keep = cm < n_owned_cells
+    fm, fp, cm, cp = fm[keep], fp[keep], cm[keep], cp[keep]
+
+    tag_of = np.full(f2v.shape[0], -1, dtype=np.int64)
+    tag_of[joint_facets.indices] = joint_facets.values
+    tags = tag_of[fm]
+    owned_joint = joint_facets.indices[np.isin(joint_facets.indices,
+                                               c2f[:n_owned_cells].ravel())]
+    error = None
+    if np.any(tags < 0) or np.unique(owned_joint).size != fm.size:
+        error = (f"distribute: rank {mesh.comm.rank} found {fm.size} joint pairs for {np.unique(owned_joint).size} "
+                 "owned minus-side joint facets; a plus cell is not local (partitioner invariant broken)")
+    elif np.any(cp >= n_owned_cells):
+        error = f"distribute: rank {mesh.comm.rank}: a plus cell is a ghost; pairs must be owned by one rank"
+    local_m = np.argmax(c2f[cm] == fm[:, None], axis=1)
+    local_p = np.argmax(c2f[cp] == fp[:, None], axis=1)
+    srt = np.lexsort((cm, tags))
+    return JointPairs(minus_cells=cm[srt].astype(np.int32), minus_local_facets=local_m[srt].astype(np.int32),
+                      plus_cells=cp[srt].astype(np.int32), plus_local_facets=local_p[srt].astype(np.int32),
+                      joint_tags=tags[srt].astype(np.int32)), error
+
+
+class _JointPartitioner:
+    """Cell partitioner callable for dolfinx.mesh.create_mesh (see the module docstring)."""
+
+    def __init__(self, jm: JointedMesh | None, cells: np.ndarray):
+        self._jm = jm
+        self._cells = cells
+        self._default = _cpp.mesh.create_cell_partitioner()
+
+    def __call__(self, comm, nparts, tdim, cells, ghost_mode):
+        jm = self._jm
+        mine = np.asarray(cells.array, dtype=np.int64)
+        if jm is not None:
+            nv = jm.cells.shape[1]
+            if mine.size != self._cells.size or not np.array_equal(mine.reshape(-1, nv), self._cells):
+                raise RuntimeError("distribute: the partitioner did not receive the input cells in input order")
+            glued = _cpp.graph.AdjacencyList_int64(np.ascontiguousarray(jm.glue[self._cells]))
+        else:
+            glued = cells
+        dest = self._default(comm, nparts, tdim, glued, ghost_mode)
+        if jm is None:
+            return dest
+        offsets = np.asarray(dest.offsets)
+        owners = np.asarray(dest.array)[offsets[:-1]].astype(np.int64)
+        return _joint_destinations(jm, owners, nparts)
+
+
+def _joint_destinations(jm: JointedMesh, owners: np.ndarray, nparts: int):
+    import scipy.sparse as sp
+    from scipy.sparse.csgraph import connected_components
+
+    nc, nv = jm.cells.shape
+    pairs = jm.joint_facet_cells
+    graph = sp.coo_matrix((np.ones(pairs.shape[0]), (pairs[:, 0], pairs[:, 1])), shape=(nc, nc))
+    _, label = connected_components(graph, directed=False)
+    first = np.full(label.max() + 1, nc, dtype=np.int64)
+    np.minimum.at(first, label, np.arange(nc))
+    owners = owners[first[label]]  # every chain of paired cells goes with its lowest-numbered cell
+
+    # Ghosts: facet neighbours in the split mesh owned elsewhere.
+    from ..meshes.node_splitting import cell_facets
+    f = np.sort(cell_facets(jm.cells).reshape(-1, nv - 1), axis=1)
+    keys = facet_keys(f, jm.points.shape[0])
+    fcell = np.repeat(np.arange(nc, dtype=np.int64), nv)
+    order = np.argsort(keys, kind="stable")
+    same = keys[order][1:] == keys[order][:-1]
+    a, b = fcell[order[:-1][same]], fcell[order[1:][same]]
+    cross = owners[a] != owners[b]
+    a, b = a[cross], b[cross]
+    ghost_cell = np.concatenate([a, b])
+    ghost_rank = np.concatenate([owners[b], owners[a]])
+    g = np.unique(ghost_cell * nparts + ghost_rank)
+    ghost_cell, ghost_rank = g // nparts, g % nparts
+    counts = 1 + np.bincount(ghost_cell, minlength=nc)
+    offsets = np.zeros(nc + 1, dtype=np.int32)
+    np.cumsum(counts, out=offsets[1:])
+    data = np.empty(offsets[-1], dtype=np.int32)
+    data[offsets[:-1]] = owners
+    # ghost ranks after the owner, in the order of np.unique (sorted by cell then rank)
+    start = np.searchsorted(ghost_cell, ghost_cell)  # first ghost entry of each cell
+    data[offsets[ghost_cell] + 1 + (np.arange(ghost_cell.size) - start)] = ghost_rank
+    return _cpp.graph.AdjacencyList_int32(data, offsets)
+
+
+def pair_vertex_positions(dmesh: DistributedJointMesh) -> tuple[np.ndarray, np.ndarray]:
+    """Matched facet vertices of every local pair, as positions (0..nv-1) within the pair's cells.
+
+    Returns (minus_positions, plus_positions), each (n_pairs, nv-1) int32: entry [k, i] of both arrays is
+    the same point of the joint (coincident copies); the minus order is oriented so that its right-hand
+    normal (3D: (x1-x0) x (x2-x0); 2D: (t_y, -t_x), t = x1-x0) points from the minus into the plus cell.
+    For P1 spaces position p of a cell is its p-th cell dof (P1 dof p sits on vertex p), and for the
+    geometry ``mesh.geometry.dofmap.links(cell)[p]``. A convenience on top of JointPairs; optional.
+    """
+    mesh, p = dmesh.mesh, dmesh.pairs
+    tdim = mesh.topology.dim
+    nv = tdim + 1
+    x = mesh.geometry.x[:, :mesh.geometry.dim]
+    dofs = mesh.geometry.dofmap.array.reshape(-1, nv)
+    others = np.array([[j for j in range(nv) if j != i] for i in range(nv)], dtype=np.int32)
+    pos_m = others[p.minus_local_facets]  # facet i of a simplex: the other vertices
+    pos_p = others[p.plus_local_facets]
+    xm = x[np.take_along_axis(dofs[p.minus_cells], pos_m, axis=1)]
+    xp = x[np.take_along_axis(dofs[p.plus_cells], pos_p, axis=1)]
+    # plus vertex matching each minus vertex: the split copies have identical coordinates
+    dist = np.linalg.norm(xm[:, :, None, :] - xp[:, None, :, :], axis=3)
+    match = np.argmin(dist, axis=2)
+    pos_p = np.take_along_axis(pos_p, match, axis=1)
+    xp = np.take_along_axis(xp, match[..., None], axis=1)
+    # orient: right-hand normal away from the minus cell's opposite vertex
+    opp = x[dofs[p.minus_cells, p.minus_local_facets]]
+    if tdim == 2:
+        t = xm[:, 1] - xm[:, 0]
+        normal = np.stack([t[:, 1], -t[:, 0]], axis=1)
+    else:
+        normal = np.cross(xm[:, 1] - xm[:, 0], xm[:, 2] - xm[:, 0])
+    flip = np.einsum("ij,ij->i", normal, opp - xm[:, 0]) > 0.0
+    pos_m[flip, :2] = pos_m[flip, 1::-1]
+    pos_p[flip, :2] = pos_p[flip, 1::-1]
+    return pos_m.astype(np.int32), pos_p.astype(np.int32)

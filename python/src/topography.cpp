@@ -1,0 +1,290 @@
+// Bindings of rockjoint::topography (SI units: heights and spacings in metres). The pure
+// Python layer rockjoint/topography.py owns the defaults, the .npy I/O and the pictures.
+#ifdef ROCKJOINT_HAS_TOPOGRAPHY
+#include "array_helpers.hpp"
+
+#include <algorithm>
+#include <optional>
+
+#include <topography/closure_parameters.hpp>
+#include <topography/composite.hpp>
+#include <topography/overlap.hpp>
+#include <topography/power_spectrum.hpp>
+#include <topography/self_affine.hpp>
+#include <topography/spectral_moments.hpp>
+#include <topography/summits.hpp>
+#include <topography/surface.hpp>
+#include <topography/surface_io.hpp>
+#include <topography/units.hpp>
+
+#include <pybind11/eigen.h>
+#include <pybind11/stl.h>
+
+namespace py = pybind11;
+using namespace rockjoint::topography;
+
+namespace rockjoint::python
+{
+
+namespace
+{
+using GridArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+HeightGrid to_grid(const GridArray& a)
+{
+  if (a.ndim() != 2)
+    throw py::value_error("heights must be a 2D array (rows = y, columns = x), got "
+                          + std::to_string(a.ndim()) + " dimensions");
+  HeightGrid g(a.shape(0), a.shape(1));
+  std::copy(a.data(), a.data() + a.size(), g.data());
+  return g;
+}
+
+GridArray to_array(const HeightGrid& g)
+{
+  GridArray a({g.rows(), g.cols()});
+  std::copy(g.data(), g.data() + g.size(), a.mutable_data());
+  return a;
+}
+
+template <class T>
+py::array_t<T> vector_array(const std::vector<T>& v)
+{
+  return py::array_t<T>(static_cast<py::ssize_t>(v.size()), v.data());
+}
+
+ReadOptions read_options(std::optional<double> sx, std::optional<double> sy,
+                         std::optional<std::string> lateral, std::optional<std::string> height)
+{
+  ReadOptions o;
+  o.spacing_x = sx;
+  o.spacing_y = sy ? sy : sx;
+  o.lateral_unit = lateral;
+  o.height_unit = height;
+  return o;
+}
+
+py::tuple file_tuple(const SurfaceFile& f)
+{
+  return py::make_tuple(f.surface, f.lateral_unit, f.height_unit);
+}
+} // namespace
+
+void declare_topography(py::module_& m)
+{
+  py::class_<Surface>(m, "Surface",
+                      "Heights [m] on a regular lattice (row i: y = i*spacing_y; column j: "
+                      "x = j*spacing_x); NaN = missing point")
+      .def(py::init([](const GridArray& h, double sx, std::optional<double> sy)
+                    { return Surface(to_grid(h), sx, sy.value_or(sx)); }),
+           py::arg("heights"), py::arg("spacing_x"), py::arg("spacing_y") = py::none())
+      .def_property_readonly("heights", [](const Surface& s) { return to_array(s.heights()); },
+                             "Copy of the heights [m] (rows = y, columns = x)")
+      .def_property_readonly("spacing_x", &Surface::spacing_x, "[m]")
+      .def_property_readonly("spacing_y", &Surface::spacing_y, "[m]")
+      .def_property_readonly("shape", [](const Surface& s)
+                             { return py::make_tuple(s.rows(), s.cols()); })
+      .def_property_readonly("valid_count", &Surface::valid_count)
+      .def_property_readonly("mean_height", &Surface::mean_height, "[m]")
+      .def_property_readonly("rms_height", &Surface::rms_height, "[m]")
+      .def("__repr__", [](const Surface& s)
+           {
+             return "Surface(" + std::to_string(s.rows()) + " x " + std::to_string(s.cols())
+                    + ", spacing " + std::to_string(s.spacing_x() * 1e3) + " x "
+                    + std::to_string(s.spacing_y() * 1e3) + " mm)";
+           });
+  m.def("decimate", &decimate, py::arg("surface"), py::arg("factor"),
+        "Every factor-th point: the same surface sampled factor times more coarsely");
+  m.def("metres_per_unit", &metres_per_unit, py::arg("unit"));
+
+  // ---- files -----------------------------------------------------------------------------
+  m.def("read_height_grid",
+        [](const std::string& p, std::optional<double> sx, std::optional<double> sy,
+           std::optional<std::string> lu, std::optional<std::string> hu)
+        { return file_tuple(read_height_grid(p, read_options(sx, sy, lu, hu))); },
+        py::arg("path"), py::arg("spacing_x") = py::none(), py::arg("spacing_y") = py::none(),
+        py::arg("lateral_unit") = py::none(), py::arg("height_unit") = py::none(),
+        "(Surface, lateral_unit, height_unit) from a plain-text height grid");
+  m.def("write_height_grid", &write_height_grid, py::arg("path"), py::arg("surface"),
+        py::arg("lateral_unit") = "mm", py::arg("height_unit") = "mm");
+  m.def("read_xyz",
+        [](const std::string& p, std::optional<std::string> lu, std::optional<std::string> hu)
+        { return file_tuple(read_xyz(p, read_options({}, {}, lu, hu))); },
+        py::arg("path"), py::arg("lateral_unit") = py::none(),
+        py::arg("height_unit") = py::none(),
+        "(Surface, lateral_unit, height_unit) from an XYZ list on a regular lattice");
+  m.def("write_xyz", &write_xyz, py::arg("path"), py::arg("surface"),
+        py::arg("lateral_unit") = "mm", py::arg("height_unit") = "mm");
+
+  // ---- synthesis -------------------------------------------------------------------------
+  m.def("self_affine_surface",
+        [](double H, double rms, Eigen::Index rows, Eigen::Index cols, double h,
+           std::uint64_t seed, double lr, double ls, bool exact)
+        { return self_affine_surface({H, rms, lr, ls}, {rows, cols, h, seed, exact}); },
+        py::arg("hurst_exponent"), py::arg("rms_height"), py::arg("rows"), py::arg("cols"),
+        py::arg("spacing"), py::arg("seed"), py::arg("rolloff_wavelength") = 0.0,
+        py::arg("cutoff_wavelength") = 0.0, py::arg("exact_rms") = true,
+        py::call_guard<py::gil_scoped_release>());
+  m.def("mated_pair",
+        [](double H, double rms, Eigen::Index rows, Eigen::Index cols, double h,
+           std::uint64_t seed, double lm, double lr, double ls, bool exact)
+        { return mated_pair({H, rms, lr, ls}, {rows, cols, h, seed, exact}, lm); },
+        py::arg("hurst_exponent"), py::arg("rms_height"), py::arg("rows"), py::arg("cols"),
+        py::arg("spacing"), py::arg("seed"), py::arg("matedness_wavelength"),
+        py::arg("rolloff_wavelength") = 0.0, py::arg("cutoff_wavelength") = 0.0,
+        py::arg("exact_rms") = true, py::call_guard<py::gil_scoped_release>());
+
+  // ---- composite topography --------------------------------------------------------------
+  py::enum_<PlaneRemoval>(m, "PlaneRemoval")
+      .value("common", PlaneRemoval::common)
+      .value("separate", PlaneRemoval::separate)
+      .value("none", PlaneRemoval::none);
+  py::class_<Plane>(m, "Plane")
+      .def_readonly("offset", &Plane::offset)
+      .def_readonly("slope_x", &Plane::slope_x)
+      .def_readonly("slope_y", &Plane::slope_y);
+  py::class_<CompositeTopography>(m, "CompositeTopography")
+      .def_readonly("upper", &CompositeTopography::upper)
+      .def_readonly("lower", &CompositeTopography::lower)
+      .def_readonly("aperture", &CompositeTopography::aperture)
+      .def_readonly("composite", &CompositeTopography::composite)
+      .def_readonly("mean_aperture", &CompositeTopography::mean_aperture)
+      .def_readonly("interpenetration", &CompositeTopography::interpenetration)
+      .def_readonly("upper_plane", &CompositeTopography::upper_plane)
+      .def_readonly("lower_plane", &CompositeTopography::lower_plane)
+      .def_property_readonly("offset", [](const CompositeTopography& c)
+                             { return py::make_tuple(c.state.offset_x, c.state.offset_y); });
+  m.def("composite_topography",
+        [](const Surface& u, const Surface& l, int ox, int oy, PlaneRemoval p)
+        { return composite_topography(u, l, {ox, oy, p}); },
+        py::arg("upper"), py::arg("lower"), py::arg("offset_x") = 0, py::arg("offset_y") = 0,
+        py::arg("plane_removal") = PlaneRemoval::common);
+
+  // ---- summits ---------------------------------------------------------------------------
+  py::class_<SummitStatistics>(m, "SummitStatistics")
+      .def_readonly("sampling_interval_x", &SummitStatistics::sampling_interval_x)
+      .def_readonly("sampling_interval_y", &SummitStatistics::sampling_interval_y)
+      .def_readonly("summit_count", &SummitStatistics::summit_count)
+      .def_readonly("eligible_points", &SummitStatistics::eligible_points)
+      .def_readonly("scanned_area", &SummitStatistics::scanned_area)
+      .def_readonly("summit_density", &SummitStatistics::summit_density)
+      .def_readonly("summit_radius", &SummitStatistics::summit_radius)
+      .def_readonly("mean_summit_radius", &SummitStatistics::mean_summit_radius)
+      .def_readonly("mean_curvature", &SummitStatistics::mean_curvature)
+      .def_readonly("summit_height_std", &SummitStatistics::summit_height_std)
+      .def_readonly("mean_summit_height", &SummitStatistics::mean_summit_height)
+      .def_readonly("highest_summit", &SummitStatistics::highest_summit)
+      .def_readonly("surface_rms", &SummitStatistics::surface_rms);
+  m.def("analyse_summits",
+        [](const Surface& s)
+        {
+          SummitAnalysis a;
+          {
+            py::gil_scoped_release release;
+            a = analyse_summits(s);
+          }
+          py::dict list;
+          list["rows"] = vector_array(a.summits.rows);
+          list["cols"] = vector_array(a.summits.cols);
+          list["heights"] = vector_array(a.summits.heights);
+          list["curvatures"] = vector_array(a.summits.curvatures);
+          return py::make_tuple(a.statistics, list);
+        },
+        py::arg("surface"), "(SummitStatistics, dict of arrays rows, cols, heights [m], "
+                            "curvatures [1/m])");
+  m.def("curvature_field", [](const Surface& s) { return to_array(curvature_field(s)); },
+        py::arg("surface"));
+
+  // ---- spectra ---------------------------------------------------------------------------
+  py::enum_<Window>(m, "Window").value("none", Window::none).value("hann", Window::hann);
+  py::class_<SpectralMoments>(m, "SpectralMoments")
+      .def_readonly("m0", &SpectralMoments::m0)
+      .def_readonly("m2", &SpectralMoments::m2)
+      .def_readonly("m4", &SpectralMoments::m4)
+      .def_readonly("m2x", &SpectralMoments::m2x)
+      .def_readonly("m2y", &SpectralMoments::m2y)
+      .def_readonly("m4x", &SpectralMoments::m4x)
+      .def_readonly("m4y", &SpectralMoments::m4y)
+      .def_property_readonly("bandwidth", &SpectralMoments::bandwidth);
+  py::class_<NayakEstimates>(m, "NayakEstimates")
+      .def_readonly("sampling_interval", &NayakEstimates::sampling_interval)
+      .def_readonly("summit_density", &NayakEstimates::summit_density)
+      .def_readonly("summit_radius", &NayakEstimates::summit_radius)
+      .def_readonly("summit_height_std", &NayakEstimates::summit_height_std)
+      .def_readonly("bandwidth", &NayakEstimates::bandwidth)
+      .def_readonly("moments", &NayakEstimates::moments);
+  m.def("finite_difference_moments", &finite_difference_moments, py::arg("surface"));
+  m.def("psd_moments", &psd_moments, py::arg("surface"), py::arg("window") = Window::hann);
+  m.def("nayak_estimates", &nayak_estimates, py::arg("moments"), py::arg("sampling_interval"));
+  m.def("power_spectrum_2d",
+        [](const Surface& s, Window w)
+        {
+          const PowerSpectrum2D p = power_spectrum_2d(s, w);
+          return py::make_tuple(to_array(p.psd), vector_array(p.qx), vector_array(p.qy));
+        },
+        py::arg("surface"), py::arg("window") = Window::hann,
+        "(C [m^4] in DFT order, q_x [rad/m], q_y [rad/m]); Σ C Δq_x Δq_y = mean z²");
+  m.def("radial_spectrum",
+        [](const Surface& s, Window w)
+        {
+          const RadialSpectrum r = radial_average(power_spectrum_2d(s, w));
+          return py::make_tuple(vector_array(r.q), vector_array(r.psd), vector_array(r.count));
+        },
+        py::arg("surface"), py::arg("window") = Window::hann,
+        "(q [rad/m], C [m^4], mode count) radially averaged");
+  py::class_<HurstFit>(m, "HurstFit")
+      .def_readonly("hurst_exponent", &HurstFit::hurst_exponent)
+      .def_readonly("slope", &HurstFit::slope)
+      .def_readonly("slope_std_error", &HurstFit::slope_std_error)
+      .def_readonly("log_prefactor", &HurstFit::log_prefactor)
+      .def_readonly("q_min", &HurstFit::q_min)
+      .def_readonly("q_max", &HurstFit::q_max)
+      .def_readonly("bins", &HurstFit::bins);
+  m.def("fit_hurst_exponent",
+        [](const DoubleArray& q, const DoubleArray& c, const py::array_t<std::int64_t>& n,
+           double q_min, double q_max)
+        {
+          if (q.size() != c.size() || q.size() != n.size())
+            throw py::value_error("fit_hurst_exponent: q, psd and count differ in length");
+          RadialSpectrum r;
+          r.q.assign(q.data(), q.data() + q.size());
+          r.psd.assign(c.data(), c.data() + c.size());
+          r.count.assign(n.data(), n.data() + n.size());
+          return fit_hurst_exponent(r, q_min, q_max);
+        },
+        py::arg("q"), py::arg("psd"), py::arg("count"), py::arg("q_min"), py::arg("q_max"));
+
+  // ---- overlap, parameters, resampling ---------------------------------------------------
+  py::class_<ApertureDistribution>(m, "ApertureDistribution",
+                                   "fraction{e <= Δ} of an aperture field (theory §3)")
+      .def(py::init<const Surface&>(), py::arg("aperture"))
+      .def("overlap_ratio",
+           [](const ApertureDistribution& d, const DoubleArray& closure) -> py::object
+           {
+             DoubleArray out = empty_like(closure);
+             d.overlap_ratio(as_span(closure), {out.mutable_data(), std::size_t(out.size())});
+             if (closure.ndim() == 0)
+               return out.attr("item")();
+             return out;
+           },
+           py::arg("closure"), "fraction{e <= Δ} [-] at closure Δ [m]");
+  m.def("checked_asperity_parameters",
+        [](const SummitStatistics& s, double e)
+        {
+          const auto p = asperity_parameters(s, e);
+          return py::make_tuple(p.composite_modulus, p.summit_density, p.summit_radius,
+                                p.summit_height_std);
+        },
+        py::arg("statistics"), py::arg("composite_modulus"),
+        "(E* [Pa], η [1/m²], β [m], σ_s [m]) checked: at least 2 summits");
+  py::class_<ResamplingRow>(m, "ResamplingRow")
+      .def_readonly("factor", &ResamplingRow::factor)
+      .def_readonly("sampling_interval", &ResamplingRow::sampling_interval)
+      .def_readonly("summits", &ResamplingRow::summits)
+      .def_readonly("spectral", &ResamplingRow::spectral);
+  m.def("resampling_study", &resampling_study, py::arg("surface"), py::arg("factors"));
+}
+
+} // namespace rockjoint::python
+
+#endif // ROCKJOINT_HAS_TOPOGRAPHY

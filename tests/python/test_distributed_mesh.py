@@ -1,0 +1,154 @@
+"""rockjoint.fem.distributed_mesh in serial: DOLFINx mesh, tags and joint pairs from a JointedMesh.
+
+References: the JointedMesh's own facet pairs (built by a different code path: glued facet table on the
+input mesh) and closed-form block volumes / face areas. Facet vertices are read through DOLFINx's
+cell->facet and facet->vertex connectivity, independently of the pairing code's local numbering.
+"""
+import numpy as np
+import pytest
+from mpi4py import MPI
+
+import dolfinx
+from rockjoint.fem.distributed_mesh import distribute, pair_vertex_positions
+from rockjoint.meshes import Joint, column, jointed_block
+
+
+def pair_facet_coordinates(d, cells, local_facets):
+    """(n, tdim, gdim) coordinates of the facets local_facets[i] of cells[i], via DOLFINx connectivity."""
+    mesh = d.mesh
+    tdim = mesh.topology.dim
+    mesh.topology.create_connectivity(tdim, tdim - 1)
+    c2f = mesh.topology.connectivity(tdim, tdim - 1)
+    facets = np.array([c2f.links(c)[f] for c, f in zip(cells, local_facets)], dtype=np.int32)
+    nodes = dolfinx.cpp.mesh.entities_to_geometry(mesh._mesh, tdim - 1, facets, False)
+    return mesh.geometry.x[nodes][..., :mesh.geometry.dim]
+
+
+def sorted_rows(x):
+    """Facet coordinates as canonical sorted tuples (order of vertices removed)."""
+    return [tuple(map(tuple, np.round(f[np.lexsort(f.T[::-1])], 12))) for f in x]
+
+
+def owned_block_measures(d):
+    mesh = d.mesh
+    tdim = mesh.topology.dim
+    n_owned = mesh.topology.index_map(tdim).size_local
+    x = mesh.geometry.x[:, :mesh.geometry.dim]
+    dofs = mesh.geometry.dofmap.array.reshape(-1, tdim + 1)[:n_owned]
+    e = x[dofs[:, 1:]] - x[dofs[:, :1]]
+    if tdim == 2:
+        m = 0.5 * np.abs(e[:, 0, 0] * e[:, 1, 1] - e[:, 0, 1] * e[:, 1, 0])
+    else:
+        m = np.abs(np.einsum("ij,ij->i", e[:, 0], np.cross(e[:, 1], e[:, 2]))) / 6.0
+    blocks = np.empty(n_owned, dtype=np.int32)
+    sel = d.cell_blocks.indices < n_owned
+    blocks[d.cell_blocks.indices[sel]] = d.cell_blocks.values[sel]
+    return {int(t): float(m[blocks == t].sum()) for t in d.names["blocks"]}
+
+
+def check_pairs_against_jointed_mesh(d, jm):
+    p = d.pairs
+    assert len(p) == jm.joint_tags.size
+    n_owned = d.mesh.topology.index_map(d.mesh.topology.dim).size_local
+    assert np.all(p.minus_cells < n_owned) and np.all(p.plus_cells < n_owned)
+    xm = pair_facet_coordinates(d, p.minus_cells, p.minus_local_facets)
+    xp = pair_facet_coordinates(d, p.plus_cells, p.plus_local_facets)
+    assert sorted_rows(xm) == sorted_rows(xp)  # coincident pointwise (as sets of vertices per facet)
+    ref = jm.points[jm.joint_facets_minus]
+    assert sorted(zip(p.joint_tags.tolist(), sorted_rows(xm))) == \
+        sorted(zip(jm.joint_tags.tolist(), sorted_rows(ref)))
+    # minus side = lower block tag
+    blocks = dict(zip(d.cell_blocks.indices.tolist(), d.cell_blocks.values.tolist()))
+    assert all(blocks[m] < blocks[q] for m, q in zip(p.minus_cells.tolist(), p.plus_cells.tolist()))
+    # the pair's cells lie on opposite sides of the facet plane
+    tdim = d.mesh.topology.dim
+    x = d.mesh.geometry.x[:, :d.mesh.geometry.dim]
+    dofs = d.mesh.geometry.dofmap.array.reshape(-1, tdim + 1)
+    cm, cp = x[dofs[p.minus_cells]].mean(axis=1), x[dofs[p.plus_cells]].mean(axis=1)
+    if tdim == 2:
+        t = xm[:, 1] - xm[:, 0]
+        n = np.stack([t[:, 1], -t[:, 0]], axis=1)
+    else:
+        n = np.cross(xm[:, 1] - xm[:, 0], xm[:, 2] - xm[:, 0])
+    side_m = np.einsum("ij,ij->i", n, cm - xm[:, 0])
+    side_p = np.einsum("ij,ij->i", n, cp - xm[:, 0])
+    assert np.all(side_m * side_p < 0)
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_serial_column_pairs_tags_and_volumes(dim):
+    jm = column(1.0, 2.0, [0.5, 1.2], dim=dim, mesh_size=0.3)
+    d = distribute(jm, MPI.COMM_WORLD)
+    assert d.mesh.topology.index_map(0).size_global == jm.points.shape[0]  # no vertex added or merged
+    assert d.mesh.topology.index_map(dim).size_global == jm.cells.shape[0]
+    check_pairs_against_jointed_mesh(d, jm)
+    ref = {1: 0.5, 2: 0.7, 3: 0.8}
+    assert owned_block_measures(d) == pytest.approx(ref, rel=1e-12)
+    assert np.array_equal(np.unique(d.pairs.joint_tags), [100, 101])
+    # boundary facets: the bottom face has measure width^(dim-1)
+    bottom = d.boundary("bottom")
+    nodes = dolfinx.cpp.mesh.entities_to_geometry(d.mesh._mesh, dim - 1, bottom, False)
+    xb = d.mesh.geometry.x[nodes][..., :dim]
+    assert np.allclose(xb[..., -1], 0.0)
+    if dim == 2:
+        area = np.linalg.norm(xb[:, 1] - xb[:, 0], axis=1).sum()
+    else:
+        area = 0.5 * np.linalg.norm(np.cross(xb[:, 1] - xb[:, 0], xb[:, 2] - xb[:, 0]), axis=1).sum()
+    assert area == pytest.approx(1.0, rel=1e-12)
+    assert d.block_tag("block_2") == 2 and d.joint_tag("joint_1") == 100
+
+
+def test_serial_t_junction_3d():
+    js = [Joint((0.5, 0.5, 0.3), 0.0, 90.0, "h1"), Joint((0.5, 0.5, 0.7), 0.0, 90.0, "h2"),
+          Joint((0.5, 0.5, 0.5), 60.0, 90.0, "v", ("h1", "h2"))]
+    jm = jointed_block((1.0, 1.0, 1.0), js, mesh_size=0.3)
+    d = distribute(jm, MPI.COMM_WORLD)
+    check_pairs_against_jointed_mesh(d, jm)
+    assert sum(owned_block_measures(d).values()) == pytest.approx(1.0, rel=1e-12)
+    assert owned_block_measures(d) == pytest.approx(jm.block_measures(), rel=1e-12)
+
+
+def test_boundary_lookup_errors():
+    d = distribute(column(1.0, 1.0, [0.5], dim=2, mesh_size=0.5), MPI.COMM_WORLD)
+    with pytest.raises(KeyError, match="no boundary group named 'floor'.*bottom"):
+        d.boundary("floor")
+    with pytest.raises(ValueError, match="must be a string"):
+        d.boundary(1)
+    with pytest.raises(KeyError, match="no joint named 'j'"):
+        d.joint_tag("j")
+
+
+def test_distribute_requires_a_mesh_on_rank_0():
+    with pytest.raises(ValueError, match="rank 0 must pass a JointedMesh"):
+        distribute(None, MPI.COMM_WORLD)
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_pair_vertex_positions_match_and_orient(dim):
+    js = [Joint((0.5,) * (dim - 1) + (0.4,), 25.0, 90.0), Joint((0.5,) * (dim - 1) + (0.8,), 0.0, 90.0)]
+    jm = jointed_block((1.0,) * dim, js, mesh_size=0.25)
+    d = distribute(jm, MPI.COMM_WORLD)
+    p = d.pairs
+    pm, pp = pair_vertex_positions(d)
+    x = d.mesh.geometry.x[:, :dim]
+    dofs = d.mesh.geometry.dofmap.array.reshape(-1, dim + 1)
+    xm = x[np.take_along_axis(dofs[p.minus_cells], pm, axis=1)]
+    xp = x[np.take_along_axis(dofs[p.plus_cells], pp, axis=1)]
+    assert np.array_equal(xm, xp)  # entrywise coincident
+    # the positions are the vertices of the paired facets (read through DOLFINx connectivity)
+    assert sorted_rows(xm) == sorted_rows(pair_facet_coordinates(d, p.minus_cells, p.minus_local_facets))
+    assert sorted_rows(xp) == sorted_rows(pair_facet_coordinates(d, p.plus_cells, p.plus_local_facets))
+    assert np.all(pm != p.minus_local_facets[:, None]) and np.all(pp != p.plus_local_facets[:, None])
+    # right-hand normal of the minus order points into the plus cell; for these joints it is the upward
+    # normal of the joint (the minus block is below)
+    if dim == 2:
+        t = xm[:, 1] - xm[:, 0]
+        n = np.stack([t[:, 1], -t[:, 0]], axis=1)
+    else:
+        n = np.cross(xm[:, 1] - xm[:, 0], xm[:, 2] - xm[:, 0])
+    n /= np.linalg.norm(n, axis=1)[:, None]
+    d25 = np.radians(25.0)
+    up25 = np.array([np.sin(d25), np.cos(d25)] if dim == 2 else [np.sin(d25), 0.0, np.cos(d25)])
+    up0 = np.eye(dim)[-1]
+    first = p.joint_tags == d.joint_tag("joint_1")
+    assert np.allclose(n[first], up25) and np.allclose(n[~first], up0)

@@ -1,0 +1,112 @@
+"""rockjoint.fem.distributed_mesh under `mpirun -n 2` (ctest pytest_mpi2_meshes).
+
+The global set of pairs gathered over ranks must equal the serial set (the JointedMesh's pairs, computed
+on the input mesh); both cells of every pair are owned by the assembling rank; block volumes summed over
+ranks equal the closed-form ones.
+"""
+import numpy as np
+import pytest
+from mpi4py import MPI
+
+import dolfinx
+from rockjoint.fem.distributed_mesh import distribute, pair_vertex_positions
+from rockjoint.meshes import Joint, column, jointed_block
+
+pytestmark = pytest.mark.mpi
+
+
+def facet_coordinates(mesh, cells, local_facets):
+    tdim = mesh.topology.dim
+    mesh.topology.create_connectivity(tdim, tdim - 1)
+    c2f = mesh.topology.connectivity(tdim, tdim - 1)
+    facets = np.array([c2f.links(c)[f] for c, f in zip(cells, local_facets)], dtype=np.int32)
+    nodes = dolfinx.cpp.mesh.entities_to_geometry(mesh._mesh, tdim - 1, facets, False)
+    return mesh.geometry.x[nodes][..., :mesh.geometry.dim]
+
+
+def sorted_rows(x):
+    return [tuple(map(tuple, np.round(f[np.lexsort(f.T[::-1])], 12))) for f in x]
+
+
+def owned_measures(d):
+    mesh = d.mesh
+    tdim = mesh.topology.dim
+    n_owned = mesh.topology.index_map(tdim).size_local
+    x = mesh.geometry.x[:, :mesh.geometry.dim]
+    dofs = mesh.geometry.dofmap.array.reshape(-1, tdim + 1)[:n_owned]
+    e = x[dofs[:, 1:]] - x[dofs[:, :1]]
+    if tdim == 2:
+        m = 0.5 * np.abs(e[:, 0, 0] * e[:, 1, 1] - e[:, 0, 1] * e[:, 1, 0])
+    else:
+        m = np.abs(np.einsum("ij,ij->i", e[:, 0], np.cross(e[:, 1], e[:, 2]))) / 6.0
+    blocks = np.empty(n_owned, dtype=np.int32)
+    sel = d.cell_blocks.indices < n_owned
+    blocks[d.cell_blocks.indices[sel]] = d.cell_blocks.values[sel]
+    return np.array([m[blocks == t].sum() for t in sorted(d.names["blocks"])])
+
+
+def check_parallel(jm, comm):
+    d = distribute(jm, comm)
+    p = d.pairs
+    mesh = d.mesh
+    tdim = mesh.topology.dim
+    n_owned = mesh.topology.index_map(tdim).size_local
+    # each pair on the owner of its minus cell, the plus cell owned there too
+    assert np.all(p.minus_cells < n_owned) and np.all(p.plus_cells < n_owned)
+    xm = facet_coordinates(mesh, p.minus_cells, p.minus_local_facets)
+    xp = facet_coordinates(mesh, p.plus_cells, p.plus_local_facets)
+    assert sorted_rows(xm) == sorted_rows(xp)
+    pm, pp = pair_vertex_positions(d)
+    x, dofs = mesh.geometry.x[:, :mesh.geometry.dim], mesh.geometry.dofmap.array.reshape(-1, tdim + 1)
+    assert np.array_equal(x[np.take_along_axis(dofs[p.minus_cells], pm, axis=1)],
+                          x[np.take_along_axis(dofs[p.plus_cells], pp, axis=1)])
+    local = list(zip(p.joint_tags.tolist(), sorted_rows(xm)))
+    gathered = comm.gather(local, root=0)
+    serial_count = comm.bcast(jm.joint_tags.size if comm.rank == 0 else None, root=0)
+    assert comm.allreduce(len(p), op=MPI.SUM) == serial_count
+    if comm.rank == 0:
+        everything = sorted(t for part in gathered for t in part)
+        ref = sorted(zip(jm.joint_tags.tolist(), sorted_rows(jm.points[jm.joint_facets_minus])))
+        assert everything == ref  # same global set of pairs as in serial, none twice
+    # no vertex added or merged by the distribution
+    n_nodes = comm.bcast(jm.points.shape[0] if comm.rank == 0 else None, root=0)
+    assert mesh.topology.index_map(0).size_global == n_nodes
+    volumes = comm.allreduce(owned_measures(d), op=MPI.SUM)
+    ref_volumes = comm.bcast(np.array([v for _, v in sorted(jm.block_measures().items())])
+                             if comm.rank == 0 else None, root=0)
+    assert volumes == pytest.approx(ref_volumes, rel=1e-12)
+    return d
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_mpi_column_pairs_match_serial(dim):
+    comm = MPI.COMM_WORLD
+    jm = column(1.0, 2.0, [0.5, 1.2], dim=dim, mesh_size=0.2 if dim == 2 else 0.25, comm=comm)
+    d = check_parallel(jm, comm)
+    if comm.size > 1:  # the mesh really is distributed
+        n_owned = d.mesh.topology.index_map(dim).size_local
+        assert 0 < n_owned < d.mesh.topology.index_map(dim).size_global
+
+
+def test_mpi_inclined_and_t_junction_3d():
+    comm = MPI.COMM_WORLD
+    js = [Joint((0.5, 0.5, 0.3), 10.0, 30.0, "h1"), Joint((0.5, 0.5, 0.7), 0.0, 90.0, "h2"),
+          Joint((0.5, 0.5, 0.5), 70.0, 90.0, "v", ("h1", "h2"))]
+    jm = jointed_block((1.0, 1.0, 1.0), js, mesh_size=0.2, comm=comm)
+    check_parallel(jm, comm)
+
+
+def test_mpi_boundary_names_on_every_rank():
+    comm = MPI.COMM_WORLD
+    d = distribute(column(1.0, 1.0, [0.5], dim=2, mesh_size=0.1, comm=comm), comm)
+    counts = comm.allreduce(np.array([d.boundary(n).size for n in ("bottom", "top", "left", "right")]), op=MPI.SUM)
+    assert np.all(counts >= 10)  # 1/0.1 edges per side at least (ghost facets may be counted twice)
+    with pytest.raises(KeyError, match="available"):
+        d.boundary("front")
+
+
+def test_mpi_intact_block_has_no_pairs():
+    comm = MPI.COMM_WORLD
+    jm = jointed_block((1.0, 1.0, 1.0), [], mesh_size=0.25, comm=comm)
+    d = check_parallel(jm, comm)
+    assert comm.allreduce(len(d.pairs), op=MPI.SUM) == 0
