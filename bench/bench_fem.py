@@ -12,7 +12,7 @@ assembly per Newton iteration (residual + Jacobian blocks incl. PETSc assembly),
 Newton iterations, total solve; targets: interface assembly < 10 % of bulk assembly, jointed
 solve < 2 × Newton iterations × intact solve.
 
-Usage:  /usr/bin/python3 bench/bench_fem.py [--build build-fem] [--mesh-size 0.026] [--ranks 1 2]
+Usage:  /usr/bin/python3 bench/bench_fem.py [--build build-fem] [--mesh-size 0.0235] [--ranks 1 2]
 Writes bench/results/fem.md.
 """
 from __future__ import annotations
@@ -158,13 +158,19 @@ def report(runs: list[dict], mesh_size: float, wall: float) -> str:
                 f"{fmt(m['solve'])} | {m['relative_error']:.1e} |")
     lines += ["", "## Targets", "",
               "| ranks | interface assembly / bulk assembly (target < 10 %) | jointed solve / (Newton its × "
-              "intact solve) (target < 2) | met |", "|---:|---:|---:|---|"]
+              "intact solve) (target < 2) | same, intact solve = its mean linear solve (stricter) | met |",
+              "|---:|---:|---:|---:|---|"]
     for r in runs:
         j, i = r["jointed"], r["intact"]
         frac = (j["interface_residual_per_call"] + j["interface_jacobian_per_call"]) / j["bulk_assembly"]
         ratio = j["solve"] / (j["newton_iterations"] * i["solve"])
+        strict = j["solve"] / (j["newton_iterations"] * i["linear_solve_total"] / i["linear_solves"])
         ok = "yes" if frac < 0.10 and ratio < 2 else "no"
-        lines.append(f"| {r['ranks']} | {100 * frac:.1f} % | {ratio:.2f} | {ok} |")
+        lines.append(f"| {r['ranks']} | {100 * frac:.1f} % | {ratio:.2f} | {strict:.2f} | {ok} |")
+    lines += ["", "The intact model needs 2 Newton iterations in this code path (the CG tolerance is on the "
+              "preconditioned residual, so one solve does not reach Newton's 1e-10 on the true residual); "
+              "the stricter column divides by one intact linear solve instead of the intact model's whole "
+              "solve."]
     lines += ["", "Newton residual norms ||r|| [N] of the jointed model (quadratic convergence):", ""]
     for r in runs:
         norms = r["jointed"]["residual_norms"][-1]
@@ -177,7 +183,7 @@ def report(runs: list[dict], mesh_size: float, wall: float) -> str:
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--build", default=None)
-    ap.add_argument("--mesh-size", type=float, default=0.026)
+    ap.add_argument("--mesh-size", type=float, default=0.0235)
     ap.add_argument("--ranks", type=int, nargs="+", default=[1, 2])
     ap.add_argument("--output", default=os.path.join(HERE, "results", "fem.md"))
     ap.add_argument("--worker", action="store_true", help=argparse.SUPPRESS)

@@ -1,0 +1,197 @@
+// The _rockjoint_fem extension: bindings of rockjoint::fem (interface assembler). Separate
+// from _rockjoint so that the closure-law module never needs PETSc/DOLFINx. Closure laws
+// come in as the shared_ptr<ClosureLaw> objects of rockjoint._rockjoint (import it first).
+#include <fem_coupling/interface_assembler.hpp>
+#include <fem_coupling/petsc_assembly.hpp>
+
+#include <caster_petsc.h> // DOLFINx's petsc4py <-> PETSc caster
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <span>
+
+namespace py = pybind11;
+using namespace rockjoint::fem;
+
+namespace
+{
+template <typename T>
+using Array = py::array_t<T, py::array::c_style | py::array::forcecast>;
+
+template <typename T>
+std::span<const T> span_of(const Array<T>& a)
+{
+  return {a.data(), static_cast<std::size_t>(a.size())};
+}
+
+/// A numpy copy of a vector, reshaped to (n / cols, cols) when cols > 1.
+template <typename T>
+py::array_t<T> to_numpy(const std::vector<T>& v, py::ssize_t cols = 1)
+{
+  py::array_t<T> out(static_cast<py::ssize_t>(v.size()));
+  std::copy(v.begin(), v.end(), out.mutable_data());
+  if (cols > 1)
+    out.resize({static_cast<py::ssize_t>(v.size()) / cols, cols});
+  return out;
+}
+} // namespace
+
+PYBIND11_MODULE(_rockjoint_fem, m)
+{
+  m.doc() = "rockjoint zero-thickness joint elements: interface assembly (SI units)";
+
+  py::enum_<QuadratureRule>(m, "QuadratureRule", "Where the joint law is sampled on a facet")
+      .value("nodal", QuadratureRule::nodal)
+      .value("gauss", QuadratureRule::gauss);
+
+  py::enum_<ShearModel>(m, "ShearModel", "Definition of the joint shear stiffness")
+      .value("constant", ShearModel::constant)
+      .value("proportional", ShearModel::proportional);
+
+  py::class_<JointBehaviour>(m, "JointBehaviour",
+                             "Closure law + shear stiffness + residual stiffness of a joint")
+      .def(py::init(
+               [](std::shared_ptr<const rockjoint::constitutive::ClosureLaw> law,
+                  ShearModel model, double ks, double ratio, double kr)
+               {
+                 JointBehaviour b{law, model, ks, ratio, kr};
+                 validate(b, law ? law->name() : std::string("?"));
+                 return b;
+               }),
+           py::arg("law"), py::arg("shear_model") = ShearModel::constant,
+           py::arg("shear_stiffness") = 0.0, py::arg("shear_stiffness_ratio") = 0.0,
+           py::arg("residual_stiffness") = 0.0)
+      .def_readonly("shear_model", &JointBehaviour::shear_model)
+      .def_readonly("shear_stiffness", &JointBehaviour::shear_stiffness)
+      .def_readonly("shear_stiffness_ratio", &JointBehaviour::shear_stiffness_ratio)
+      .def_readonly("residual_stiffness", &JointBehaviour::residual_stiffness)
+      .def_property_readonly("law", [](const JointBehaviour& b)
+                             { return std::const_pointer_cast<rockjoint::constitutive::ClosureLaw>(b.law); });
+
+  m.def(
+      "local_response",
+      [](const JointBehaviour& b, const Array<double>& jump)
+      {
+        const int gdim = static_cast<int>(jump.size());
+        if (gdim != 2 && gdim != 3)
+          throw py::value_error("local_response: jump must have 2 or 3 components");
+        std::array<double, 3> j{};
+        std::copy_n(jump.data(), gdim, j.begin());
+        const LocalResponse r = local_response(b, gdim, j);
+        py::array_t<double> t(gdim), D({gdim, gdim});
+        for (int i = 0; i < gdim; ++i)
+        {
+          t.mutable_at(i) = r.traction[i];
+          for (int k = 0; k < gdim; ++k)
+            D.mutable_at(i, k) = r.tangent[i][k];
+        }
+        return py::make_tuple(t, D, r.closure, r.normal_stress, static_cast<int>(r.status));
+      },
+      py::arg("behaviour"), py::arg("local_jump"),
+      "(local traction [Pa], tangent ∂t/∂j [Pa/m], closure [m], normal stress [Pa], status)");
+
+  py::class_<InterfaceAssembler>(m, "InterfaceAssembler", "Matched joint facet pairs")
+      .def(py::init(
+               [](int gdim, int degree, QuadratureRule rule, const Array<std::int32_t>& minus,
+                  const Array<std::int32_t>& plus, const Array<double>& vertices,
+                  const Array<double>& interior, const Array<std::int32_t>& tags,
+                  std::map<std::int32_t, JointBehaviour> behaviours)
+               {
+                 return InterfaceAssembler(gdim, degree, rule, span_of(minus), span_of(plus),
+                                           span_of(vertices), span_of(interior), span_of(tags),
+                                           std::move(behaviours));
+               }),
+           py::arg("gdim"), py::arg("degree"), py::arg("rule"), py::arg("minus_nodes"),
+           py::arg("plus_nodes"), py::arg("vertex_coordinates"),
+           py::arg("minus_interior_points"), py::arg("joint_tags"), py::arg("behaviours"))
+      .def_property_readonly("gdim", &InterfaceAssembler::gdim)
+      .def_property_readonly("num_pairs", &InterfaceAssembler::num_pairs)
+      .def_property_readonly("num_points_per_pair", &InterfaceAssembler::num_points_per_pair)
+      .def_property_readonly("pair_size", &InterfaceAssembler::pair_size)
+      .def(
+          "pair_dofs",
+          [](const InterfaceAssembler& a)
+          {
+            const py::ssize_t n = a.pair_size();
+            py::array_t<std::int32_t> out({static_cast<py::ssize_t>(a.num_pairs()), n});
+            for (std::int32_t p = 0; p < a.num_pairs(); ++p)
+              a.pair_dofs(p, {out.mutable_data(p, 0), static_cast<std::size_t>(n)});
+            return out;
+          },
+          "(num_pairs, pair_size) unrolled local dofs of every pair")
+      .def(
+          "assemble_residual",
+          [](InterfaceAssembler& a, const Array<double>& u, py::array_t<double> residual)
+          {
+            if (residual.size() != u.size() || !(residual.flags() & py::array::c_style))
+              throw py::value_error("assemble_residual: residual must be a contiguous array "
+                                    "of the size of u");
+            py::gil_scoped_release release;
+            return a.assemble_residual(span_of(u),
+                                       {residual.mutable_data(), static_cast<std::size_t>(residual.size())});
+          },
+          py::arg("u"), py::arg("residual"),
+          "Add the joint residual at local u into the local array `residual` (in place); "
+          "False if a traction is not finite")
+      .def(
+          "assemble_matrix",
+          [](const InterfaceAssembler& a, Mat A, const Array<double>& u,
+             const Array<std::int8_t>& constrained, double scale)
+          {
+            py::gil_scoped_release release;
+            assemble_interface_matrix(A, a, span_of(u), span_of(constrained), scale);
+          },
+          py::arg("A"), py::arg("u"), py::arg("constrained"), py::arg("scale") = 1.0,
+          "MatSetValuesLocal/ADD_VALUES of the joint Jacobian; rows/cols with constrained != 0 "
+          "are skipped. Call before the bulk assemble_matrix(A, a, bcs).")
+      .def(
+          "pair_matrix",
+          [](const InterfaceAssembler& a, std::int32_t p, const Array<double>& u)
+          {
+            if (p < 0 || p >= a.num_pairs())
+              throw py::index_error("pair index out of range");
+            const py::ssize_t n = a.pair_size();
+            py::array_t<double> K({n, n});
+            a.pair_matrix(p, span_of(u), {K.mutable_data(), static_cast<std::size_t>(n * n)});
+            return K;
+          },
+          py::arg("pair"), py::arg("u"))
+      .def("maximum_closure_ratio",
+           [](const InterfaceAssembler& a, const Array<double>& u)
+           { return a.maximum_closure_ratio(span_of(u)); },
+           py::arg("u"), "max over points of closure / law maximum closure")
+      .def("admissible_step_length",
+           [](const InterfaceAssembler& a, const Array<double>& u, const Array<double>& du,
+              double fraction)
+           {
+             if (du.size() != u.size())
+               throw py::value_error("admissible_step_length: du must have the size of u");
+             if (!(fraction > 0.0 && fraction < 1.0))
+               throw py::value_error("admissible_step_length: fraction must be in (0, 1)");
+             return a.admissible_step_length(span_of(u), span_of(du), fraction);
+           },
+           py::arg("u"), py::arg("du"), py::arg("fraction"),
+           "largest α <= 1 keeping Δ <= Δ + fraction (Δ_max - Δ) at every point")
+      .def("update_state", [](InterfaceAssembler& a, const Array<double>& u)
+           { a.update_state(span_of(u)); }, py::arg("u"))
+      .def_property_readonly("closure", [](const InterfaceAssembler& a) { return to_numpy(a.closure()); })
+      .def_property_readonly("normal_stress",
+                             [](const InterfaceAssembler& a) { return to_numpy(a.normal_stress()); })
+      .def_property_readonly("shear_traction",
+                             [](const InterfaceAssembler& a)
+                             {
+                               auto t = to_numpy(a.shear_traction());
+                               t.resize({static_cast<py::ssize_t>(a.closure().size()),
+                                         static_cast<py::ssize_t>(a.gdim() - 1)});
+                               return t;
+                             })
+      .def_property_readonly("status", [](const InterfaceAssembler& a) { return to_numpy(a.status()); })
+      .def_property_readonly("point_coordinates", [](const InterfaceAssembler& a)
+                             { return to_numpy(a.point_coordinates(), a.gdim()); })
+      .def_property_readonly("normals", [](const InterfaceAssembler& a)
+                             { return to_numpy(a.normals(), a.gdim()); })
+      .def_property_readonly("point_tags", [](const InterfaceAssembler& a) { return to_numpy(a.point_tags()); })
+      .def_property_readonly("measures", [](const InterfaceAssembler& a) { return to_numpy(a.measures()); });
+}

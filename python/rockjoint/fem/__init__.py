@@ -1,0 +1,15 @@
+"""rockjoint.fem: DOLFINx side of the joint model (distributed jointed meshes, interface coupling).
+
+    from rockjoint.fem import JointedRockModel, distribute
+"""
+from .distributed_mesh import (DistributedJointMesh, JointPairs, distribute,  # noqa: F401
+                               pair_vertex_positions)
+
+try:  # the joint elements need the compiled _rockjoint_fem (built with -DROCKJOINT_FEM=ON)
+    from .interface import JointBehaviour, JointInterface, QuadratureRule, ShearModel  # noqa: F401
+    from .linear_solver import LinearSolveError  # noqa: F401
+    from .model import JointedRockModel, JointedSolution  # noqa: F401
+    from .newton import ConvergenceError, NewtonOptions  # noqa: F401
+except ImportError as _error:  # pragma: no cover
+    if "_rockjoint_fem" not in str(_error):
+        raise

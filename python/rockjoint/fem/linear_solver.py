@@ -1,0 +1,130 @@
+"""Linear solves of the Newton steps, with failures detected instead of accepted.
+
+"direct": MUMPS LU with null-pivot detection (ICNTL(24) = 1) — for small problems.
+"iterative": CG + GAMG with a rigid-body near-nullspace (per block through the aggregates,
+see rigid_body_modes) — for large ones (SPD
+Jacobians: constant shear stiffness). "auto" picks direct below `direct_dof_limit` dofs.
+A solve is rejected (LinearSolveError) if PETSc reports divergence, MUMPS reports an error or a
+null pivot (a singular matrix: e.g. a block held only by an open joint), or the true residual
+||J dx - b|| exceeds `check_tolerance` ||b||. Field notes: MUMPS silently returned |u| ≈ 1e11 on
+a singular system; the residual check catches that class of garbage whatever the cause.
+"""
+from __future__ import annotations
+
+import numpy as np
+from petsc4py import PETSc
+
+
+class LinearSolveError(RuntimeError):
+    """A linear solve failed (singular or ill-posed system, Krylov divergence)."""
+
+
+def rigid_body_modes(V):
+    """Near-nullspace for GAMG: the 3 (2D) or 6 (3D) rigid-body modes evaluated at every node,
+    orthonormalized. GAMG builds its tentative prolongator aggregate by aggregate from the
+    restriction of these vectors, and split joint nodes are separate dofs, so every aggregate of a
+    block gets that block's own rigid-body modes: this is the per-block rigid-body near-nullspace
+    (one set of vectors per block instead would multiply the coarse dofs per aggregate by the
+    number of blocks and raise the operator complexity for nothing: measured 3.4 vs 1.3)."""
+    from dolfinx import la
+
+    gdim = V.mesh.geometry.dim
+    imap = V.dofmap.index_map
+    bs = V.dofmap.index_map_bs
+    n_local = imap.size_local
+    x = V.tabulate_dof_coordinates()[:n_local, :gdim]
+    vectors = []
+    for k in range(3 if gdim == 2 else 6):
+        v = la.create_petsc_vector(imap, bs)
+        with v.localForm() as loc:
+            a = loc.array.reshape(-1, bs)
+            a[:] = 0.0
+            if k < gdim:
+                a[:n_local, k] = 1.0
+            elif gdim == 2:
+                a[:n_local, 0], a[:n_local, 1] = -x[:, 1], x[:, 0]
+            else:
+                i, j = [(0, 1), (1, 2), (0, 2)][k - 3]
+                a[:n_local, i], a[:n_local, j] = -x[:, j], x[:, i]
+        vectors.append(v)
+    # Modified Gram-Schmidt with global dot products.
+    basis = []
+    for v in vectors:
+        for b in basis:
+            v.axpy(-v.dot(b), b)
+        v.scale(1.0 / v.norm())
+        basis.append(v)
+    return PETSc.NullSpace().create(vectors=basis, comm=V.mesh.comm)
+
+
+class LinearSolver:
+    """KSP wrapper. kind: "direct" | "iterative" | "auto"."""
+
+    def __init__(self, comm, kind: str = "auto", num_dofs: int = 0, direct_dof_limit: int = 60_000,
+                 near_nullspace=None, rtol: float = 1e-10, check_tolerance: float = 1e-6,
+                 symmetric: bool = True, options: dict | None = None):
+        if kind not in ("direct", "iterative", "auto"):
+            raise ValueError(f"linear solver must be 'direct', 'iterative' or 'auto', got {kind!r}")
+        if kind == "auto":
+            kind = "direct" if num_dofs <= direct_dof_limit else "iterative"
+        self.kind = kind
+        self.check_tolerance = check_tolerance
+        self.near_nullspace = near_nullspace
+        self.ksp = PETSc.KSP().create(comm)
+        self._prefix = f"rockjoint_ls_{id(self)}_"
+        self.ksp.setOptionsPrefix(self._prefix)
+        opts = PETSc.Options()
+        if kind == "direct":
+            self.ksp.setType("preonly")
+            pc = self.ksp.getPC()
+            pc.setType("lu")
+            pc.setFactorSolverType("mumps")
+            opts[f"{self._prefix}mat_mumps_icntl_24"] = 1  # null-pivot detection
+        else:
+            self.ksp.setType("cg" if symmetric else "gmres")
+            self.ksp.getPC().setType("gamg")
+            self.ksp.setTolerances(rtol=rtol, atol=1e-50, max_it=2000)
+            opts[f"{self._prefix}pc_gamg_type"] = "agg"
+            opts[f"{self._prefix}pc_gamg_agg_nsmooths"] = 1
+            # Dropping weak graph edges: 16 CG iterations instead of 69 on the benchmark block
+            # (48k dofs, 2 joints), 4x faster overall.
+            opts[f"{self._prefix}pc_gamg_threshold"] = 0.01
+            opts[f"{self._prefix}mg_levels_ksp_type"] = "chebyshev"
+            opts[f"{self._prefix}mg_levels_pc_type"] = "jacobi"
+        for k, v in (options or {}).items():
+            opts[f"{self._prefix}{k}"] = v
+        self.ksp.setFromOptions()
+        self.iterations = []
+
+    def solve(self, A, b, x) -> None:
+        """Solve A x = b; raise LinearSolveError on any detected failure."""
+        if self.near_nullspace is not None and self.kind == "iterative":
+            A.setNearNullSpace(self.near_nullspace)
+        self.ksp.setOperators(A)
+        try:
+            self.ksp.solve(b, x)
+        except PETSc.Error as e:
+            raise LinearSolveError(f"linear solve failed in PETSc ({self.kind}): {e}") from e
+        reason = self.ksp.getConvergedReason()
+        self.iterations.append(self.ksp.getIterationNumber())
+        if reason < 0:
+            raise LinearSolveError(f"linear solve diverged ({self.kind}, KSP reason {reason}); the "
+                                   f"Jacobian may be singular (a block held only by an open joint?)")
+        if self.kind == "direct":
+            F = self.ksp.getPC().getFactorMatrix()
+            infog1, null_pivots = F.getMumpsInfog(1), F.getMumpsInfog(28)
+            if infog1 < 0:
+                raise LinearSolveError(f"MUMPS failed with INFOG(1) = {infog1}")
+            if null_pivots > 0:
+                raise LinearSolveError(
+                    f"the Jacobian is singular: MUMPS found {null_pivots} null pivot(s). A rigid-body "
+                    f"motion is free, e.g. a block held only by an open (zero-stiffness) joint or missing "
+                    f"supports; add supports or a joint residual_stiffness")
+        r = b.duplicate()
+        A.mult(x, r)
+        r.axpy(-1.0, b)
+        bn, rn = b.norm(), r.norm()
+        if not np.isfinite(rn) or rn > self.check_tolerance * max(bn, 1e-300):
+            raise LinearSolveError(f"linear solve rejected ({self.kind}): ||J dx - b|| = {rn:.3e} > "
+                                   f"{self.check_tolerance:g} ||b|| = {self.check_tolerance * bn:.3e}")
+        r.destroy()
