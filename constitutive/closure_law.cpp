@@ -43,15 +43,9 @@ void ClosureLaw::evaluate(std::span<const double> closure, std::span<double> nor
                           std::span<double> normal_stiffness, std::span<double> area_ratio,
                           std::span<Status> status) const
 {
+  check_batch_sizes("ClosureLaw::evaluate", closure, normal_stress, normal_stiffness,
+                    area_ratio, status);
   const std::size_t n = closure.size();
-  if (normal_stress.size() != n || normal_stiffness.size() != n
-      || (!area_ratio.empty() && area_ratio.size() != n)
-      || (!status.empty() && status.size() != n))
-  {
-    throw std::invalid_argument("ClosureLaw::evaluate: output arrays must have the size of "
-                                "the closure array ("
-                                + std::to_string(n) + ")");
-  }
   for (std::size_t i = 0; i < n; ++i)
   {
     const ClosureResponse r = evaluate(closure[i]);
@@ -61,6 +55,22 @@ void ClosureLaw::evaluate(std::span<const double> closure, std::span<double> nor
       area_ratio[i] = r.contact_area_ratio;
     if (!status.empty())
       status[i] = r.status;
+  }
+}
+
+void ClosureLaw::check_batch_sizes(const char* who, std::span<const double> closure,
+                                   std::span<double> normal_stress,
+                                   std::span<double> normal_stiffness,
+                                   std::span<double> area_ratio, std::span<Status> status)
+{
+  const std::size_t n = closure.size();
+  if (normal_stress.size() != n || normal_stiffness.size() != n
+      || (!area_ratio.empty() && area_ratio.size() != n)
+      || (!status.empty() && status.size() != n))
+  {
+    throw std::invalid_argument(std::string(who)
+                                + ": output arrays must have the size of the closure array ("
+                                + std::to_string(n) + ")");
   }
 }
 

@@ -116,6 +116,13 @@ protected:
   /// may document a residual stiffness instead (TabulatedLaw: σ = k_res Δ, k = k_res).
   virtual ClosureResponse evaluate_open(double /*closure*/) const { return {}; }
 
+  /// Throw std::invalid_argument unless the output spans of a batch evaluate() have the size
+  /// of `closure` (`area_ratio` and `status` may be empty). `who` names the caller.
+  static void check_batch_sizes(const char* who, std::span<const double> closure,
+                                std::span<double> normal_stress,
+                                std::span<double> normal_stiffness, std::span<double> area_ratio,
+                                std::span<Status> status);
+
   /// The response for Δ at or past a hard closure limit: σ = k = +inf.
   static ClosureResponse beyond_maximum_closure(double contact_area_ratio = 0.0);
 };

@@ -169,15 +169,9 @@ void TabulatedLaw::evaluate(std::span<const double> closure, std::span<double> n
                             std::span<double> normal_stiffness, std::span<double> area_ratio,
                             std::span<Status> status) const
 {
+  check_batch_sizes("TabulatedLaw::evaluate", closure, normal_stress, normal_stiffness,
+                    area_ratio, status);
   const std::size_t n = closure.size();
-  if (normal_stress.size() != n || normal_stiffness.size() != n
-      || (!area_ratio.empty() && area_ratio.size() != n)
-      || (!status.empty() && status.size() != n))
-  {
-    throw std::invalid_argument("TabulatedLaw::evaluate: output arrays must have the size of "
-                                "the closure array ("
-                                + std::to_string(n) + ")");
-  }
   if (status.empty())
   {
     for (std::size_t i = 0; i < n; ++i)

@@ -18,22 +18,6 @@ namespace rockjoint::python
 
 namespace
 {
-/// Evaluate a law over an array; returns (σ, k, A/A0, status) arrays shaped like Δ.
-py::tuple evaluate_array(const ClosureLaw& law, const DoubleArray& closure)
-{
-  require_no_nan(closure, "closure");
-  DoubleArray s = empty_like(closure), k = empty_like(closure), a = empty_like(closure);
-  py::array_t<int> st(std::vector<py::ssize_t>(closure.shape(), closure.shape() + closure.ndim()));
-  const std::size_t n = closure.size();
-  std::span<Status> status(reinterpret_cast<Status*>(st.mutable_data()), n);
-  {
-    py::gil_scoped_release release;
-    law.evaluate(as_span(closure), {s.mutable_data(), n}, {k.mutable_data(), n},
-                 {a.mutable_data(), n}, status);
-  }
-  return py::make_tuple(s, k, a, st);
-}
-
 /// Δ(σ) over an array (scalar in → scalar out).
 py::object inverse_array(const ClosureLaw& law, const DoubleArray& stress)
 {
@@ -48,16 +32,6 @@ py::object inverse_array(const ClosureLaw& law, const DoubleArray& stress)
   return out;
 }
 
-/// One output column of evaluate(), scalar in → scalar out.
-template <int Column>
-py::object column(const ClosureLaw& law, const DoubleArray& closure)
-{
-  py::tuple t = evaluate_array(law, closure);
-  py::array out = t[Column];
-  if (closure.ndim() == 0)
-    return out.attr("item")();
-  return out;
-}
 } // namespace
 
 void declare_constitutive(py::module_& m)
@@ -86,11 +60,11 @@ void declare_constitutive(py::module_& m)
                              "Supremum of admissible closures [m] (inf if none)")
       .def_property_readonly("seating_stress", &ClosureLaw::seating_stress,
                              "Stress of the model at Δ = 0 [Pa], subtracted so σ(0) = 0")
-      .def("evaluate", &evaluate_array, py::arg("closure"),
+      .def("evaluate", &evaluate_to_numpy<ClosureLaw>, py::arg("closure"),
            "(σ [Pa], k [Pa/m], A/A0 [-], status) at closure Δ [m]; arrays shaped like Δ")
-      .def("normal_stress", &column<0>, py::arg("closure"), "σ(Δ) [Pa]")
-      .def("normal_stiffness", &column<1>, py::arg("closure"), "k(Δ) = dσ/dΔ [Pa/m]")
-      .def("contact_area_ratio", &column<2>, py::arg("closure"), "A/A0(Δ) [-]")
+      .def("normal_stress", &evaluate_column<0, ClosureLaw>, py::arg("closure"), "σ(Δ) [Pa]")
+      .def("normal_stiffness", &evaluate_column<1, ClosureLaw>, py::arg("closure"), "k(Δ) = dσ/dΔ [Pa/m]")
+      .def("contact_area_ratio", &evaluate_column<2, ClosureLaw>, py::arg("closure"), "A/A0(Δ) [-]")
       .def("closure_at_stress", &inverse_array, py::arg("normal_stress"),
            "Inverse Δ(σ) [m] for σ >= 0 [Pa]");
 

@@ -32,32 +32,6 @@ TabulatedLaw::Options options(double tolerance, std::optional<double> residual_s
   return o;
 }
 
-/// (σ, k, A/A0, status) of the table (residual stiffness included), shaped like Δ.
-py::tuple evaluate_table(const TabulatedLaw& law, const DoubleArray& closure)
-{
-  require_no_nan(closure, "closure");
-  DoubleArray s = empty_like(closure), k = empty_like(closure), a = empty_like(closure);
-  py::array_t<int> st(std::vector<py::ssize_t>(closure.shape(), closure.shape() + closure.ndim()));
-  const std::size_t n = closure.size();
-  std::span<Status> status(reinterpret_cast<Status*>(st.mutable_data()), n);
-  {
-    py::gil_scoped_release release;
-    law.evaluate(as_span(closure), {s.mutable_data(), n}, {k.mutable_data(), n},
-                 {a.mutable_data(), n}, status);
-  }
-  return py::make_tuple(s, k, a, st);
-}
-
-template <int Column>
-py::object table_column(const TabulatedLaw& law, const DoubleArray& closure)
-{
-  py::tuple t = evaluate_table(law, closure);
-  py::array out = t[Column];
-  if (closure.ndim() == 0)
-    return out.attr("item")();
-  return out;
-}
-
 py::array_t<double> to_numpy(const std::vector<double>& v)
 {
   return py::array_t<double>(static_cast<py::ssize_t>(v.size()), v.data());
@@ -127,11 +101,11 @@ void declare_tabulation(py::module_& m)
           [](const TabulatedLaw& law, const std::string& path)
           { file_errors_as_value_errors([&] { law.save(path); }); },
           py::arg("path"), "Write the table (bit-exact round trip)")
-      .def("evaluate", &evaluate_table, py::arg("closure"),
+      .def("evaluate", &evaluate_to_numpy<TabulatedLaw>, py::arg("closure"),
            "(σ [Pa], k [Pa/m], A/A0 (0), status) with the residual stiffness when open")
-      .def("normal_stress", &table_column<0>, py::arg("closure"), "σ(Δ) [Pa]")
-      .def("normal_stiffness", &table_column<1>, py::arg("closure"), "k(Δ) [Pa/m]")
-      .def("contact_area_ratio", &table_column<2>, py::arg("closure"), "0: no area model")
+      .def("normal_stress", &evaluate_column<0, TabulatedLaw>, py::arg("closure"), "σ(Δ) [Pa]")
+      .def("normal_stiffness", &evaluate_column<1, TabulatedLaw>, py::arg("closure"), "k(Δ) [Pa/m]")
+      .def("contact_area_ratio", &evaluate_column<2, TabulatedLaw>, py::arg("closure"), "0: no area model")
       .def_property_readonly("knot_closure",
                              [](const TabulatedLaw& t) { return to_numpy(t.table().closure); },
                              "Knots Δ_i [m] (Δ_0 = 0)")

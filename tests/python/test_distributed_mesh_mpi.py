@@ -8,41 +8,18 @@ import numpy as np
 import pytest
 from mpi4py import MPI
 
-import dolfinx
 from rockjoint.fem.distributed_mesh import distribute, pair_vertex_positions
 from rockjoint.meshes import Joint, column, jointed_block
+
+from mesh_checks import facet_coordinates, owned_block_measures, sorted_rows
 
 pytestmark = pytest.mark.mpi
 
 
-def facet_coordinates(mesh, cells, local_facets):
-    tdim = mesh.topology.dim
-    mesh.topology.create_connectivity(tdim, tdim - 1)
-    c2f = mesh.topology.connectivity(tdim, tdim - 1)
-    facets = np.array([c2f.links(c)[f] for c, f in zip(cells, local_facets)], dtype=np.int32)
-    nodes = dolfinx.cpp.mesh.entities_to_geometry(mesh._mesh, tdim - 1, facets, False)
-    return mesh.geometry.x[nodes][..., :mesh.geometry.dim]
-
-
-def sorted_rows(x):
-    return [tuple(map(tuple, np.round(f[np.lexsort(f.T[::-1])], 12))) for f in x]
-
-
 def owned_measures(d):
-    mesh = d.mesh
-    tdim = mesh.topology.dim
-    n_owned = mesh.topology.index_map(tdim).size_local
-    x = mesh.geometry.x[:, :mesh.geometry.dim]
-    dofs = mesh.geometry.dofmap.array.reshape(-1, tdim + 1)[:n_owned]
-    e = x[dofs[:, 1:]] - x[dofs[:, :1]]
-    if tdim == 2:
-        m = 0.5 * np.abs(e[:, 0, 0] * e[:, 1, 1] - e[:, 0, 1] * e[:, 1, 0])
-    else:
-        m = np.abs(np.einsum("ij,ij->i", e[:, 0], np.cross(e[:, 1], e[:, 2]))) / 6.0
-    blocks = np.empty(n_owned, dtype=np.int32)
-    sel = d.cell_blocks.indices < n_owned
-    blocks[d.cell_blocks.indices[sel]] = d.cell_blocks.values[sel]
-    return np.array([m[blocks == t].sum() for t in sorted(d.names["blocks"])])
+    """This rank's block measures as an array ordered by block tag (for allreduce)."""
+    m = owned_block_measures(d)
+    return np.array([m[t] for t in sorted(m)])
 
 
 def check_parallel(jm, comm):
