@@ -117,13 +117,21 @@ void SummitPopulationLaw::check_common(const std::string& owner, std::optional<d
 
 std::vector<Parameter> SummitPopulationLaw::parameters() const
 {
-  return {{"composite_modulus", _parameters.composite_modulus, "Pa"},
+  // The distribution as its enum code, so a table file records which one the law used.
+  const double distribution = _summits ? static_cast<double>(HeightDistribution::empirical)
+                                       : static_cast<double>(_distribution);
+  std::vector<Parameter> p{
+          {"height_distribution", distribution, "code: 0 gaussian, 1 exponential, 2 empirical"},
+          {"composite_modulus", _parameters.composite_modulus, "Pa"},
           {"summit_density", _parameters.summit_density, "1/m^2"},
           {"summit_radius", _parameters.summit_radius, "m"},
           {"summit_height_std", _parameters.summit_height_std, "m"},
           {"reference_separation", _reference_separation, "m"},
           {"seating_stress", _seating_stress, "Pa"},
           {"quadrature_tolerance", _tolerance, ""}};
+  if (_summits)
+    p.push_back({"summit_count", static_cast<double>(_summits->size()), ""});
+  return p;
 }
 
 void SummitPopulationLaw::set_reference(const std::string& owner, const SeatingReference& reference)
