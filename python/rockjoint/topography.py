@@ -328,6 +328,20 @@ def _pyplot():
     return plt
 
 
+def _save(plt, fig, ax, path: PathLike, title: str, xlabel: str, ylabel: str,
+          legend: bool = True) -> str:
+    """Label (units in the labels), save as PNG and close a one-axes figure; returns the path."""
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.set_title(title)
+    if legend:
+        ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(os.fspath(path), dpi=120)
+    plt.close(fig)
+    return os.fspath(path)
+
+
 def _extent_mm(surface: Surface):
     rows, cols = surface.shape
     return (0.0, (cols - 1) * surface.spacing_x * 1e3, 0.0, (rows - 1) * surface.spacing_y * 1e3)
@@ -341,13 +355,7 @@ def _map(surface: Surface, path: PathLike, title: str, label: str, cmap: str) ->
     im = ax.imshow(np.ma.masked_invalid(surface.heights * 1e3), origin="lower",
                    extent=_extent_mm(surface), cmap=cm, interpolation="nearest")
     fig.colorbar(im, ax=ax, label=label)
-    ax.set_xlabel("x [mm]")
-    ax.set_ylabel("y [mm]")
-    ax.set_title(title)
-    fig.tight_layout()
-    fig.savefig(os.fspath(path), dpi=120)
-    plt.close(fig)
-    return os.fspath(path)
+    return _save(plt, fig, ax, path, title, "x [mm]", "y [mm]", legend=False)
 
 
 def plot_height_map(surface: Surface, path: PathLike, title: str = "height map") -> str:
@@ -385,14 +393,8 @@ def plot_summit_histogram(analysis: TopographyAnalysis, path: PathLike,
         te = t[t >= mean]
         ax.plot(te, p_tail * np.exp(-(te - mean) / scale) / scale,
                 label=f"exponential upper tail: scale {scale:.3g} mm")
-    ax.set_xlabel("summit height above the mean plane [mm]")
-    ax.set_ylabel("probability density [1/mm]")
-    ax.set_title(title)
-    ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(os.fspath(path), dpi=120)
-    plt.close(fig)
-    return os.fspath(path)
+    return _save(plt, fig, ax, path, title, "summit height above the mean plane [mm]",
+                 "probability density [1/mm]")
 
 
 def plot_power_spectrum(surface: Surface, path: PathLike, title: str = "power spectrum",
@@ -406,14 +408,7 @@ def plot_power_spectrum(surface: Surface, path: PathLike, title: str = "power sp
     ax.loglog(qf * 1e-3, np.exp(est.log_prefactor) * qf ** est.slope * 1e12, "r-",
               label=f"fit: slope {est.slope:.3f}, H = {est.hurst_exponent:.3f}"
                     f" ± {est.slope_std_error / 2:.3f}")
-    ax.set_xlabel("wavenumber q [rad/mm]")
-    ax.set_ylabel("PSD C(q) [mm⁴]")
-    ax.set_title(title)
-    ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(os.fspath(path), dpi=120)
-    plt.close(fig)
-    return os.fspath(path)
+    return _save(plt, fig, ax, path, title, "wavenumber q [rad/mm]", "PSD C(q) [mm⁴]")
 
 
 def overlap_curve(aperture: Surface, maximum_closure: Optional[float] = None,
