@@ -17,6 +17,7 @@ lab_closure_test_table.txt (the numbers), granite_tang_jiao.rjt (the tabulated l
 jointed_cube.xdmf / intact_cube.xdmf (+ joint state) for ParaView. Units in print: mm, MPa.
 """
 import argparse
+import logging
 import os
 import time
 
@@ -29,6 +30,10 @@ from rockjoint import topography as topo
 from rockjoint.fem import JointedRockModel, NewtonOptions, distribute
 
 COMM = MPI.COMM_WORLD
+# DOLFINx compiles forms on first use through setuptools, which sets the root logger to INFO
+# and would print every compiler command: a handler of our own that passes warnings only.
+logging.basicConfig(level=logging.WARNING)
+logging.getLogger().handlers[0].setLevel(logging.WARNING)
 
 
 def say(*args):
