@@ -5,30 +5,20 @@ bottom): ε_yy = [(1-ν²)σ_v - ν(1+ν)σ_h]/E, ε_xx = [(1-ν²)σ_h - ν(1+�
 H ε_yy and the right face moves W ε_xx (P1 is exact for a uniform state). The jointed section
 must settle more, and 2 ranks must give the serial answer to solver tolerance.
 """
-import os
 import re
-import subprocess
-import sys
 
 import pytest
 
 pytest.importorskip("dolfinx")
 pytest.importorskip("rockjoint._rockjoint_fem")
 
-DEMO = os.path.join(os.environ.get("ROCKJOINT_SOURCE_DIR",
-                                   os.path.join(os.path.dirname(__file__), "..", "..")),
-                    "demos", "demo_blocky_rock_mass.py")
+import demo_runner  # noqa: E402
+
 E, NU, W, H, SV, SH = 50e9, 0.25, 12.0, 8.0, 10e6, 5e6
 
 
 def run_demo(out, ranks):
-    env = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in sys.path if p), MPLBACKEND="Agg",
-               OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
-    cmd = [sys.executable, DEMO, "--output", str(out), "--mesh-size", "0.8"]
-    if ranks > 1:
-        cmd = ["mpirun", "-n", str(ranks)] + cmd
-    r = subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=600)
-    assert r.returncode == 0, r.stdout + r.stderr
+    demo_runner.run_demo("demo_blocky_rock_mass.py", out, ranks, ("--mesh-size", "0.8"))
     for name in ("blocky_rock_mass.png", "blocky_rock_mass.txt", "blocky_jointed.xdmf",
                  "blocky_jointed_joints.xdmf", "blocky_intact.xdmf"):
         assert (out / name).exists(), name

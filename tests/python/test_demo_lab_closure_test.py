@@ -5,29 +5,18 @@ Tolerance: the FE model uses the Tang & Jiao *table* (σ within 1e-6 relative of
 convex σ(Δ) with σ(0) = 0, σ <= kΔ, so the closure error is at most the same 1e-6 relative; the
 Newton tolerance (1e-10) adds nothing visible. Serial and parallel agree to solver tolerance.
 """
-import os
-import subprocess
-import sys
-
 import numpy as np
 import pytest
 
 pytest.importorskip("dolfinx")
 pytest.importorskip("rockjoint._rockjoint_fem")
 
-DEMO = os.path.join(os.environ.get("ROCKJOINT_SOURCE_DIR",
-                                   os.path.join(os.path.dirname(__file__), "..", "..")),
-                    "demos", "demo_lab_closure_test.py")
+import demo_runner  # noqa: E402
+
 
 
 def run_demo(out, ranks):
-    env = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in sys.path if p), MPLBACKEND="Agg",
-               OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
-    cmd = [sys.executable, DEMO, "--output", str(out), "--mesh-size", "0.05"]
-    if ranks > 1:
-        cmd = ["mpirun", "-n", str(ranks)] + cmd
-    r = subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=600)
-    assert r.returncode == 0, r.stdout + r.stderr
+    demo_runner.run_demo("demo_lab_closure_test.py", out, ranks, ("--mesh-size", "0.05"))
     for name in ("lab_closure_test.png", "lab_closure_test_table.txt", "granite_tang_jiao.rjt",
                  "jointed_cube.xdmf", "jointed_cube_joints.xdmf", "intact_cube.xdmf"):
         assert (out / name).exists(), name

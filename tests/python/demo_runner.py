@@ -1,0 +1,19 @@
+"""Run a demo script as a user would (its own process; serially or under mpirun)."""
+import os
+import subprocess
+import sys
+
+SOURCE = os.environ.get("ROCKJOINT_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
+
+
+def run_demo(name, out, ranks=1, extra=()):
+    """Run demos/<name> with --output <out> on `ranks` processes; fail with its output if it fails.
+    Returns the completed process."""
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in sys.path if p), MPLBACKEND="Agg",
+               OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    cmd = [sys.executable, os.path.join(SOURCE, "demos", name), "--output", str(out), *extra]
+    if ranks > 1:
+        cmd = ["mpirun", "-n", str(ranks)] + cmd
+    r = subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=600)
+    assert r.returncode == 0, r.stdout + r.stderr
+    return r
