@@ -204,20 +204,13 @@ void InterfaceAssembler::pair_matrix(std::int32_t p, std::span<const double> u,
 
 double InterfaceAssembler::maximum_closure_ratio(std::span<const double> u) const
 {
-  const int nq = _quadrature.num_points();
   double ratio = 0.0;
-  for (std::int32_t p = 0; p < num_pairs(); ++p)
-  {
-    const double limit = behaviour(p).law->maximum_closure();
-    if (!std::isfinite(limit))
-      continue;
-    for (int q = 0; q < nq; ++q)
-    {
-      const double closure = -local_jump(p, q, u)[0];
-      const double r = closure / limit;
-      ratio = std::isnan(r) ? std::numeric_limits<double>::infinity() : std::max(ratio, r);
-    }
-  }
+  for_each_limited_point(
+      [&](std::int32_t p, int q, double limit)
+      {
+        const double r = -local_jump(p, q, u)[0] / limit;
+        ratio = std::isnan(r) ? std::numeric_limits<double>::infinity() : std::max(ratio, r);
+      });
   return ratio;
 }
 
@@ -225,24 +218,15 @@ double InterfaceAssembler::admissible_step_length(std::span<const double> u,
                                                   std::span<const double> du,
                                                   double fraction) const
 {
-  const int nq = _quadrature.num_points();
   double alpha = 1.0;
-  for (std::int32_t p = 0; p < num_pairs(); ++p)
-  {
-    const double limit = behaviour(p).law->maximum_closure();
-    if (!std::isfinite(limit))
-      continue;
-    for (int q = 0; q < nq; ++q)
-    {
-      const double closure = -local_jump(p, q, u)[0];
-      const double rate = -local_jump(p, q, du)[0]; // dΔ/dα
-      if (rate > 0.0)
+  for_each_limited_point(
+      [&](std::int32_t p, int q, double limit)
       {
-        const double room = std::max(limit - closure, 0.0);
-        alpha = std::min(alpha, fraction * room / rate);
-      }
-    }
-  }
+        const double closure = -local_jump(p, q, u)[0];
+        const double rate = -local_jump(p, q, du)[0]; // dΔ/dα
+        if (rate > 0.0)
+          alpha = std::min(alpha, fraction * std::max(limit - closure, 0.0) / rate);
+      });
   return alpha;
 }
 

@@ -16,6 +16,7 @@
 #include "joint_behaviour.hpp"
 #include "local_frame.hpp"
 
+#include <cmath>
 #include <cstdint>
 #include <map>
 #include <span>
@@ -97,6 +98,20 @@ private:
   /// Local jump (gdim components, frame axes) at point q of pair p.
   std::array<double, 3> local_jump(std::int32_t p, int q, std::span<const double> u) const;
   const JointBehaviour& behaviour(std::int32_t p) const { return *_pair_behaviour[p]; }
+  /// Call f(p, q, Δ_max) at every point of the pairs whose law has a finite maximum closure
+  /// Δ_max (the points the closure limit of Newton's step concerns).
+  template <typename F>
+  void for_each_limited_point(F&& f) const
+  {
+    const int nq = _quadrature.num_points();
+    for (std::int32_t p = 0; p < num_pairs(); ++p)
+    {
+      const double limit = behaviour(p).law->maximum_closure();
+      if (std::isfinite(limit))
+        for (int q = 0; q < nq; ++q)
+          f(p, q, limit);
+    }
+  }
 
   int _gdim;
   FacetQuadrature _quadrature;

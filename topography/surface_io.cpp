@@ -178,6 +178,47 @@ void read_header_line(const std::string& path, std::size_t n, const std::string&
     h.height_unit = value;
 }
 
+/// The data lines of a text height file: blank lines skipped, '#' lines handed to the header
+/// (once data has started, only if `header_after_data`), line numbers kept for errors.
+class DataLines
+{
+public:
+  DataLines(std::ifstream& in, const std::string& path, Header& header, bool header_after_data)
+      : _in(in), _path(path), _header(header), _header_after_data(header_after_data)
+  {
+  }
+  /// The next data line (trimmed) and its 1-based number; false at the end of the file.
+  bool next(std::string& text, std::size_t& number)
+  {
+    std::string line;
+    while (std::getline(_in, line))
+    {
+      ++_number;
+      text = trim(line);
+      if (text.empty())
+        continue;
+      if (text[0] == '#')
+      {
+        if (!_data_started || _header_after_data)
+          read_header_line(_path, _number, text, _header);
+        continue;
+      }
+      _data_started = true;
+      number = _number;
+      return true;
+    }
+    return false;
+  }
+
+private:
+  std::ifstream& _in;
+  const std::string& _path;
+  Header& _header;
+  bool _header_after_data;
+  bool _data_started = false;
+  std::size_t _number = 0;
+};
+
 } // namespace
 
 SurfaceFile read_height_grid(const std::string& path, const ReadOptions& options)
@@ -186,20 +227,11 @@ SurfaceFile read_height_grid(const std::string& path, const ReadOptions& options
   Header h;
   std::vector<double> values;
   std::size_t cols = 0, rows = 0, n = 0, first_row_line = 0;
-  std::string line;
-  while (std::getline(in, line))
+  std::string t;
+  // Comments after the data started carry no header.
+  DataLines data(in, path, h, false);
+  while (data.next(t, n))
   {
-    ++n;
-    const std::string t = trim(line);
-    if (t.empty())
-      continue;
-    if (t[0] == '#')
-    {
-      if (rows > 0)
-        continue; // comments after the data started carry no header
-      read_header_line(path, n, t, h);
-      continue;
-    }
     const auto tok = tokens(t);
     if (rows == 0)
       cols = tok.size(), first_row_line = n;
@@ -336,18 +368,10 @@ SurfaceFile read_xyz(const std::string& path, const ReadOptions& options)
   std::vector<double> xs, ys, zs;
   std::vector<std::size_t> lines;
   std::size_t n = 0;
-  std::string line;
-  while (std::getline(in, line))
+  std::string t;
+  DataLines data(in, path, h, true);
+  while (data.next(t, n))
   {
-    ++n;
-    const std::string t = trim(line);
-    if (t.empty())
-      continue;
-    if (t[0] == '#')
-    {
-      read_header_line(path, n, t, h);
-      continue;
-    }
     const auto tok = tokens(t);
     if (tok.size() != 3)
     {
