@@ -5,12 +5,12 @@
 // at three quadrature tolerances.
 //
 // Usage: bench_closure_laws [report.md]   (prints the table; writes it to the report too)
-#include <constitutive/barton_bandis.hpp>
-#include <constitutive/elasticity.hpp>
-#include <constitutive/empirical_laws.hpp>
-#include <constitutive/greenwood_williamson.hpp>
-#include <constitutive/tang_jiao.hpp>
-#include <constitutive/tang_substrate.hpp>
+#include <rockjoint/constitutive/barton_bandis.hpp>
+#include <rockjoint/constitutive/elasticity.hpp>
+#include <rockjoint/constitutive/empirical_laws.hpp>
+#include <rockjoint/constitutive/greenwood_williamson.hpp>
+#include <rockjoint/constitutive/tang_jiao.hpp>
+#include <rockjoint/constitutive/tang_substrate.hpp>
 
 #include "../tests/cpp/gw_reference.hpp"
 

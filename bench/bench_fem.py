@@ -193,7 +193,7 @@ def main() -> None:
         worker(args.mesh_size, args.json)
         return
     build = find_build(args.build)
-    env = dict(os.environ, PYTHONPATH=os.path.join(build, "python"), OMPI_ALLOW_RUN_AS_ROOT="1",
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join([os.path.join(ROOT, "python"), os.path.join(build, "python")]), OMPI_ALLOW_RUN_AS_ROOT="1",
                OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
     runs = []
     t0 = time.perf_counter()

@@ -6,8 +6,8 @@
 // header line); bench/bench_interaction_cell.py formats it and writes bench/results/.
 //
 // Usage: bench_interaction_cell [order ...]   (default 8 16 32 64)
-#include <constitutive/interaction_cell.hpp>
-#include <constitutive/interaction_cell_numeric.hpp>
+#include <rockjoint/constitutive/interaction_cell.hpp>
+#include <rockjoint/constitutive/interaction_cell_numeric.hpp>
 
 #include <algorithm>
 #include <chrono>

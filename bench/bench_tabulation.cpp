@@ -9,16 +9,13 @@
 // runs: on a shared machine wall time mostly measures the other processes.
 //
 // Usage: bench_tabulation [tolerance ...]   (default 1e-2 ... 1e-8)
-#include <constitutive/barton_bandis.hpp>
-#include <constitutive/elasticity.hpp>
-#include <constitutive/empirical_laws.hpp>
-#include <constitutive/tabulated_law.hpp>
-#if __has_include(<constitutive/tang_jiao.hpp>)
-#include <constitutive/greenwood_williamson.hpp>
-#include <constitutive/tang_jiao.hpp>
-#include <constitutive/tang_substrate.hpp>
-#define ROCKJOINT_BENCH_ASPERITY_LAWS 1
-#endif
+#include <rockjoint/constitutive/barton_bandis.hpp>
+#include <rockjoint/constitutive/elasticity.hpp>
+#include <rockjoint/constitutive/empirical_laws.hpp>
+#include <rockjoint/constitutive/tabulated_law.hpp>
+#include <rockjoint/constitutive/greenwood_williamson.hpp>
+#include <rockjoint/constitutive/tang_jiao.hpp>
+#include <rockjoint/constitutive/tang_substrate.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -50,7 +47,6 @@ std::vector<Model> models()
       {"logarithmic", std::make_shared<LogarithmicLaw>(0.05e-3, 0.1e6), 30e6},
       {"exponential", std::make_shared<ExponentialLaw>(0.2e-3, 5e6), 30e6},
   };
-#ifdef ROCKJOINT_BENCH_ASPERITY_LAWS
   // Spec §7: E 50 GPa, ν 0.25, η 0.3 mm⁻², β 2.5 mm, σ_s 0.05 mm, Gaussian, κ_s 8/(3π),
   // r0 1 mm.
   const AsperityParameters p{composite_modulus(50e9, 0.25), 0.3e6, 2.5e-3, 0.05e-3};
@@ -63,7 +59,6 @@ std::vector<Model> models()
   m.push_back({"greenwood_williamson", gw, 30e6});
   m.push_back({"tang_substrate", ts, 30e6});
   m.push_back({"tang_jiao", tj, 30e6});
-#endif
   return m;
 }
 

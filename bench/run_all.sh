@@ -4,7 +4,7 @@
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="$(cd "${1:-$root/build}" && pwd)"
-export PYTHONPATH="$build/python${PYTHONPATH:+:$PYTHONPATH}" MPLBACKEND=Agg
+export PYTHONPATH="$root/python:$build/python${PYTHONPATH:+:$PYTHONPATH}" MPLBACKEND=Agg
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 cd "$root"
 echo "== closure laws (issue 2)";    "$build/bench/bench_closure_laws" bench/results/closure_laws.md

@@ -3,7 +3,7 @@
 
 Read it top to bottom; run it as it is (serial or `mpirun -n 2`):
 
-    PYTHONPATH=build/python /usr/bin/python3 demos/demo_blocky_rock_mass.py [--output DIR]
+    PYTHONPATH=python:build/python /usr/bin/python3 demos/demo_blocky_rock_mass.py [--output DIR]
 
 A 12 m x 8 m section (2D plane strain) of granite is cut by three horizontal bedding joints
 (2 m apart) and three cross joints dipping 70° (3 m apart), which together make a blocky mass.

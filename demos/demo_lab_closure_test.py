@@ -4,7 +4,7 @@
 The main rockjoint demo. Read it top to bottom; run it as it is:
 
     bash scripts/demo.sh                       # builds, then runs this file in ./out
-    PYTHONPATH=build/python /usr/bin/python3 demos/demo_lab_closure_test.py [--output DIR]
+    PYTHONPATH=python:build/python /usr/bin/python3 demos/demo_lab_closure_test.py [--output DIR]
     mpirun -n 2 ... (the FE part runs in parallel too)
 
 The set-up follows Tang & Jiao (2018): a 150 mm cube of granite split by one fresh, well-mated

@@ -1,6 +1,6 @@
 #include "joint_behaviour.hpp"
 
-#include <constitutive/validation.hpp>
+#include <rockjoint/constitutive/validation.hpp>
 
 #include <cmath>
 #include <limits>

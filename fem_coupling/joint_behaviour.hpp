@@ -16,7 +16,7 @@
 /// opening branch (TabulatedLaw: σ = k_res Δ for Δ <= 0, via ClosureLaw::evaluate_open) acts
 /// on top of k_r.
 
-#include <constitutive/closure_law.hpp>
+#include <rockjoint/constitutive/closure_law.hpp>
 
 #include <array>
 #include <memory>

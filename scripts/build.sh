@@ -6,4 +6,4 @@ build="${ROCKJOINT_BUILD_DIR:-$root/build}"
 "$root/scripts/install_deps.sh"
 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DPython3_EXECUTABLE=/usr/bin/python3 >/dev/null
 cmake --build "$build" -j "$(nproc)"
-echo "build: done in $build (Python package: $build/python)"
+echo "build: done in $build (Python: PYTHONPATH=$root/python:$build/python)"

@@ -5,7 +5,7 @@ set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${ROCKJOINT_BUILD_DIR:-$root/build}"
 "$root/scripts/build.sh"
-export PYTHONPATH="$build/python${PYTHONPATH:+:$PYTHONPATH}" MPLBACKEND=Agg
+export PYTHONPATH="$root/python:$build/python${PYTHONPATH:+:$PYTHONPATH}" MPLBACKEND=Agg
 mkdir -p "$root/out"
 cd "$root/out"
 /usr/bin/python3 "$root/demos/demo_lab_closure_test.py" "$@"

@@ -3,8 +3,8 @@
 set -euo pipefail
 packages=(
   build-essential cmake pkg-config libgtest-dev
-  libeigen3-dev libgsl-dev pybind11-dev
-  python3-dev python3-numpy python3-scipy python3-matplotlib python3-pytest
+  libeigen3-dev libgsl-dev libfftw3-dev pybind11-dev
+  python3-dev python3-numpy python3-scipy python3-matplotlib python3-pytest python3-h5py python3-meshio
   python3-dolfinx libdolfinx-dev python3-gmsh python3-mpi4py python3-petsc4py
   openmpi-bin
 )

@@ -1,6 +1,6 @@
 #include "closure_parameters.hpp"
 
-#include <constitutive/validation.hpp>
+#include <rockjoint/constitutive/validation.hpp>
 
 #include <algorithm>
 #include <cmath>

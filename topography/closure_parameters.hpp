@@ -6,7 +6,7 @@
 #include "spectral_moments.hpp"
 #include "summits.hpp"
 
-#include <constitutive/asperity_parameters.hpp>
+#include <rockjoint/constitutive/asperity_parameters.hpp>
 
 #include <vector>
 

@@ -2,7 +2,7 @@
 
 #include "fft2.hpp"
 
-#include <constitutive/validation.hpp>
+#include <rockjoint/constitutive/validation.hpp>
 
 #include <algorithm>
 #include <cmath>

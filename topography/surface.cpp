@@ -1,6 +1,6 @@
 #include "surface.hpp"
 
-#include <constitutive/validation.hpp>
+#include <rockjoint/constitutive/validation.hpp>
 
 #include <cmath>
 #include <limits>

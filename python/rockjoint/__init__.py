@@ -2,7 +2,14 @@
 
 SI units inside (Pa, m); compression positive; closure Δ net of intact-rock deformation.
 """
-from ._rockjoint import constitutive as _cpp_constitutive
+# The pure-Python sources live in <src>/python/rockjoint; the compiled modules (_rockjoint,
+# _rockjoint_fem) may sit in a build tree's python/rockjoint. extend_path joins every
+# rockjoint/ folder on sys.path into this package (PYTHONPATH=<src>/python:<build>/python).
+from pkgutil import extend_path
+
+__path__ = extend_path(__path__, __name__)
+
+from ._rockjoint import constitutive as _cpp_constitutive  # noqa: E402
 from ._rockjoint.constitutive import (  # noqa: F401
     BartonBandis,
     ClosureLaw,

@@ -3,11 +3,11 @@
 // Keyword arguments in SI units; C++ std::invalid_argument becomes ValueError.
 #include "array_helpers.hpp"
 
-#include <constitutive/asperity_parameters.hpp>
-#include <constitutive/greenwood_williamson.hpp>
-#include <constitutive/substrate.hpp>
-#include <constitutive/summit_population_law.hpp>
-#include <constitutive/tang_substrate.hpp>
+#include <rockjoint/constitutive/asperity_parameters.hpp>
+#include <rockjoint/constitutive/greenwood_williamson.hpp>
+#include <rockjoint/constitutive/substrate.hpp>
+#include <rockjoint/constitutive/summit_population_law.hpp>
+#include <rockjoint/constitutive/tang_substrate.hpp>
 
 #include <pybind11/stl.h>
 

@@ -2,11 +2,11 @@
 // (Tang & Jiao over a GW base, tables over any law) can share them.
 #include "array_helpers.hpp"
 
-#include <constitutive/barton_bandis.hpp>
-#include <constitutive/closure_law.hpp>
-#include <constitutive/elasticity.hpp>
-#include <constitutive/empirical_laws.hpp>
-#include <constitutive/hertz.hpp>
+#include <rockjoint/constitutive/barton_bandis.hpp>
+#include <rockjoint/constitutive/closure_law.hpp>
+#include <rockjoint/constitutive/elasticity.hpp>
+#include <rockjoint/constitutive/empirical_laws.hpp>
+#include <rockjoint/constitutive/hertz.hpp>
 
 #include <pybind11/stl.h>
 

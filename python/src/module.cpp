@@ -9,9 +9,7 @@ void declare_constitutive(py::module_& m);
 void declare_asperity_models(py::module_& m);
 void declare_tang_jiao(py::module_& m);
 void declare_tabulation(py::module_& m);
-#ifdef ROCKJOINT_HAS_TOPOGRAPHY
 void declare_topography(py::module_& m);
-#endif
 } // namespace rockjoint::python
 
 PYBIND11_MODULE(_rockjoint, m)
@@ -22,9 +20,7 @@ PYBIND11_MODULE(_rockjoint, m)
   rockjoint::python::declare_asperity_models(constitutive);
   rockjoint::python::declare_tang_jiao(constitutive);
   rockjoint::python::declare_tabulation(constitutive);
-#ifdef ROCKJOINT_HAS_TOPOGRAPHY
   py::module_ topography
       = m.def_submodule("topography", "Joint-wall topography -> closure-law parameters (SI units)");
   rockjoint::python::declare_topography(topography);
-#endif
 }

@@ -3,7 +3,7 @@
 // its knots as numpy arrays and the file format.
 #include "array_helpers.hpp"
 
-#include <constitutive/tabulated_law.hpp>
+#include <rockjoint/constitutive/tabulated_law.hpp>
 
 #include <pybind11/stl.h>
 

@@ -2,10 +2,10 @@
 // paper's algorithm). C++ errors become ValueError (std::invalid_argument, std::domain_error).
 #include "array_helpers.hpp"
 
-#include <constitutive/asperity_parameters.hpp>
-#include <constitutive/interaction_cell.hpp>
-#include <constitutive/interaction_cell_numeric.hpp>
-#include <constitutive/tang_jiao.hpp>
+#include <rockjoint/constitutive/asperity_parameters.hpp>
+#include <rockjoint/constitutive/interaction_cell.hpp>
+#include <rockjoint/constitutive/interaction_cell_numeric.hpp>
+#include <rockjoint/constitutive/tang_jiao.hpp>
 
 #include <pybind11/stl.h>
 

@@ -1,21 +1,20 @@
 // Bindings of rockjoint::topography (SI units: heights and spacings in metres). The pure
 // Python layer rockjoint/topography.py owns the defaults, the .npy I/O and the pictures.
-#ifdef ROCKJOINT_HAS_TOPOGRAPHY
 #include "array_helpers.hpp"
 
 #include <algorithm>
 #include <optional>
 
-#include <topography/closure_parameters.hpp>
-#include <topography/composite.hpp>
-#include <topography/overlap.hpp>
-#include <topography/power_spectrum.hpp>
-#include <topography/self_affine.hpp>
-#include <topography/spectral_moments.hpp>
-#include <topography/summits.hpp>
-#include <topography/surface.hpp>
-#include <topography/surface_io.hpp>
-#include <topography/units.hpp>
+#include <rockjoint/topography/closure_parameters.hpp>
+#include <rockjoint/topography/composite.hpp>
+#include <rockjoint/topography/overlap.hpp>
+#include <rockjoint/topography/power_spectrum.hpp>
+#include <rockjoint/topography/self_affine.hpp>
+#include <rockjoint/topography/spectral_moments.hpp>
+#include <rockjoint/topography/summits.hpp>
+#include <rockjoint/topography/surface.hpp>
+#include <rockjoint/topography/surface_io.hpp>
+#include <rockjoint/topography/units.hpp>
 
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
@@ -287,4 +286,3 @@ void declare_topography(py::module_& m)
 
 } // namespace rockjoint::python
 
-#endif // ROCKJOINT_HAS_TOPOGRAPHY

@@ -1,17 +1,13 @@
 #pragma once
 // The laws every tabulation test runs over: each closure law of the library with the stress
 // range a scene would tabulate, plus a Hertzian-onset test law (σ ~ Δ^{3/2}, k(0+) = 0).
-// Laws written by other helpers join through __has_include: adding one is one line.
-#include <constitutive/barton_bandis.hpp>
-#include <constitutive/closure_law.hpp>
-#include <constitutive/empirical_laws.hpp>
-#if __has_include(<constitutive/tang_jiao.hpp>)
-#include <constitutive/elasticity.hpp>
-#include <constitutive/greenwood_williamson.hpp>
-#include <constitutive/tang_jiao.hpp>
-#include <constitutive/tang_substrate.hpp>
-#define ROCKJOINT_TEST_ASPERITY_LAWS 1
-#endif
+#include <rockjoint/constitutive/barton_bandis.hpp>
+#include <rockjoint/constitutive/closure_law.hpp>
+#include <rockjoint/constitutive/empirical_laws.hpp>
+#include <rockjoint/constitutive/elasticity.hpp>
+#include <rockjoint/constitutive/greenwood_williamson.hpp>
+#include <rockjoint/constitutive/tang_jiao.hpp>
+#include <rockjoint/constitutive/tang_substrate.hpp>
 
 #include <cmath>
 #include <memory>
@@ -68,7 +64,6 @@ inline std::vector<LawCase> library_laws()
       {"exponential", std::make_shared<ExponentialLaw>(0.2e-3, 5e6), 30e6},
       {"hertzian onset", std::make_shared<HertzianOnsetLaw>(1e12, 0.05e-3), 30e6},
   };
-#ifdef ROCKJOINT_TEST_ASPERITY_LAWS
   // Theory §7: E 50 GPa, ν 0.25, η 0.3 mm⁻², β 2.5 mm, σ_s 0.05 mm, κ_s 8/(3π), r0 1 mm.
   const AsperityParameters p{composite_modulus(50e9, 0.25), 0.3e6, 2.5e-3, 0.05e-3};
   SubstrateParameters sub;
@@ -84,7 +79,6 @@ inline std::vector<LawCase> library_laws()
   cases.push_back({"tang_jiao over tang_substrate",
                    std::make_shared<TangJiao>(std::static_pointer_cast<const AsperityLaw>(ts)),
                    30e6});
-#endif
   return cases;
 }
 

@@ -1,7 +1,7 @@
 // Barton-Bandis, logarithmic and exponential laws against their closed forms (theory §6),
 // the open branch, tangents against central differences, inverses and bad input.
-#include <constitutive/barton_bandis.hpp>
-#include <constitutive/empirical_laws.hpp>
+#include <rockjoint/constitutive/barton_bandis.hpp>
+#include <rockjoint/constitutive/empirical_laws.hpp>
 
 #include <gtest/gtest.h>
 

@@ -1,11 +1,11 @@
 // Interface assembler kernels (plain arrays, no PETSc objects): local frame, quadrature,
 // residual balance, and the consistent pair Jacobian against central finite differences.
-#include <fem_coupling/facet_quadrature.hpp>
-#include <fem_coupling/interface_assembler.hpp>
-#include <fem_coupling/local_frame.hpp>
+#include <rockjoint/fem_coupling/facet_quadrature.hpp>
+#include <rockjoint/fem_coupling/interface_assembler.hpp>
+#include <rockjoint/fem_coupling/local_frame.hpp>
 
-#include <constitutive/barton_bandis.hpp>
-#include <constitutive/empirical_laws.hpp>
+#include <rockjoint/constitutive/barton_bandis.hpp>
+#include <rockjoint/constitutive/empirical_laws.hpp>
 
 #include <gtest/gtest.h>
 

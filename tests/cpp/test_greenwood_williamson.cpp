@@ -1,11 +1,11 @@
 // Greenwood-Williamson law (theory §2): exponential closed forms, Gaussian partial moments
 // against parabolic cylinder functions and an independent long-double quadrature, empirical
 // sums, the common law checks on every configuration, hard cases and named errors.
-#include <constitutive/elasticity.hpp>
-#include <constitutive/greenwood_williamson.hpp>
-#include <constitutive/hertz.hpp>
-#include <constitutive/population_quadrature.hpp>
-#include <constitutive/tang_substrate.hpp>
+#include <rockjoint/constitutive/elasticity.hpp>
+#include <rockjoint/constitutive/greenwood_williamson.hpp>
+#include <rockjoint/constitutive/hertz.hpp>
+#include <rockjoint/constitutive/population_quadrature.hpp>
+#include <rockjoint/constitutive/tang_substrate.hpp>
 
 #include <gtest/gtest.h>
 

@@ -2,9 +2,9 @@
 // hertz::load / A0, hertz::stiffness / A0 and hertz::contact_area / A0, for GW and for the
 // Tang law with κ_s = 0; with a substrate, the load is Hertz's at the Hertz part g of the
 // approach w = g + κ_s √β g^{3/2} / r0 (evaluated forwards from g: no root solving here).
-#include <constitutive/greenwood_williamson.hpp>
-#include <constitutive/hertz.hpp>
-#include <constitutive/tang_substrate.hpp>
+#include <rockjoint/constitutive/greenwood_williamson.hpp>
+#include <rockjoint/constitutive/hertz.hpp>
+#include <rockjoint/constitutive/tang_substrate.hpp>
 
 #include <gtest/gtest.h>
 

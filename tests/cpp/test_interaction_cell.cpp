@@ -1,8 +1,8 @@
 // The self-consistent interaction cell of Tang & Jiao (2018), theory §5: closed form
 // (interaction_cell.hpp) against independent quadratures written here, and the paper's
 // iterative algorithm (interaction_cell_numeric.hpp) against the closed form.
-#include <constitutive/interaction_cell.hpp>
-#include <constitutive/interaction_cell_numeric.hpp>
+#include <rockjoint/constitutive/interaction_cell.hpp>
+#include <rockjoint/constitutive/interaction_cell_numeric.hpp>
 
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_integration.h>

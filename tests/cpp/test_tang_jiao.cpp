@@ -3,10 +3,10 @@
 // I1 = f3/Q, the paper's contraction, the limits s → 0, the validity limit, variant I2,
 // the geometric area source, the common law checks and bad input. The last tests compose it
 // with the project's GreenwoodWilliamson and TangSubstrate laws.
-#include <constitutive/empirical_laws.hpp>
-#include <constitutive/greenwood_williamson.hpp>
-#include <constitutive/tang_jiao.hpp>
-#include <constitutive/tang_substrate.hpp>
+#include <rockjoint/constitutive/empirical_laws.hpp>
+#include <rockjoint/constitutive/greenwood_williamson.hpp>
+#include <rockjoint/constitutive/tang_jiao.hpp>
+#include <rockjoint/constitutive/tang_substrate.hpp>
 
 #include <gtest/gtest.h>
 

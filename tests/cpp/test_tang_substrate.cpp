@@ -1,11 +1,11 @@
 // Tang substrate law (theory §4): the cubic w = g + κ_s √β g^{3/2}/r0 across scales, the GW
 // limit κ_s -> 0, an independent long-double quadrature of f3, k and A, the §7 example, the
 // common law checks, hard cases and named errors.
-#include <constitutive/elasticity.hpp>
-#include <constitutive/greenwood_williamson.hpp>
-#include <constitutive/hertz.hpp>
-#include <constitutive/substrate.hpp>
-#include <constitutive/tang_substrate.hpp>
+#include <rockjoint/constitutive/elasticity.hpp>
+#include <rockjoint/constitutive/greenwood_williamson.hpp>
+#include <rockjoint/constitutive/hertz.hpp>
+#include <rockjoint/constitutive/substrate.hpp>
+#include <rockjoint/constitutive/tang_substrate.hpp>
 
 #include <gtest/gtest.h>
 

@@ -1,11 +1,11 @@
 // Contact state and composite topography (theory §3): identical walls are flat (zero closure
 // capacity), offsets register walls, planes are removed, masks propagate, the geometric
 // overlap ratio counts lattice points.
-#include <topography/closure_parameters.hpp>
-#include <topography/composite.hpp>
-#include <topography/overlap.hpp>
-#include <topography/self_affine.hpp>
-#include <topography/summits.hpp>
+#include <rockjoint/topography/closure_parameters.hpp>
+#include <rockjoint/topography/composite.hpp>
+#include <rockjoint/topography/overlap.hpp>
+#include <rockjoint/topography/self_affine.hpp>
+#include <rockjoint/topography/summits.hpp>
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // Height-grid and XYZ files: round trips with units and NaN masks, and malformed files whose
 // errors must name the file and the line.
-#include <topography/surface_io.hpp>
+#include <rockjoint/topography/surface_io.hpp>
 
 #include <gtest/gtest.h>
 

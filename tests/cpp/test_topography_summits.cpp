@@ -1,10 +1,10 @@
 // Summits, curvature and spectral moments against closed forms: i.i.d. noise (exactly 1/9 of
 // the eligible points are 8-neighbour summits), paraboloids (the 5-point Laplacian is exact),
 // planted summits and sinusoids.
-#include <topography/closure_parameters.hpp>
-#include <topography/self_affine.hpp>
-#include <topography/spectral_moments.hpp>
-#include <topography/summits.hpp>
+#include <rockjoint/topography/closure_parameters.hpp>
+#include <rockjoint/topography/self_affine.hpp>
+#include <rockjoint/topography/spectral_moments.hpp>
+#include <rockjoint/topography/summits.hpp>
 
 #include <gtest/gtest.h>
 

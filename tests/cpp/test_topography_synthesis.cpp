@@ -1,9 +1,9 @@
 // Fourier-filtered self-affine surfaces: the DFT itself, determinism, the realised rms and
 // Hurst exponent against the requested ones (tolerances derived from the statistics of the
 // random Fourier amplitudes), and mated pairs.
-#include <topography/fft2.hpp>
-#include <topography/power_spectrum.hpp>
-#include <topography/self_affine.hpp>
+#include <rockjoint/topography/fft2.hpp>
+#include <rockjoint/topography/power_spectrum.hpp>
+#include <rockjoint/topography/self_affine.hpp>
 
 #include <gtest/gtest.h>
 

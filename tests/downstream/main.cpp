@@ -1,5 +1,5 @@
 // Uses the installed headers and library: σ of a Barton-Bandis joint at half its V_m equals K_ni V_m.
-#include <constitutive/barton_bandis.hpp>
+#include <rockjoint/constitutive/barton_bandis.hpp>
 
 #include <cmath>
 #include <cstdio>

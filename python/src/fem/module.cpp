@@ -1,8 +1,8 @@
 // The _rockjoint_fem extension: bindings of rockjoint::fem (interface assembler). Separate
 // from _rockjoint so that the closure-law module never needs PETSc/DOLFINx. Closure laws
 // come in as the shared_ptr<ClosureLaw> objects of rockjoint._rockjoint (import it first).
-#include <fem_coupling/interface_assembler.hpp>
-#include <fem_coupling/petsc_assembly.hpp>
+#include <rockjoint/fem_coupling/interface_assembler.hpp>
+#include <rockjoint/fem_coupling/petsc_assembly.hpp>
 
 #include <caster_petsc.h> // DOLFINx's petsc4py <-> PETSc caster
 
