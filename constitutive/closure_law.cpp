@@ -1,4 +1,5 @@
 #include "closure_law.hpp"
+#include "root_finding.hpp"
 
 #include <cmath>
 #include <sstream>
@@ -109,27 +110,15 @@ double ClosureLaw::closure_at_stress(double target) const
     rhi = evaluate(hi);
   }
 
-  // Safeguarded Newton on r(Δ) = σ(Δ) - target.
-  double x = hi;
-  ClosureResponse rx = rhi;
-  for (int it = 0; it < 400; ++it)
-  {
-    const double res = rx.normal_stress - target;
-    if (res == 0.0)
-      return x;
-    if (res > 0.0)
-      hi = x;
-    else
-      lo = x;
-    double xn = x - res / rx.normal_stiffness;
-    if (!(xn > lo && xn < hi) || !std::isfinite(xn))
-      xn = 0.5 * (lo + hi);
-    if (std::abs(xn - x) <= 1e-15 * std::abs(xn) || hi - lo <= 1e-15 * hi)
-      return xn;
-    x = xn;
-    rx = evaluate(x);
-  }
-  return x;
+  // Safeguarded Newton on r(Δ) = σ(Δ) - target, from the upper end of the bracket.
+  const root_finding::Root root = root_finding::find_root(
+      [&](double x)
+      {
+        const ClosureResponse r = x == hi ? rhi : evaluate(x);
+        return root_finding::Residual{r.normal_stress - target, r.normal_stiffness};
+      },
+      lo, hi, hi);
+  return root.x;
 }
 
 } // namespace rockjoint::constitutive

@@ -1,5 +1,6 @@
 #include "interaction_cell_numeric.hpp"
 #include "interaction_cell.hpp"
+#include "root_finding.hpp"
 #include "validation.hpp"
 
 #include <gsl/gsl_errno.h>
@@ -36,46 +37,23 @@ struct GaussLegendre
   }
 };
 
-/// Bracketed root of a continuous f on [lo, hi] with f(lo) < 0 < f(hi): Illinois
-/// (modified regula falsi), which is exact in one step for the affine residuals of this
-/// cell and never leaves the bracket. Stops at |f| <= ftol, width <= xtol, or when an
-/// iterate repeats the previous one to 1e-15 relative (the residual is at rounding level).
+/// Root of a continuous f on [lo, hi] with f(lo) < 0 < f(hi) by Illinois steps (modified
+/// regula falsi: exact in one step for the affine residuals of this cell; the shared root
+/// finder keeps it inside the bracket). Stops at |f| <= ftol or a step within 1e-15 relative;
+/// adds the evaluations to `iterations`.
 template <class F>
-double bracketed_root(F&& f, double lo, double hi, double flo, double fhi, double ftol,
-                      double xtol, int& iterations)
+double illinois_root(F&& f, double lo, double hi, double flo, double fhi, double ftol,
+                     int& iterations)
 {
-  int side = 0;
-  double x = lo, previous = std::numeric_limits<double>::quiet_NaN();
-  for (int it = 0; it < 200; ++it)
-  {
-    ++iterations;
-    x = (lo * fhi - hi * flo) / (fhi - flo);
-    if (!(x > lo && x < hi))
-      x = 0.5 * (lo + hi);
-    if (std::abs(x - previous) <= 1e-15 * std::abs(x))
-      return x;
-    previous = x;
-    const double fx = f(x);
-    if (std::abs(fx) <= ftol || hi - lo <= xtol)
-      return x;
-    if (fx < 0.0)
-    {
-      lo = x;
-      flo = fx;
-      if (side == -1)
-        fhi *= 0.5;
-      side = -1;
-    }
-    else
-    {
-      hi = x;
-      fhi = fx;
-      if (side == 1)
-        flo *= 0.5;
-      side = 1;
-    }
-  }
-  return x;
+  root_finding::Options options;
+  options.secant = true;
+  options.residual_tolerance = ftol;
+  options.maximum_iterations = 200;
+  const root_finding::Root root = root_finding::find_root(
+      [&](double x) { return root_finding::Residual{f(x)}; }, lo, hi,
+      std::numeric_limits<double>::quiet_NaN(), options, flo, fhi);
+  iterations += root.evaluations;
+  return root.x;
 }
 
 const GaussLegendre& rule(int n)
@@ -137,9 +115,8 @@ NumericCell::NumericCell(double composite_modulus, double radius, double contact
     }
     if (flo >= 0.0)
       return lo;
-    return bracketed_root([&](double p) { return edge_coefficient(approach, p); }, lo, hi,
-                          flo, fhi, 1e-15 * hertz_approach, 1e-16 * hi,
-                          sol.inner_iterations);
+    return illinois_root([&](double p) { return edge_coefficient(approach, p); }, lo, hi, flo,
+                         fhi, 1e-15 * hertz_approach, sol.inner_iterations);
   };
 
   // Step 2: self-consistency p̄ π b² = P (Eq. (3)) by a bracketed root find on δ_loc:
@@ -161,9 +138,8 @@ NumericCell::NumericCell(double composite_modulus, double radius, double contact
     flo = residual(lo);
   }
   // residual(lo) > 0 > residual(hi): swap orientation for the root finder (f(lo) < 0).
-  const double approach = bracketed_root([&](double d) { return -residual(d); }, lo, hi, -flo,
-                                         -fhi, 1e-14 * sol.hertz_load,
-                                         1e-16 * hertz_approach, sol.outer_iterations);
+  const double approach = illinois_root([&](double d) { return -residual(d); }, lo, hi, -flo,
+                                        -fhi, 1e-14 * sol.hertz_load, sol.outer_iterations);
   sol.local_approach = approach;
   sol.mean_pressure = fringe_pressure(approach);
   sol.load = load(sol.mean_pressure);

@@ -15,7 +15,12 @@
 ///   every Δ down to 0, which no cubic in Δ does for the Hertzian Δ^{3/2} onset.
 /// Header-only: the builder and the table evaluate through the same code, so the error the
 /// builder checks is the error of the table that is shipped.
+///
+/// The same cubic segments interpolate sampled data without known slopes (the geometric
+/// overlap curve of Eq. (2), a measured or computed closure curve): data_slopes gives them
+/// monotone slopes from the data alone.
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <span>
@@ -136,6 +141,44 @@ inline bool is_monotone(double x0, double x1, double sigma0, double sigma1, doub
   const double delta = (sigma1 - sigma0) / (x1 - x0);
   const double a = k0 / delta, b = k1 / delta;
   return a * a + b * b <= 9.0 * (1.0 + 1e-12);
+}
+
+/// Monotone C¹ slopes for non-decreasing data (x_i, y_i) without known derivatives: the
+/// PCHIP of Fritsch & Carlson (1980) as given by Moler — weighted harmonic means of the
+/// adjacent secants inside (Fritsch & Butland 1984; zero at a plateau or an extremum) and
+/// shape-preserving three-point formulas at the ends. With them make_segment gives a
+/// monotone interpolant that is exact on plateaus. x strictly increasing, n >= 2.
+inline void data_slopes(std::span<const double> x, std::span<const double> y,
+                        std::span<double> slopes)
+{
+  const std::size_t n = x.size();
+  auto secant = [&](std::size_t i) { return (y[i + 1] - y[i]) / (x[i + 1] - x[i]); };
+  std::fill(slopes.begin(), slopes.end(), 0.0);
+  if (n == 2)
+  {
+    slopes[0] = slopes[1] = secant(0);
+    return;
+  }
+  for (std::size_t i = 1; i + 1 < n; ++i)
+  {
+    const double d0 = secant(i - 1), d1 = secant(i);
+    if (d0 > 0.0 && d1 > 0.0)
+    {
+      const double h0 = x[i] - x[i - 1], h1 = x[i + 1] - x[i];
+      const double w1 = 2.0 * h1 + h0, w2 = h1 + 2.0 * h0;
+      slopes[i] = (w1 + w2) / (w1 / d0 + w2 / d1);
+    }
+  }
+  auto end_slope = [](double h0, double h1, double d0, double d1)
+  {
+    double m = ((2.0 * h0 + h1) * d0 - h0 * d1) / (h0 + h1);
+    if (m < 0.0 || d0 == 0.0)
+      m = 0.0;
+    return std::min(m, 3.0 * d0);
+  };
+  slopes[0] = end_slope(x[1] - x[0], x[2] - x[1], secant(0), secant(1));
+  slopes[n - 1]
+      = end_slope(x[n - 1] - x[n - 2], x[n - 2] - x[n - 3], secant(n - 2), secant(n - 3));
 }
 
 } // namespace rockjoint::constitutive::hermite

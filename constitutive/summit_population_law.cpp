@@ -1,5 +1,6 @@
 #include "summit_population_law.hpp"
 #include "population_quadrature.hpp"
+#include "root_finding.hpp"
 #include "substrate.hpp"
 #include "validation.hpp"
 
@@ -150,8 +151,8 @@ void SummitPopulationLaw::set_reference(const std::string& owner, const SeatingR
   {
     const double target = validation::positive(owner, "seating_stress", reference.value, "Pa");
     // σ_model(d) decreases strictly (where positive) from +∞ (d -> -∞) to 0. Bracket by
-    // doubling steps from the automatic reference, then Newton on ln σ (the Gaussian tail
-    // makes ln σ nearly quadratic in d), bisecting whenever Newton leaves the bracket.
+    // doubling steps from the automatic reference, then safeguarded Newton on ln σ (the
+    // Gaussian tail makes ln σ nearly quadratic in d).
     double scale = ss > 0.0 ? ss : 1e-3 * _parameters.summit_radius;
     auto stress = [&](double d) { return response_at_separation(d).normal_stress; };
     double lo, hi; // σ(lo) >= target > σ(hi)
@@ -179,27 +180,18 @@ void SummitPopulationLaw::set_reference(const std::string& owner, const SeatingR
           validation::fail(owner, "seating_stress", target, "Pa", "reachable by the model");
       }
     }
-    double x = lo;
-    for (it = 0; it < 400; ++it)
-    {
-      const ClosureResponse r = response_at_separation(x);
-      if (r.normal_stress == target)
-        break;
-      if (r.normal_stress > target)
-        lo = x;
-      else
-        hi = x;
-      double xn = x + std::log(r.normal_stress / target) * r.normal_stress / r.normal_stiffness;
-      if (!(xn > lo && xn < hi))
-        xn = 0.5 * (lo + hi);
-      const double tiny = 1e-15 * std::max(std::abs(xn), scale);
-      if (std::abs(xn - x) <= tiny || hi - lo <= tiny)
-      {
-        x = xn;
-        break;
-      }
-      x = xn;
-    }
+    // r(d) = ln(target/σ(d)) increases with d; r' = k/σ (dσ/dd = -k).
+    root_finding::Options newton_on_log;
+    newton_on_log.absolute_scale = scale;
+    const double x = root_finding::find_root(
+                         [&](double d)
+                         {
+                           const ClosureResponse r = response_at_separation(d);
+                           return root_finding::Residual{std::log(target / r.normal_stress),
+                                                         r.normal_stiffness / r.normal_stress};
+                         },
+                         lo, hi, lo, newton_on_log)
+                         .x;
     _reference_separation = x;
     break;
   }

@@ -1,5 +1,6 @@
 #include "tabulated_law.hpp"
 #include "adaptive_knots.hpp"
+#include "root_finding.hpp"
 #include "validation.hpp"
 
 #include <algorithm>
@@ -216,24 +217,20 @@ double TabulatedLaw::closure_at_stress(double target) const
   const hermite::Segment& seg = _segments[i];
   // Safeguarded Newton on p(τ) = target, p increasing on [0, 1]. The first segment is a
   // quartic in τ = √Δ/t1 (c0 = c1 = 0), the others cubics in τ = (Δ - Δ_i)/h (c4 = 0).
-  double lo = 0.0, hi = 1.0, tau = 0.5;
-  for (int it = 0; it < 2000; ++it)
-  {
-    const double p = seg.c0 + tau * (seg.c1 + tau * (seg.c2 + tau * (seg.c3 + tau * seg.c4)));
-    const double dp
-        = seg.c1 + tau * (2.0 * seg.c2 + tau * (3.0 * seg.c3 + tau * (4.0 * seg.c4)));
-    const double r = p - target;
-    if (r == 0.0)
-      break;
-    (r > 0.0 ? hi : lo) = tau;
-    double next = tau - r / dp;
-    if (!(next > lo && next < hi))
-      next = 0.5 * (lo + hi);
-    const bool done = std::abs(next - tau) <= 1e-16 * tau || hi - lo <= 1e-16 * hi;
-    tau = next;
-    if (done)
-      break;
-  }
+  root_finding::Options options;
+  options.relative_tolerance = 1e-16;
+  options.maximum_iterations = 2000;
+  const double tau = root_finding::find_root(
+                         [&](double t)
+                         {
+                           const double p
+                               = seg.c0 + t * (seg.c1 + t * (seg.c2 + t * (seg.c3 + t * seg.c4)));
+                           const double dp
+                               = seg.c1 + t * (2.0 * seg.c2 + t * (3.0 * seg.c3 + t * (4.0 * seg.c4)));
+                           return root_finding::Residual{p - target, dp};
+                         },
+                         0.0, 1.0, 0.5, options)
+                         .x;
   if (i == 0)
   {
     const double t = tau / seg.inv_h;

@@ -1,5 +1,6 @@
 #include "tang_jiao.hpp"
 #include "interaction_cell.hpp"
+#include "root_finding.hpp"
 #include "validation.hpp"
 
 #include <algorithm>
@@ -72,39 +73,15 @@ OverlapCurve::OverlapCurve(std::vector<double> closure, std::vector<double> area
     validation::fail("TangJiao", "overlap_closure[0]", _x[0], "m",
                      "0 (the curve starts at first contact)");
 
-  // Monotone C¹ slopes (Fritsch-Butland harmonic mean inside, shape-preserving three-point
-  // ends: the PCHIP of Fritsch & Carlson 1980 / Moler).
-  std::vector<double> h(n - 1), delta(n - 1);
+  // Monotone C¹ cubic Hermite through the samples (one interpolant for the project:
+  // monotone_hermite.hpp).
+  std::vector<double> slopes(n);
+  hermite::data_slopes(_x, _y, slopes);
+  _segments.reserve(n - 1);
   for (std::size_t i = 0; i + 1 < n; ++i)
-  {
-    h[i] = _x[i + 1] - _x[i];
-    delta[i] = (_y[i + 1] - _y[i]) / h[i];
-  }
-  _slope.assign(n, 0.0);
-  if (n == 2)
-  {
-    _slope[0] = _slope[1] = delta[0];
-    return;
-  }
-  for (std::size_t i = 1; i + 1 < n; ++i)
-  {
-    if (delta[i - 1] > 0.0 && delta[i] > 0.0)
-    {
-      const double w1 = 2.0 * h[i] + h[i - 1], w2 = h[i] + 2.0 * h[i - 1];
-      _slope[i] = (w1 + w2) / (w1 / delta[i - 1] + w2 / delta[i]);
-    }
-  }
-  auto end_slope = [](double h0, double h1, double d0, double d1)
-  {
-    double m = ((2.0 * h0 + h1) * d0 - h0 * d1) / (h0 + h1);
-    if (m < 0.0 || d0 == 0.0)
-      m = 0.0;
-    else if (d1 == 0.0 && m > 3.0 * d0)
-      m = 3.0 * d0;
-    return std::min(m, 3.0 * d0);
-  };
-  _slope[0] = end_slope(h[0], h[1], delta[0], delta[1]);
-  _slope[n - 1] = end_slope(h[n - 2], h[n - 3], delta[n - 2], delta[n - 3]);
+    _segments.push_back(
+        hermite::make_segment(_x[i], _x[i + 1], _y[i], _y[i + 1], slopes[i], slopes[i + 1]));
+  _end_slope = slopes[n - 1];
 }
 
 void OverlapCurve::evaluate(double closure, double& area_ratio, double& area_rate) const
@@ -113,28 +90,17 @@ void OverlapCurve::evaluate(double closure, double& area_ratio, double& area_rat
   if (closure >= _x[n - 1])
   {
     // Linear continuation with the end slope keeps the curve C¹; s_max caps it.
-    area_rate = _slope[n - 1];
+    area_rate = _end_slope;
     area_ratio = _y[n - 1] + area_rate * (closure - _x[n - 1]);
     return;
   }
-  if (closure <= 0.0)
-  {
-    area_ratio = _y[0];
-    area_rate = _slope[0];
-    return;
-  }
   const std::size_t i
-      = static_cast<std::size_t>(std::upper_bound(_x.begin(), _x.end(), closure) - _x.begin())
-        - 1;
-  const double h = _x[i + 1] - _x[i];
-  const double t = (closure - _x[i]) / h;
-  const double t2 = t * t, u = 1.0 - t;
-  // Cubic Hermite basis on [0, 1].
-  // Written as y_i + increments so that a plateau (equal ends, zero slopes) is exact.
-  area_ratio = _y[i] + (_y[i + 1] - _y[i]) * t2 * (3.0 - 2.0 * t)
-               + h * (t * u * u * _slope[i] - t2 * u * _slope[i + 1]);
-  area_rate = 6.0 * t * (t - 1.0) * (_y[i] - _y[i + 1]) / h
-              + (3.0 * t2 - 4.0 * t + 1.0) * _slope[i] + (3.0 * t2 - 2.0 * t) * _slope[i + 1];
+      = closure <= 0.0
+            ? 0
+            : static_cast<std::size_t>(std::upper_bound(_x.begin(), _x.end(), closure)
+                                       - _x.begin())
+                  - 1;
+  hermite::evaluate(_segments[i], std::max(closure, 0.0), area_ratio, area_rate);
   area_ratio = std::max(area_ratio, 0.0);
 }
 
@@ -310,17 +276,11 @@ void TangJiao::locate_limit()
         }
       }
     }
-    if (found)
-    {
-      while (hi - lo > 1e-15 * hi)
-      {
-        const double mid = 0.5 * (lo + hi);
-        if (mid <= lo || mid >= hi)
-          break;
-        (area_at(mid) >= target ? hi : lo) = mid;
-      }
-      xi_area = hi;
-    }
+    if (found) // bisection: the first closure with A >= target, to 1e-15 relative
+      xi_area = root_finding::find_root([&](double xi)
+                                        { return root_finding::Residual{area_at(xi) - target}; },
+                                        lo, hi, 0.5 * (lo + hi))
+                    .hi;
   }
 
   _maximum_internal = xi_area;
@@ -360,15 +320,11 @@ void TangJiao::locate_limit()
       const double x = i == n ? end : end * std::pow(10.0, -12.0 + 12.0 * i / n);
       if (excess(x) >= 0.0)
       {
-        double lo = prev, hi = x;
-        while (hi - lo > 1e-15 * hi)
-        {
-          const double mid = 0.5 * (lo + hi);
-          if (mid <= lo || mid >= hi)
-            break;
-          (excess(mid) >= 0.0 ? hi : lo) = mid;
-        }
-        xi_rate = lo; // last point with dε/dξ < cap: the tangent stays finite
+        // Bisection; the last point with dε/dξ < cap keeps the tangent finite.
+        xi_rate = root_finding::find_root([&](double xi)
+                                          { return root_finding::Residual{excess(xi)}; },
+                                          prev, x, 0.5 * (prev + x))
+                      .lo;
       }
       prev = x;
     }
@@ -433,9 +389,8 @@ std::pair<double, TangJiao::State> TangJiao::solve_internal(double closure) cons
   if (_options.variant == TangJiaoVariant::as_published || !(closure > 0.0))
     return {closure, state(closure)};
   // Solve g(ξ) = ξ - ε(ξ) - Δ = 0 on [Δ, ξ_max]: g(Δ) = -ε(Δ) <= 0, g increasing (dε/dξ < 1
-  // below the limit). Newton from ξ = Δ, safeguarded by bisection whenever it leaves the
-  // bracket; the state of the last iterate is returned with it (no extra evaluation: it is
-  // within 1e-15 relative of the root).
+  // below the limit). Safeguarded Newton from ξ = Δ; the state of the last iterate is returned
+  // with it (no extra evaluation: it is within 1e-15 relative of the root).
   double lo = closure;
   double hi = _maximum_internal;
   double x = lo;
@@ -452,21 +407,23 @@ std::pair<double, TangJiao::State> TangJiao::solve_internal(double closure) cons
         break;
     }
   }
-  for (int it = 0; it < 200; ++it)
-  {
-    const double g = x - st.closure_shift - closure;
-    if (g == 0.0)
-      return {x, st};
-    (g < 0.0 ? lo : hi) = x;
-    double xn = x - g / (1.0 - st.closure_shift_rate);
-    if (!(xn > lo && xn < hi) || !std::isfinite(xn))
-      xn = 0.5 * (lo + hi);
-    if (std::abs(xn - x) <= 2e-16 * xn || hi - lo <= 1e-15 * hi)
-      return {x, st};
-    x = xn;
-    st = state(x);
-  }
-  return {x, st};
+  // The residual keeps the state of the last evaluated ξ, which find_root returns.
+  root_finding::Options options;
+  options.maximum_iterations = 200;
+  const double root = root_finding::find_root(
+                          [&](double xi)
+                          {
+                            if (xi != x)
+                            {
+                              x = xi;
+                              st = state(xi);
+                            }
+                            return root_finding::Residual{xi - st.closure_shift - closure,
+                                                          1.0 - st.closure_shift_rate};
+                          },
+                          lo, hi, x, options)
+                          .x;
+  return {root, st};
 }
 
 ClosureResponse TangJiao::evaluate_contact(double closure) const

@@ -67,6 +67,7 @@
 
 #include "asperity_parameters.hpp"
 #include "closure_law.hpp"
+#include "monotone_hermite.hpp"
 
 #include <memory>
 #include <optional>
@@ -107,7 +108,9 @@ public:
   const std::vector<double>& area_ratio() const { return _y; }
 
 private:
-  std::vector<double> _x, _y, _slope;
+  std::vector<double> _x, _y;
+  std::vector<hermite::Segment> _segments; // monotone cubic Hermite (monotone_hermite.hpp)
+  double _end_slope = 0.0;                 // slope of the linear continuation past Δ_{n-1}
 };
 
 /// Options of the Tang & Jiao law.
