@@ -118,17 +118,10 @@ protected:
   ClosureResponse evaluate_contact(double closure) const override;
 
 private:
-  /// Dimensionless integrals of a parametric population (standardised heights s = z/σ_s).
-  struct Moments
-  {
-    double stress = 0, stiffness = 0, area = 0, rate = 0;
-    bool converged = true;
-  };
-  /// At h = d/σ_s; the stress is seated (minus its value at h_ref) when h_ref is finite, with
-  /// δ = Δ/σ_s the exact closure.
-  Moments parametric_moments(double h, double h_ref, double delta) const;
   /// Empirical sums at closure Δ from d_ref (seated) or, if !seated, at separation d.
   ClosureResponse empirical_response(double separation, bool seated, double closure) const;
+  /// Response of the parametric population at h = d/σ_s (seated at h_ref when finite, δ =
+  /// Δ/σ_s): the GW integrals of gw_integral.hpp times this law's scales.
   ClosureResponse parametric_response(double h, double h_ref, double delta) const;
   void set_reference(const std::string& owner, const SeatingReference& reference);
   void check_common(const std::string& owner, std::optional<double> base_radius);
