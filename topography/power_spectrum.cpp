@@ -2,6 +2,8 @@
 
 #include "fft2.hpp"
 
+#include <gsl/gsl_fit.h>
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -98,15 +100,16 @@ RadialSpectrum radial_average(const PowerSpectrum2D& s)
 
 HurstFit fit_hurst_exponent(const RadialSpectrum& s, double q_min, double q_max)
 {
-  double sw = 0, sx = 0, sy = 0;
-  std::size_t used = 0;
+  // ln C = ln C0 + slope ln q over the band, each bin weighted by its count of wavevectors.
+  std::vector<double> x, y, w;
   for (std::size_t b = 0; b < s.q.size(); ++b)
     if (s.q[b] >= q_min && s.q[b] <= q_max && s.psd[b] > 0.0)
     {
-      const double w = static_cast<double>(s.count[b]);
-      sw += w, sx += w * std::log(s.q[b]), sy += w * std::log(s.psd[b]);
-      ++used;
+      x.push_back(std::log(s.q[b]));
+      y.push_back(std::log(s.psd[b]));
+      w.push_back(static_cast<double>(s.count[b]));
     }
+  const std::size_t used = x.size();
   if (used < 3)
   {
     std::ostringstream msg;
@@ -114,24 +117,12 @@ HurstFit fit_hurst_exponent(const RadialSpectrum& s, double q_min, double q_max)
         << q_max << "] rad/m; at least 3 are needed";
     throw std::invalid_argument(msg.str());
   }
-  const double mx = sx / sw, my = sy / sw;
-  double sxx = 0, sxy = 0;
-  for (std::size_t b = 0; b < s.q.size(); ++b)
-    if (s.q[b] >= q_min && s.q[b] <= q_max && s.psd[b] > 0.0)
-    {
-      const double w = static_cast<double>(s.count[b]);
-      const double x = std::log(s.q[b]) - mx, y = std::log(s.psd[b]) - my;
-      sxx += w * x * x, sxy += w * x * y;
-    }
-  const double slope = sxy / sxx, intercept = my - slope * mx;
-  double rss = 0;
-  for (std::size_t b = 0; b < s.q.size(); ++b)
-    if (s.q[b] >= q_min && s.q[b] <= q_max && s.psd[b] > 0.0)
-    {
-      const double r = std::log(s.psd[b]) - intercept - slope * std::log(s.q[b]);
-      rss += static_cast<double>(s.count[b]) * r * r;
-    }
-  const double se = std::sqrt(rss / static_cast<double>(used - 2) / sxx);
+  double intercept, slope, cov00, cov01, cov11, chisq;
+  gsl_fit_wlinear(x.data(), 1, w.data(), 1, y.data(), 1, used, &intercept, &slope, &cov00,
+                  &cov01, &cov11, &chisq);
+  // GSL's covariance takes the weights as 1/variance; counts are relative weights, so the
+  // slope's standard error scales with the residual variance χ²/(n - 2).
+  const double se = std::sqrt(cov11 * chisq / static_cast<double>(used - 2));
   return {-0.5 * slope - 1.0, slope, se, intercept, q_min, q_max, used};
 }
 
