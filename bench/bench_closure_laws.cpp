@@ -1,4 +1,4 @@
-// Benchmark of the closure laws (issue 2): per model, the cost of one σ+k evaluation (median
+// Benchmark of the closure laws: per model, the cost of one σ+k evaluation (median
 // over repeats of a batch of 10^5 closures, 10^4 for laws above 10 µs a point) and, for the models that integrate over the
 // summit heights, the error of the production integrator against an independent
 // long-double reference (tanh-sinh quadrature, exact cubic root; tests/cpp/gw_reference.hpp)

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Jointed vs intact 3D block in DOLFINx: where the time goes (issue 5).
+"""Jointed vs intact 3D block in DOLFINx: where the time goes.
 
 A unit cube cut by 2 horizontal joints (Barton-Bandis, K_ni 10 MPa/mm, V_m 1 mm, k_s 1 MPa/mm),
 rock E 20 GPa, ν 0.25, rollers on bottom/left/front, 5 MPa on top (σ = 0.5 K_ni V_m: nonlinear),

@@ -1,4 +1,4 @@
-// Speed against error of TabulatedLaw (issue 4). For each source law available and each
+// Speed against error of TabulatedLaw. For each source law available and each
 // tolerance: knots, build time, table memory, ns per (σ, k) evaluation of the table (batch
 // of random closures in [0, Δ_max], median of several runs), ns per direct evaluation of the
 // source law measured in the same run, the speed-up, and the relative error of σ and k
@@ -47,7 +47,7 @@ std::vector<Model> models()
       {"logarithmic", std::make_shared<LogarithmicLaw>(0.05e-3, 0.1e6), 30e6},
       {"exponential", std::make_shared<ExponentialLaw>(0.2e-3, 5e6), 30e6},
   };
-  // Spec §7: E 50 GPa, ν 0.25, η 0.3 mm⁻², β 2.5 mm, σ_s 0.05 mm, Gaussian, κ_s 8/(3π),
+  // docs/theory.md §7: E 50 GPa, ν 0.25, η 0.3 mm⁻², β 2.5 mm, σ_s 0.05 mm, Gaussian, κ_s 8/(3π),
   // r0 1 mm.
   const AsperityParameters p{composite_modulus(50e9, 0.25), 0.3e6, 2.5e-3, 0.05e-3};
   SubstrateParameters sub;

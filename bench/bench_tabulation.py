@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Speed against error of tabulated closure laws (issue 4).
+"""Speed against error of tabulated closure laws.
 
 Runs the C++ timer `bench_tabulation` (built with the project: <build>/bench/bench_tabulation),
 prints a table and writes bench/results/tabulation.md and bench/results/tabulation.png:
@@ -181,7 +181,7 @@ bench/bench_tabulation.py --build <build>`
 
 Set-up: every law tabulated up to σ_max = 30 MPa. Barton-Bandis K_ni 20 MPa/mm, V_m 0.3 mm;
 logarithmic B 0.05 mm, σ0 0.1 MPa; exponential V_m 0.2 mm, σ_c 5 MPa; GW, Tang substrate and
-Tang & Jiao (I1 over the Tang substrate law) with the parameters of spec §7: E 50 GPa, ν 0.25
+Tang & Jiao (I1 over the Tang substrate law) with the parameters of docs/theory.md §7: E 50 GPa, ν 0.25
 (E* = composite_modulus(50e9, 0.25)), η 0.3 mm⁻², β 2.5 mm, σ_s 0.05 mm, Gaussian heights,
 κ_s 8/(3π), r0 1 mm. Timed points: 10⁶ closures uniform in [0, Δ_max] (batch
 `TabulatedLaw::evaluate(span...)`; "via ClosureLaw&": a loop of single-point calls through the

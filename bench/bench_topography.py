@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Benchmark: analysing an N x N joint (contact state, summits, curvature, statistics) on one
-core. Target (issue 3): a 1000 x 1000 grid in under 1 s.
+core. Target: a 1000 x 1000 grid in under 1 s.
 
 Run:  PYTHONPATH=<build>/python /usr/bin/python3 bench/bench_topography.py
 Prints a table and writes bench/results/topography.md. Times are the best of `--repeat`

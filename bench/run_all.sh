@@ -7,8 +7,8 @@ build="$(cd "${1:-$root/build}" && pwd)"
 export PYTHONPATH="$root/python:$build/python${PYTHONPATH:+:$PYTHONPATH}" MPLBACKEND=Agg
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 cd "$root"
-echo "== closure laws (issue 2)";    "$build/bench/bench_closure_laws" bench/results/closure_laws.md
-echo "== interaction cell";          /usr/bin/python3 bench/bench_interaction_cell.py --build "$build"
-echo "== tabulation (issue 4)";      /usr/bin/python3 bench/bench_tabulation.py --build "$build"
-echo "== topography (issue 3)";      /usr/bin/python3 bench/bench_topography.py
-echo "== FE coupling (issue 5)";     /usr/bin/python3 bench/bench_fem.py --build "$build" --ranks 1 2
+echo "== closure laws"; "$build/bench/bench_closure_laws" bench/results/closure_laws.md
+echo "== interaction cell"; /usr/bin/python3 bench/bench_interaction_cell.py --build "$build"
+echo "== tabulation"; /usr/bin/python3 bench/bench_tabulation.py --build "$build"
+echo "== topography"; /usr/bin/python3 bench/bench_topography.py
+echo "== FE coupling"; /usr/bin/python3 bench/bench_fem.py --build "$build" --ranks 1 2

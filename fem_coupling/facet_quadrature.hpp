@@ -4,8 +4,8 @@
 ///
 /// Nodal (vertex / Lobatto-type) integration is the default: each quadrature point sits on a
 /// facet node, so the joint acts as independent node-to-node springs and very stiff joints
-/// give smooth tractions (Goodman oscillation with Gauss points: field notes, "Numerical
-/// traps"). Gauss integration is offered for comparison.
+/// give smooth tractions (Goodman oscillation with Gauss points: docs/fem.md,
+/// pitfall 8). Gauss integration is offered for comparison.
 
 #include <vector>
 

@@ -61,7 +61,7 @@ LocalFrame facet_frame(int gdim, std::span<const double> vertices,
   for (auto& c : n)
     c /= nn;
 
-  // Orientation from the cell side, not from the vertex order (field notes, recipe 3).
+  // Orientation from the cell side, not from the vertex order (docs/fem.md, pitfall 3).
   double side = 0.0;
   for (int c = 0; c < gdim; ++c)
     side += n[c] * (centroid[c] - minus_interior_point[c]);

@@ -2,7 +2,7 @@
 /// @file petsc_assembly.hpp
 /// Interface Jacobian into a PETSc matrix (the only PETSc-dependent piece).
 ///
-/// Order with DOLFINx (field notes, recipe 5): add the interface blocks with ADD_VALUES
+/// Order with DOLFINx (docs/fem.md, pitfall 5): add the interface blocks with ADD_VALUES
 /// *before* the bulk assembly with Dirichlet conditions, which ends with a flush and an
 /// INSERT of the diagonal of constrained rows. Rows and columns of constrained dofs are left
 /// out here (PETSc ignores negative indices), so the constrained rows stay identity rows.

@@ -32,6 +32,6 @@ from ._rockjoint.constitutive import (  # noqa: F401  (Tang & Jiao 2018, theory 
     TangJiao,
     TangJiaoLimit,
 )
-from .tabulation import TabulatedLaw, plot_table, tabulate  # noqa: F401  (issue 4)
+from .tabulation import TabulatedLaw, plot_table, tabulate  # noqa: F401
 
 __version__ = "0.1.0"

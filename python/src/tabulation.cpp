@@ -1,4 +1,4 @@
-// Bindings of rockjoint::constitutive::TabulatedLaw (issue 4). The Python layer
+// Bindings of rockjoint::constitutive::TabulatedLaw. The Python layer
 // (rockjoint/tabulation.py) owns the defaults and the plotting; this file exposes the table,
 // its knots as numpy arrays and the file format.
 #include "array_helpers.hpp"

@@ -1,5 +1,5 @@
 #pragma once
-// Checks every closure law must pass (issue 2): open branch exact, strictly increasing σ,
+// Checks every closure law must pass: open branch exact, strictly increasing σ,
 // k > 0 in contact, analytic k = central finite differences of σ, Δ(σ(Δ)) = Δ, batch =
 // pointwise. Reference: the law's own σ only through finite differences and inversion.
 #include <rockjoint/constitutive/closure_law.hpp>

@@ -1,4 +1,4 @@
-// TabulatedLaw (issue 4): the error bound against the source law on random points for every
+// TabulatedLaw: the error bound against the source law on random points for every
 // law of the library, monotonicity and positivity, exact tangent consistency (central
 // differences of the table's own σ), behaviour beyond the table, bit-exact file round trip
 // and clear errors for malformed files. References are the source laws (closed forms) and

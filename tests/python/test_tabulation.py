@@ -1,4 +1,4 @@
-"""Tabulated laws from Python (issue 4): the error bound against the source, numpy knots,
+"""Tabulated laws from Python: the error bound against the source, numpy knots,
 bit-exact save/load, clear errors, the plot helper and the `tabulate` CLI command."""
 import math
 import os
@@ -19,7 +19,7 @@ def library_laws():
             (rockjoint.LogarithmicLaw(0.05e-3, 0.1e6), 30e6, 1e-8),
             (rockjoint.ExponentialLaw(0.2e-3, 5e6), 30e6, 1e-8)]
     if hasattr(rockjoint, "TangSubstrate") and hasattr(rockjoint, "TangJiao"):
-        # spec §7; Gaussian heights by quadrature (relative tolerance 1e-10): accurate to 1e-8
+        # docs/theory.md §7; Gaussian heights by quadrature (relative tolerance 1e-10): accurate to 1e-8
         e_star = rockjoint.composite_modulus(50e9, 0.25)
         asperity = (e_star, 0.3e6, 2.5e-3, 0.05e-3)
         ts = rockjoint.TangSubstrate(*asperity, deflection_coefficient=8 / (3 * math.pi),

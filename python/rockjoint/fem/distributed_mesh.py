@@ -1,6 +1,6 @@
 """Distribute a JointedMesh over MPI as a DOLFINx 0.5 mesh and pair the joint facets on every rank.
 
-Partitioning (dolfinx-0.5 field notes, "The recipe that worked" §2):
+Partitioning (docs/fem.md, pitfalls 1-2):
 1. owners from DOLFINx's default partitioner run on the *glued* cells (the split mesh has no facet
    adjacency across joints, so partitioning it directly could separate a joint's two sides);
 2. the two cells of every joint facet (and chains of them: a cell with several joint facets) are

@@ -1,7 +1,7 @@
 """Joint interface of a DOLFINx displacement space: facet pairs → C++ InterfaceAssembler.
 
 This is the only place where joint pairs meet DOLFINx data (dofmaps, dof coordinates, ghosts);
-the assembler itself sees plain arrays and PETSc matrices. Field-notes recipe steps 3-5:
+the assembler itself sees plain arrays and PETSc matrices. docs/fem.md pitfalls 3-5:
 pair dofs permuted to the minus order, couplings inserted in the sparsity pattern, residual
 added to the local ghosted vector before the reverse ghost update, Jacobian blocks added with
 MatSetValuesLocal (ADD_VALUES) with the rows/columns of constrained dofs left out.

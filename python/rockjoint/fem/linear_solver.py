@@ -6,7 +6,7 @@ see rigid_body_modes) — for large ones (SPD
 Jacobians: constant shear stiffness). "auto" picks direct below `direct_dof_limit` dofs.
 A solve is rejected (LinearSolveError) if PETSc reports divergence, MUMPS reports an error or a
 null pivot (a singular matrix: e.g. a block held only by an open joint), or the true residual
-||J dx - b|| exceeds `check_tolerance` ||b||. Field notes: MUMPS silently returned |u| ≈ 1e11 on
+||J dx - b|| exceeds `check_tolerance` ||b||. docs/fem.md, pitfall 9: MUMPS silently returned |u| ≈ 1e11 on
 a singular system; the residual check catches that class of garbage whatever the cause.
 """
 from __future__ import annotations

@@ -303,7 +303,7 @@ class JointedRockModel:
         self._constrained = constrained
         self._constrained_owned = np.flatnonzero(constrained[: imap.size_local * bs]).astype(np.int32)
 
-        # Joints and the sparsity pattern with the cross-joint couplings (field notes, recipe 4).
+        # Joints and the sparsity pattern with the cross-joint couplings (docs/fem.md, pitfall 4).
         self.interface = JointInterface(V, self.dmesh.pairs, self.behaviours, self.quadrature)
         sp = _dcpp.fem.create_sparsity_pattern(mesh.topology, [V.dofmap._cpp_object] * 2,
                                                {_dcpp.fem.IntegralType.cell})
@@ -351,7 +351,7 @@ class JointedRockModel:
         with rj.localForm() as loc:
             loc.set(0.0)
             finite = self.interface.add_residual(self.u.x.array, loc.array)
-        # Ghost contributions go to their owners (field notes, recipe 5).
+        # Ghost contributions go to their owners (docs/fem.md, pitfall 5).
         rj.ghostUpdate(addv=PETSc.InsertMode.ADD, mode=PETSc.ScatterMode.REVERSE)
         self.timings["interface_residual"] += time.perf_counter() - t0
         self.counts["interface_residual"] += 1

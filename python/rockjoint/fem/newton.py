@@ -3,7 +3,7 @@
 The problem object supplies residual() (returns ||r||, inf if not finite), jacobian(),
 solve_increment(), admissible_step(fraction), apply_increment(α), load_norm(λ) and
 save_state()/restore_state(). Stiffening laws (Barton-Bandis: σ → ∞ as Δ → V_m) defeat plain
-Newton from zero once the load passes about K_ni·V_m (field notes, "Numerical traps"): every
+Newton from zero once the load passes about K_ni·V_m (docs/fem.md, pitfall 7): every
 step is shortened so that no closure moves more than `closure_limit` (0.95) of its remaining
 room to the law's maximum closure (fraction to the boundary; with Δ = 0 at the start this is
 the "no closure past 0.95 V_m" rule, and it still lets converged closures approach V_m).
