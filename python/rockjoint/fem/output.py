@@ -2,9 +2,9 @@
 
 The joint state lives at the quadrature points of the joint facets (nodal rule: the facet
 nodes, once per pair), which are not a DOLFINx function space in 0.5.2 (quadrature spaces fail in
-ds integrals, field notes): it is gathered to rank 0 and written as an XDMF Polyvertex grid with
-inline XML data (readable by ParaView): closure [m], normal_stress [Pa], shear_traction [Pa],
-status (rockjoint.Status values), joint tag. One value per point and pair: a node on a facet
+ds integrals: docs/fem.md, pitfall 6): it is gathered to rank 0 and written by meshio as an XDMF
+Polyvertex grid with HDF5 data (readable by ParaView): closure [m], normal stress [Pa], shear
+traction [Pa], status (rockjoint.Status values), joint tag. One value per point and pair: a node on a facet
 shared by k pairs appears k times.
 """
 from __future__ import annotations
@@ -16,36 +16,26 @@ from dolfinx import fem
 from dolfinx.io import XDMFFile
 
 
-def _data_item(a: np.ndarray, fmt: str) -> str:
-    dims = " ".join(str(d) for d in a.shape)
-    kind = "Int" if np.issubdtype(a.dtype, np.integer) else "Float"
-    prec = 4 if kind == "Int" else 8
-    body = "\n".join(" ".join(fmt % x for x in np.atleast_1d(row)) for row in a.reshape(a.shape[0], -1))
-    return (f'<DataItem Dimensions="{dims}" NumberType="{kind}" Precision="{prec}" Format="XML">\n'
-            f"{body}\n</DataItem>")
-
-
 def write_joint_points(path: str, state: dict, gdim: int) -> None:
-    """Write a gathered joint state dict (all points) as an XDMF Polyvertex grid."""
+    """Write a gathered joint state dict (all points) as an XDMF Polyvertex grid with its
+    heavy data in <stem>.h5 (meshio's XDMF writer, HDF5 through h5py). Attribute names carry
+    their units: closure_m, normal_stress_Pa, shear_traction_Pa (vector, local axes t1[, t2]),
+    status (rockjoint.Status values), joint_tag."""
+    import meshio  # Debian python3-meshio; imported here so the FE layer loads without it
+
     x = np.asarray(state["coordinates"], dtype=float).reshape(-1, gdim)
     n = x.shape[0]
     xyz = np.zeros((n, 3))
     xyz[:, :gdim] = x
-    attrs = [("closure", state["closure"], "Scalar"), ("normal_stress", state["normal_stress"], "Scalar"),
-             ("status", state["status"], "Scalar"), ("joint_tag", state["tag"], "Scalar")]
-    shear = np.asarray(state["shear_traction"]).reshape(n, gdim - 1)
-    for i in range(gdim - 1):
-        attrs.append((f"shear_traction_{i + 1}", shear[:, i], "Scalar"))
-    parts = ['<?xml version="1.0" ?>', '<Xdmf Version="3.0">', "<Domain>", '<Grid Name="joints" GridType="Uniform">',
-             f'<Topology TopologyType="Polyvertex" NumberOfElements="{n}" NodesPerElement="1"/>',
-             '<Geometry GeometryType="XYZ">', _data_item(xyz, "%.17g"), "</Geometry>"]
-    for name, a, kind in attrs:
-        a = np.asarray(a)
-        parts += [f'<Attribute Name="{name}" AttributeType="{kind}" Center="Node">',
-                  _data_item(a, "%d" if np.issubdtype(a.dtype, np.integer) else "%.17g"), "</Attribute>"]
-    parts += ["</Grid>", "</Domain>", "</Xdmf>"]
-    with open(path, "w") as fh:
-        fh.write("\n".join(parts) + "\n")
+    shear = np.zeros((n, 3))
+    shear[:, :gdim - 1] = np.asarray(state["shear_traction"], dtype=float).reshape(n, gdim - 1)
+    point_data = {"closure_m": np.asarray(state["closure"], dtype=float),
+                  "normal_stress_Pa": np.asarray(state["normal_stress"], dtype=float),
+                  "shear_traction_Pa": shear,
+                  "status": np.asarray(state["status"], dtype=np.int32),
+                  "joint_tag": np.asarray(state["tag"], dtype=np.int32)}
+    cells = [("vertex", np.arange(n, dtype=np.int64).reshape(-1, 1))]
+    meshio.write(path, meshio.Mesh(xyz, cells, point_data=point_data), file_format="xdmf")
 
 
 def write_xdmf(model, path: str) -> list:
