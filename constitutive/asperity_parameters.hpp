@@ -5,17 +5,28 @@
 
 #include "closure_law.hpp"
 
+#include <limits>
+#include <string>
+
 namespace rockjoint::constitutive
 {
 
-/// Summit statistics of the composite topography of a joint, SI units.
+/// Roughness statistics of the composite topography of a joint, SI units: the project's one
+/// parameter type for them (C++ laws, Python, parameter files and topography analysis).
 struct AsperityParameters
 {
   double composite_modulus; ///< E* [Pa], 1/E* = (1-ν1²)/E1 + (1-ν2²)/E2 (theory §1)
   double summit_density;    ///< η [1/m²], summits per unit nominal area
   double summit_radius;     ///< β [m], mean summit radius of curvature
   double summit_height_std; ///< σ_s [m], standard deviation of summit heights
+  /// h [m], the sampling interval the statistics were measured at (η ~ h⁻², β ~ h^1.1:
+  /// theory §3), NaN when not known. Metadata: no law uses it.
+  double sampling_interval = std::numeric_limits<double>::quiet_NaN();
 };
+
+/// Throw std::invalid_argument naming `owner`, the field, its value and the valid range unless
+/// E*, η, β, σ_s are finite and > 0 and h is NaN (unknown) or finite and > 0.
+void validate(const AsperityParameters& parameters, const std::string& owner);
 
 /// A closure law built on a population of Hertzian summits (GW and its descendants). It
 /// provides a contact-area ratio and exposes the statistics the interaction cell of Tang &

@@ -32,10 +32,7 @@ SummitPopulationLaw::SummitPopulationLaw(const std::string& owner, const Asperit
     : _parameters(p), _distribution(distribution), _deflection_coefficient(deflection_coefficient),
       _tolerance(quadrature_tolerance)
 {
-  validation::positive(owner, "composite_modulus", p.composite_modulus, "Pa");
-  validation::positive(owner, "summit_density", p.summit_density, "1/m^2");
-  validation::positive(owner, "summit_radius", p.summit_radius, "m");
-  validation::positive(owner, "summit_height_std", p.summit_height_std, "m");
+  validate(p, owner);
   if (distribution == HeightDistribution::empirical)
     throw std::invalid_argument(owner
                                 + ": parameter 'distribution' = empirical needs a list "

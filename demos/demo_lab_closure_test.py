@@ -65,7 +65,7 @@ def joint_law():
     say(f"composite topography of the {n}x{n} scan at h = {SPACING * 1e3:g} mm:")
     say(f"  η = {params.summit_density * 1e-6:.3f} /mm², β = {params.summit_radius * 1e3:.3f} mm, "
         f"σ_s = {params.summit_height_std * 1e3:.4f} mm, E* = {params.composite_modulus * 1e-9:.2f} GPa")
-    laws = topo.closure_laws(params)   # GW, Tang, Tang & Jiao (I1 over Tang)
+    laws = rockjoint.laws.laws_from_topography(params)  # GW, Tang, Tang & Jiao (I1 over Tang)
     return laws, params
 
 
@@ -113,7 +113,7 @@ def main():
 
     # %% 1. Micro: the joint's roughness gives its closure law ------------------------------
     laws, params = joint_law()
-    law = laws["Tang & Jiao"]
+    law = laws["tang_jiao"].law
     table = tabulated(law, out("granite_tang_jiao.rjt"))
 
     # %% 2. Macro: jointed and intact cubes under the same loads ----------------------------
@@ -168,11 +168,12 @@ def plot(rows, laws, path):
     a1.set_title("150 mm granite cube, uniaxial compression")
     a1.legend()
     stress = np.linspace(0.0, MAX_STRESS, 200)[1:]
-    for name, law in laws.items():
+    for key, named in laws.items():
         # At A/A0 ~ 1 % Tang & Jiao lies on Tang (theory §5): dashed, so both stay visible.
-        a2.plot(np.r_[0, law.closure_at_stress(stress)] * 1e3, np.r_[0, stress] * 1e-6,
-                "--" if name == "Tang & Jiao" else "-", lw=2 if name == "Tang & Jiao" else 1.5,
-                label=f"{name} law" + (" (table in the FE model)" if name == "Tang & Jiao" else ""))
+        in_fe = key == "tang_jiao"
+        a2.plot(np.r_[0, named.law.closure_at_stress(stress)] * 1e3, np.r_[0, stress] * 1e-6,
+                "--" if in_fe else "-", lw=2 if in_fe else 1.5,
+                label=f"{named.label} law" + (" (table in the FE model)" if in_fe else ""))
     a2.plot(rows[:, 3] * 1e3, s[1:], "kx", ms=8, label="FE: jointed − intact")
     a2.set_xlabel("joint closure Δ [mm]")
     a2.set_ylabel("normal stress σ [MPa]")

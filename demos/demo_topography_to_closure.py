@@ -88,17 +88,17 @@ def main():
         for d_mm in (0.02, 0.05, 0.1):
             print(f"geometric overlap fraction{{e <= {d_mm} mm}} = "
                   f"{topo.overlap_ratio(state.aperture, d_mm * 1e-3):.4f}")
-        laws = topo.closure_laws(params, summits=analysis, overlap=overlap)
+        laws = rockjoint.laws.laws_from_topography(params, summits=analysis, overlap=overlap)
         print(f"E* = {params.composite_modulus * 1e-9:.4g} GPa; closure Δ [mm] at σ [MPa]:")
-        print(f"{'law':<38}" + "".join(f"{s:>10g}" for s in STRESSES_MPA))
-        for law_name, law in laws.items():
+        print(f"{'law':<42}" + "".join(f"{s:>10g}" for s in STRESSES_MPA))
+        for named in laws.values():
             row = []
             for s in STRESSES_MPA:
                 try:
-                    row.append(law.closure_at_stress(s * 1e6) * 1e3)
+                    row.append(named.law.closure_at_stress(s * 1e6) * 1e3)
                 except (ValueError, ArithmeticError, RuntimeError):
                     row.append(float("nan"))  # beyond the law's validity limit
-            print(f"{law_name:<38}" + "".join(f"{v:>10.4g}" for v in row))
+            print(f"{named.label:<42}" + "".join(f"{v:>10.4g}" for v in row))
 
         # %% Pictures ------------------------------------------------------------------------
         tag = name.split("-")[0]
@@ -129,24 +129,24 @@ def main():
     fig, axes = plt.subplots(1, len(results), figsize=(11, 4.5))
     stress = np.linspace(0.0, STRESSES_MPA[-1], 121)[1:] * 1e6
     for ax, (name, r) in zip(np.atleast_1d(axes), results.items()):
-        for law_name, law in r["laws"].items():
+        for key, named in r["laws"].items():
             closure = []
             for s in stress:
                 try:
-                    closure.append(law.closure_at_stress(s))
+                    closure.append(named.law.closure_at_stress(s))
                 except (ValueError, ArithmeticError, RuntimeError):
                     closure.append(np.nan)
             # colour = model, solid = Gaussian (η, β, σ_s), dashed = measured summit list;
             # Tang & Jiao is drawn dotted on top: at A/A0 ~ 1 % it sits on the Tang curve.
-            colour = {"GW": "C0", "Tang": "C1", "Tang & Jiao": "C2"}[
-                law_name.replace(" empirical", "").split(",")[0]]
-            style = ":" if law_name.startswith("Tang & Jiao") else (
-                "--" if "empirical" in law_name else "-")
-            if "geometric" in law_name:
+            empirical, geometric = "empirical" in key, "geometric" in key
+            colour = {"greenwood_williamson": "C0", "tang_substrate": "C1", "tang_jiao": "C2"}[
+                key.replace("_empirical", "").replace("_geometric", "")]
+            style = ":" if key.startswith("tang_jiao") else ("--" if empirical else "-")
+            if geometric:
                 colour, style = "C3", "-."
             ax.plot(np.r_[0.0, closure] * 1e3, np.r_[0.0, stress] * 1e-6, style, color=colour,
-                    lw=2.2 if style == ":" else 1.5, alpha=1.0 if "empirical" not in law_name
-                    or "geometric" in law_name else 0.7, label=law_name)
+                    lw=2.2 if style == ":" else 1.5,
+                    alpha=1.0 if not empirical or geometric else 0.7, label=named.label)
         st = r["analysis"].statistics
         ax.set_title(f"{name}: η {st.summit_density * 1e-6:.2f}/mm², β "
                      f"{st.summit_radius * 1e3:.2f} mm, σ_s {st.summit_height_std * 1e3:.3f} mm",

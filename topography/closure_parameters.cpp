@@ -24,18 +24,17 @@ constitutive::AsperityParameters asperity_parameters(const SummitStatistics& s,
            "mated state have none: zero closure capacity)";
     throw std::invalid_argument(msg.str());
   }
-  return {composite_modulus, s.summit_density, s.summit_radius, s.summit_height_std};
+  return {composite_modulus, s.summit_density, s.summit_radius, s.summit_height_std,
+          std::max(s.sampling_interval_x, s.sampling_interval_y)};
 }
 
 constitutive::AsperityParameters asperity_parameters(const NayakEstimates& e,
                                                      double composite_modulus)
 {
-  const char* owner = "asperity_parameters (spectral)";
-  validation::positive(owner, "composite_modulus", composite_modulus, "Pa");
-  validation::positive(owner, "summit_density", e.summit_density, "1/m^2");
-  validation::positive(owner, "summit_radius", e.summit_radius, "m");
-  validation::positive(owner, "summit_height_std", e.summit_height_std, "m");
-  return {composite_modulus, e.summit_density, e.summit_radius, e.summit_height_std};
+  const constitutive::AsperityParameters p{composite_modulus, e.summit_density, e.summit_radius,
+                                           e.summit_height_std, e.sampling_interval};
+  constitutive::validate(p, "asperity_parameters (spectral)");
+  return p;
 }
 
 std::vector<ResamplingRow> resampling_study(const Surface& surface,

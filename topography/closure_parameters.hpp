@@ -14,12 +14,13 @@ namespace rockjoint::topography
 {
 
 /// AsperityParameters (theory §2) from counted summit statistics and a composite modulus
-/// E* [Pa] (1/E* = (1-ν1²)/E1 + (1-ν2²)/E2, see constitutive/elasticity.hpp). Throws
-/// std::invalid_argument if the surface has fewer than 2 summits (no σ_s) or E* <= 0.
+/// E* [Pa] (1/E* = (1-ν1²)/E1 + (1-ν2²)/E2, see constitutive/elasticity.hpp), with the
+/// sampling interval h = max(h_x, h_y) they belong to. Throws std::invalid_argument if the
+/// surface has fewer than 2 summits (no σ_s) or E* <= 0.
 constitutive::AsperityParameters asperity_parameters(const SummitStatistics& statistics,
                                                      double composite_modulus);
 
-/// Same, from the spectral (Nayak/McCool) estimates.
+/// Same, from the spectral (Nayak/McCool) estimates (validated: all finite and > 0).
 constitutive::AsperityParameters asperity_parameters(const NayakEstimates& estimates,
                                                      double composite_modulus);
 

@@ -33,5 +33,6 @@ from ._rockjoint.constitutive import (  # noqa: F401  (Tang & Jiao 2018, theory 
     TangJiaoLimit,
 )
 from .tabulation import TabulatedLaw, plot_table, tabulate  # noqa: F401
+from . import laws  # noqa: F401,E402  (the law factory: rockjoint.laws.make_law, ...)
 
 __version__ = "0.1.0"

@@ -2,7 +2,7 @@
 
 SI units inside (heights and spacings in m, η in 1/m², β and σ_s in m); files and pictures
 say their units (mm by default). The numerics are in C++ (``rockjoint._rockjoint.topography``);
-this module owns the defaults, the .npy I/O, the link to the closure laws and the pictures.
+this module owns the defaults, the .npy I/O, the statistics the laws take and the pictures.
 
 Typical use::
 
@@ -10,7 +10,8 @@ Typical use::
     lower = read_surface("lower.txt")
     joint = composite_topography(upper, lower, offset=(0, 0))
     result = analyse(joint.composite)            # counted and spectral η, β, σ_s at h
-    laws = closure_laws(result, young=50e9, poisson=0.25)   # GW, Tang, Tang & Jiao
+    params = closure_parameters(result, young=50e9, poisson=0.25)  # AsperityParameters
+    laws = rockjoint.laws.laws_from_topography(params, summits=result)  # GW, Tang, Tang & Jiao
 """
 from __future__ import annotations
 
@@ -22,6 +23,7 @@ from typing import Dict, Iterable, Optional, Sequence, Tuple, Union
 import numpy as np
 
 from ._rockjoint import topography as _cpp
+from ._rockjoint.constitutive import AsperityParameters
 
 Surface = _cpp.Surface
 CompositeTopography = _cpp.CompositeTopography
@@ -252,24 +254,14 @@ def hurst_estimate(surface: Surface, *, wavelength_range: Optional[Tuple[float, 
 
 
 # ---- straight into the laws ------------------------------------------------------------------
-@dataclasses.dataclass(frozen=True)
-class ClosureParameters:
-    """The inputs of the asperity laws with the sampling interval they belong to (SI)."""
-
-    composite_modulus: float   # E* [Pa], 1/E* = Σ (1-ν²)/E
-    summit_density: float      # η [1/m²]
-    summit_radius: float       # β [m]
-    summit_height_std: float   # σ_s [m]
-    sampling_interval: float   # h [m]
-    source: str                # "counted" or "spectral"
-
-
 def closure_parameters(analysis: TopographyAnalysis, *, young: float, poisson: float,
                        young_lower: Optional[float] = None,
                        poisson_lower: Optional[float] = None,
-                       source: str = "counted") -> ClosureParameters:
-    """η, β, σ_s (counted, or "spectral" = Nayak/McCool FD) with E* from the walls' E [Pa]
-    and ν (both walls alike unless the lower wall's are given)."""
+                       source: str = "counted") -> AsperityParameters:
+    """The roughness statistics of an analysed composite as rockjoint.AsperityParameters:
+    η, β, σ_s counted (``source="counted"``) or the Nayak/McCool estimates from FD moments
+    (``"spectral"``), the sampling interval h they belong to, and E* from the walls' E [Pa] and
+    ν (both walls alike unless the lower wall's are given). Laws from them: rockjoint.laws."""
     from . import composite_modulus
     if young_lower is None and poisson_lower is None:
         e_star = composite_modulus(young, poisson)
@@ -277,36 +269,10 @@ def closure_parameters(analysis: TopographyAnalysis, *, young: float, poisson: f
         e_star = composite_modulus(young, poisson, young_lower or young,
                                    poisson if poisson_lower is None else poisson_lower)
     if source == "counted":
-        e, eta, beta, sig = _cpp.checked_asperity_parameters(analysis.statistics, e_star)
-    elif source == "spectral":
-        s = analysis.spectral
-        eta, beta, sig = s.summit_density, s.summit_radius, s.summit_height_std
-        for name, v in (("summit_density", eta), ("summit_radius", beta),
-                        ("summit_height_std", sig)):
-            if not (math.isfinite(v) and v > 0):
-                raise ValueError(f"spectral estimate {name} = {v} is not finite and > 0")
-    else:
-        raise ValueError(f"source '{source}' is not 'counted' or 'spectral'")
-    return ClosureParameters(e_star, eta, beta, sig, analysis.sampling_interval, source)
-
-
-def _law_api():
-    import rockjoint
-    missing = [n for n in ("AsperityParameters", "GreenwoodWilliamson", "TangSubstrate",
-                           "TangJiao") if not hasattr(rockjoint, n)]
-    if missing:
-        raise RuntimeError("the closure laws " + ", ".join(missing) + " are not in this build "
-                           "of rockjoint")
-    return rockjoint
-
-
-def asperity_parameters(params: ClosureParameters):
-    """rockjoint.AsperityParameters (the C++ struct) from ClosureParameters."""
-    rj = _law_api()
-    return rj.AsperityParameters(composite_modulus=params.composite_modulus,
-                                 summit_density=params.summit_density,
-                                 summit_radius=params.summit_radius,
-                                 summit_height_std=params.summit_height_std)
+        return _cpp.asperity_parameters(analysis.statistics, e_star)
+    if source == "spectral":
+        return _cpp.asperity_parameters(analysis.spectral, e_star)
+    raise ValueError(f"source '{source}' is not 'counted' or 'spectral'")
 
 
 def empirical_summits(analysis: TopographyAnalysis) -> Tuple[np.ndarray, np.ndarray, float]:
@@ -422,52 +388,3 @@ def overlap_curve(aperture: Surface, maximum_closure: Optional[float] = None,
         raise ValueError("the aperture is identically 0: no overlap curve (no closure capacity)")
     closure = np.linspace(0.0, top, samples)
     return closure, np.asarray(overlap_ratio(aperture, closure), dtype=float)
-
-
-def closure_laws(params: ClosureParameters, *, summits: Optional[TopographyAnalysis] = None,
-                 distribution: str = "gaussian", deflection_coefficient: Optional[float] = None,
-                 base_radius: Optional[float] = None, variant: str = "I1",
-                 overlap: Optional[Tuple[np.ndarray, np.ndarray]] = None) -> Dict[str, object]:
-    """The asperity closure laws of one joint, straight from its topography parameters:
-
-    - "GW": GreenwoodWilliamson on the parametric ``distribution`` ("gaussian"/"exponential");
-    - "Tang": TangSubstrate (κ_s, r0: the law's defaults unless given);
-    - "Tang & Jiao": TangJiao (variant "I1"/"I2") over the Tang law (elastic area in Eq. (2));
-    - with ``summits`` (a TopographyAnalysis): "GW empirical", "Tang empirical" and
-      "Tang & Jiao empirical" over the measured summit list (each summit its own radius);
-    - with ``summits`` and ``overlap`` (from overlap_curve(joint.aperture)): also
-      "Tang & Jiao empirical, geometric area", whose Eq. (2) uses fraction{e <= Δ}.
-
-    Seating: the laws' defaults — parametric d0 = mean summit height + 3.5 σ_s; empirical: the
-    highest summit, i.e. first contact, which is also the datum of the overlap curve (so the
-    geometric area is offered with the empirical laws only).
-    """
-    rj = _law_api()
-    substrate = {}
-    if deflection_coefficient is not None:
-        substrate["deflection_coefficient"] = deflection_coefficient
-    if base_radius is not None:
-        substrate["base_radius"] = base_radius
-    if overlap is not None and summits is None:
-        raise ValueError("overlap: the geometric overlap curve is measured from first contact; "
-                         "give summits= too (the empirical laws share that datum)")
-    laws = {}
-    stats = (params.composite_modulus, params.summit_density, params.summit_radius,
-             params.summit_height_std)
-    laws["GW"] = rj.GreenwoodWilliamson(*stats, distribution=distribution)
-    laws["Tang"] = rj.TangSubstrate(*stats, distribution=distribution, **substrate)
-    laws["Tang & Jiao"] = rj.TangJiao(laws["Tang"], variant=variant)
-    if summits is not None:
-        measured = empirical_summits(summits)
-        laws["GW empirical"] = rj.GreenwoodWilliamson(params.composite_modulus,
-                                                      distribution=measured)
-        laws["Tang empirical"] = rj.TangSubstrate(params.composite_modulus,
-                                                  distribution=measured, **substrate)
-        laws["Tang & Jiao empirical"] = rj.TangJiao(laws["Tang empirical"], variant=variant)
-        if overlap is not None:
-            closure, ratio = overlap
-            laws["Tang & Jiao empirical, geometric area"] = rj.TangJiao(
-                laws["Tang empirical"], variant=variant,
-                overlap_closure=np.asarray(closure, dtype=float),
-                overlap_area_ratio=np.asarray(ratio, dtype=float))
-    return laws

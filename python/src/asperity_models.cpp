@@ -174,21 +174,54 @@ void declare_asperity_models(py::module_& m)
 {
   // AsperityParameters/AsperityLaw may have been registered by another binding file.
   if (!py::detail::get_type_info(typeid(AsperityParameters)))
-    py::class_<AsperityParameters>(m, "AsperityParameters",
-                                   "Summit statistics of the composite topography (SI)")
-        .def(py::init<double, double, double, double>(), py::arg("composite_modulus"),
-             py::arg("summit_density"), py::arg("summit_radius"), py::arg("summit_height_std"))
+    py::class_<AsperityParameters>(
+        m, "AsperityParameters",
+        "Roughness statistics of the composite topography (SI): the one parameter type of the "
+        "asperity laws, the topography analysis and the parameter files")
+        .def(py::init(
+                 [](double e, double eta, double beta, double sigma, std::optional<double> h)
+                 {
+                   AsperityParameters p{e, eta, beta, sigma};
+                   if (h)
+                     p.sampling_interval = *h;
+                   validate(p, "AsperityParameters");
+                   return p;
+                 }),
+             py::arg("composite_modulus"), py::arg("summit_density"),
+             py::arg("summit_radius"), py::arg("summit_height_std"),
+             py::arg("sampling_interval") = py::none())
         .def_readonly("composite_modulus", &AsperityParameters::composite_modulus, "E* [Pa]")
         .def_readonly("summit_density", &AsperityParameters::summit_density, "η [1/m²]")
         .def_readonly("summit_radius", &AsperityParameters::summit_radius, "β [m]")
         .def_readonly("summit_height_std", &AsperityParameters::summit_height_std, "σ_s [m]")
+        .def_property_readonly(
+            "sampling_interval",
+            [](const AsperityParameters& p) -> std::optional<double>
+            {
+              if (std::isnan(p.sampling_interval))
+                return std::nullopt;
+              return p.sampling_interval;
+            },
+            "h [m] the statistics belong to, or None if not known")
+        .def("__eq__",
+             [](const AsperityParameters& a, const AsperityParameters& b)
+             {
+               auto same = [](double x, double y) { return x == y || (std::isnan(x) && std::isnan(y)); };
+               return a.composite_modulus == b.composite_modulus
+                      && a.summit_density == b.summit_density && a.summit_radius == b.summit_radius
+                      && a.summit_height_std == b.summit_height_std
+                      && same(a.sampling_interval, b.sampling_interval);
+             })
         .def("__repr__",
              [](const AsperityParameters& p)
              {
                return py::str("AsperityParameters(composite_modulus={!r}, summit_density={!r}, "
-                              "summit_radius={!r}, summit_height_std={!r})")
+                              "summit_radius={!r}, summit_height_std={!r}, "
+                              "sampling_interval={!r})")
                    .format(p.composite_modulus, p.summit_density, p.summit_radius,
-                           p.summit_height_std);
+                           p.summit_height_std,
+                           std::isnan(p.sampling_interval) ? py::object(py::none())
+                                                           : py::object(py::float_(p.sampling_interval)));
              });
   if (!py::detail::get_type_info(typeid(AsperityLaw)))
     py::class_<AsperityLaw, ClosureLaw, std::shared_ptr<AsperityLaw>>(

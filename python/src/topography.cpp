@@ -267,15 +267,14 @@ void declare_topography(py::module_& m)
              return out;
            },
            py::arg("closure"), "fraction{e <= Δ} [-] at closure Δ [m]");
-  m.def("checked_asperity_parameters",
-        [](const SummitStatistics& s, double e)
-        {
-          const auto p = asperity_parameters(s, e);
-          return py::make_tuple(p.composite_modulus, p.summit_density, p.summit_radius,
-                                p.summit_height_std);
-        },
+  m.def("asperity_parameters",
+        py::overload_cast<const SummitStatistics&, double>(&asperity_parameters),
         py::arg("statistics"), py::arg("composite_modulus"),
-        "(E* [Pa], η [1/m²], β [m], σ_s [m]) checked: at least 2 summits");
+        "AsperityParameters from counted statistics (at least 2 summits) and E* [Pa]");
+  m.def("asperity_parameters",
+        py::overload_cast<const NayakEstimates&, double>(&asperity_parameters),
+        py::arg("estimates"), py::arg("composite_modulus"),
+        "AsperityParameters from the spectral (Nayak/McCool) estimates and E* [Pa]");
   py::class_<ResamplingRow>(m, "ResamplingRow")
       .def_readonly("factor", &ResamplingRow::factor)
       .def_readonly("sampling_interval", &ResamplingRow::sampling_interval)

@@ -207,11 +207,13 @@ def test_closure_laws_take_the_measured_parameters():
     assert (params.summit_density, params.summit_radius, params.summit_height_std) == (
         st.summit_density, st.summit_radius, st.summit_height_std)
     assert params.sampling_interval == H
-    laws = topo.closure_laws(params, summits=result, overlap=topo.overlap_curve(joint.aperture))
+    named = rockjoint.laws.laws_from_topography(params, summits=result,
+                                                overlap=topo.overlap_curve(joint.aperture))
+    laws = {key: n.law for key, n in named.items()}
     reference = rockjoint.GreenwoodWilliamson(e_star, st.summit_density, st.summit_radius,
                                               st.summit_height_std)
     d = np.linspace(1e-6, 0.1e-3, 7)
-    np.testing.assert_allclose(laws["GW"].normal_stress(d), reference.normal_stress(d),
+    np.testing.assert_allclose(laws["greenwood_williamson"].normal_stress(d), reference.normal_stress(d),
                                rtol=1e-14)
     # Empirical list, seated at the highest summit: until the second summit touches, only
     # the highest one carries load, a Hertz contact (4/3) E* √R₁ Δ^{3/2} per scanned area.
@@ -221,9 +223,9 @@ def test_closure_laws_take_the_measured_parameters():
     gap = z[order[0]] - z[order[1]]
     delta = 0.5 * gap
     hertz = 4.0 / 3.0 * e_star * math.sqrt(r1) * delta**1.5 / st.scanned_area
-    assert laws["GW empirical"].normal_stress(delta) == pytest.approx(hertz, rel=1e-10)
-    for name in ("Tang", "Tang & Jiao", "Tang empirical", "Tang & Jiao empirical",
-                 "Tang & Jiao empirical, geometric area"):
+    assert laws["greenwood_williamson_empirical"].normal_stress(delta) == pytest.approx(hertz, rel=1e-10)
+    for name in ("tang_substrate", "tang_jiao", "tang_substrate_empirical", "tang_jiao_empirical",
+                 "tang_jiao_empirical_geometric"):
         s = laws[name].normal_stress(d)
         assert np.all(np.diff(s) > 0), name
 

@@ -89,6 +89,7 @@ def _synth(args) -> int:
 
 def _analyse(args) -> int:
     from rockjoint import topography as topo
+    from rockjoint.laws import laws_from_topography
     read = dict(spacing=args.spacing, height_unit=args.height_unit)
     upper = topo.read_surface(args.upper, **read)
     if args.lower:
@@ -138,19 +139,19 @@ def _analyse(args) -> int:
         print(f"\nE* = {params.composite_modulus * 1e-9:.4g} GPa (two walls E {args.young} GPa,"
               f" ν {args.poisson})")
         overlap = topo.overlap_curve(joint.aperture) if args.geometric_area else None
-        laws = topo.closure_laws(params, summits=result, overlap=overlap)
+        laws = laws_from_topography(params, summits=result, overlap=overlap)
         stresses = [s * 1e6 for s in args.stresses]
-        print(f"{'law':<38}" + "".join(f"{f'Δ @ {s:g} MPa [mm]':>18}" for s in args.stresses))
+        print(f"{'law':<42}" + "".join(f"{f'Δ @ {s:g} MPa [mm]':>18}" for s in args.stresses))
         report["closure_mm"] = {}
-        for name, law in laws.items():
+        for key, named in laws.items():
             row = []
             for s in stresses:
                 try:
-                    row.append(float(law.closure_at_stress(s)) * 1e3)
+                    row.append(float(named.law.closure_at_stress(s)) * 1e3)
                 except (ValueError, RuntimeError, ArithmeticError):
                     row.append(float("nan"))
-            report["closure_mm"][name] = dict(zip(map(str, args.stresses), row))
-            print(f"{name:<38}" + "".join(f"{v:>18.4g}" for v in row))
+            report["closure_mm"][key] = dict(zip(map(str, args.stresses), row))
+            print(f"{named.label:<42}" + "".join(f"{v:>18.4g}" for v in row))
     if args.json:
         with open(args.json, "w") as fh:
             json.dump(report, fh, indent=2)
