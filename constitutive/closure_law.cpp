@@ -75,7 +75,7 @@ void ClosureLaw::check_batch_sizes(const char* who, std::span<const double> clos
   }
 }
 
-double ClosureLaw::closure_at_stress(double target) const
+void ClosureLaw::check_target_stress(double target) const
 {
   if (!(target >= 0.0) || std::isinf(target))
   {
@@ -84,6 +84,11 @@ double ClosureLaw::closure_at_stress(double target) const
         << " Pa has no closure; it must be finite and >= 0";
     throw std::invalid_argument(msg.str());
   }
+}
+
+double ClosureLaw::closure_at_stress(double target) const
+{
+  check_target_stress(target);
   if (target == 0.0)
     return 0.0;
 

@@ -116,6 +116,10 @@ protected:
   /// may document a residual stiffness instead (TabulatedLaw: σ = k_res Δ, k = k_res).
   virtual ClosureResponse evaluate_open(double /*closure*/) const { return {}; }
 
+  /// Throw std::invalid_argument (naming the law) unless a target stress of closure_at_stress
+  /// is finite and >= 0.
+  void check_target_stress(double normal_stress) const;
+
   /// Throw std::invalid_argument unless the output spans of a batch evaluate() have the size
   /// of `closure` (`area_ratio` and `status` may be empty). `who` names the caller.
   static void check_batch_sizes(const char* who, std::span<const double> closure,

@@ -198,13 +198,7 @@ void TabulatedLaw::evaluate(std::span<const double> closure, std::span<double> n
 
 double TabulatedLaw::closure_at_stress(double target) const
 {
-  if (!(target >= 0.0) || std::isinf(target))
-  {
-    std::ostringstream msg;
-    msg << "tabulated: normal stress " << target
-        << " Pa has no closure; it must be finite and >= 0";
-    throw std::invalid_argument(msg.str());
-  }
+  check_target_stress(target);
   if (target == 0.0)
     return 0.0;
   if (target >= _stress_max)
