@@ -22,7 +22,7 @@
 /// Reference separation d0 (SeatingReference):
 ///  - automatic (default): mean summit height + 3.5 σ_s, i.e. d0 = 3.5 σ_s (Gaussian, mean 0)
 ///    and 4.5 σ_s (exponential, mean σ_s); for an empirical list, the highest summit (exact
-///    first contact, seating stress 0). The Gaussian default reproduces the §7 example.
+///    first contact, seating stress 0). (The theory §7 example test fixes its own d0.)
 ///  - a separation d0 [m] given directly;
 ///  - a seating stress σ_seat [Pa]: d0 solves σ_model(d0) = σ_seat (computed with the law's
 ///    own model, substrate included).

@@ -120,10 +120,10 @@ TangJiao::TangJiao(std::shared_ptr<const ClosureLaw> base, double composite_modu
                        1.0);
   validation::in_range("TangJiao", "maximum_shift_rate", _options.maximum_shift_rate, "", 0.0,
                        1.0);
-  if (_options.variant != TangJiaoVariant::as_published
+  if (_options.variant != TangJiaoVariant::stress_interaction
       && _options.variant != TangJiaoVariant::kinematic)
     validation::fail("TangJiao", "variant", static_cast<double>(_options.variant), "",
-                     "1 (I1, as published) or 2 (I2, kinematic)");
+                     "1 (I1, stress interaction) or 2 (I2, kinematic)");
   if (!_options.overlap_closure.empty() || !_options.overlap_area_ratio.empty())
     _overlap.emplace(_options.overlap_closure, _options.overlap_area_ratio);
   else if (!_base->provides_contact_area())
@@ -132,6 +132,27 @@ TangJiao::TangJiao(std::shared_ptr<const ClosureLaw> base, double composite_modu
         + "' provides no contact area, but Eq. (2) needs A/A0: use a GW-type base law or "
           "give a geometric overlap curve (overlap_closure, overlap_area_ratio)");
   _contact_radius = interaction_cell::effective_contact_radius(_radius, _summit_height_std);
+  // The seating state (Δ = 0+): the base law's seating stress and the Eq. (2) area there.
+  _base_seating_stress = _base->seating_stress();
+  {
+    double area = 0.0, rate = 0.0;
+    if (_overlap)
+      _overlap->evaluate(0.0, area, rate);
+    else
+    {
+      const ClosureResponse r0 = _base->evaluate(std::numeric_limits<double>::min());
+      if (r0.status == Status::contact || r0.status == Status::quadrature_not_converged)
+        area = r0.contact_area_ratio;
+    }
+    _seating_area_root = std::sqrt(std::max(area, 0.0));
+  }
+  if (!(_seating_area_root < _options.maximum_area_root))
+    validation::fail("TangJiao", "maximum_area_root", _options.maximum_area_root, "",
+                     "larger than √(A/A0) at first contact (the area ratio of the base law or "
+                     "overlap curve already exceeds its square at vanishing closure)");
+  _seating_load_fraction = interaction_cell::load_fraction(_seating_area_root);
+  _seating_amplification
+      = interaction_cell::interaction_fraction(_seating_area_root) / _seating_load_fraction;
   locate_limit();
 }
 
@@ -193,11 +214,20 @@ TangJiao::State TangJiao::state(double xi) const
   const double q = interaction_cell::load_fraction(s);
   const double c = std::sqrt((1.0 - s) * (1.0 + s));
   st.load_fraction = q;
-  // I1: F = f3/Q. dQ/dξ = Q'(s) s', s' = A'/(2s), Q' = -(4/π)s²/√(1-s²): the 1/s cancels,
-  // so the tangent stays finite as s → 0.
+  // I1 with a consistent seating state: the cell acts on the model's stress
+  // σ_model = f3 + σ_seat (the base law returns f3 = σ_model - σ_seat), and the law returns
+  // the cell stress in excess of its value at Δ = 0, where s = s0:
+  //     F = σ_model/Q(s) - σ_seat/Q(s0) = f3/Q(s) + σ_seat [g(s) - g(s0)],  g = 1/Q - 1,
+  // with g = (1-Q)/Q from the series of 1-Q (no cancellation as s → 0). F(0) = 0, and the
+  // law depends on the seating datum only through a shift of Δ and σ (tested).
+  // dQ/dξ = Q'(s) s', s' = A'/(2s), Q' = -(4/π)s²/√(1-s²): the 1/s cancels, so the tangent
+  // stays finite as s → 0; dF/dξ = f3'/Q - σ_model Q_ξ/Q².
   const double dq = -(2.0 / pi) * s * st.area_rate / c;
-  st.normal_stress = st.base_stress / q;
-  st.normal_stiffness = st.base_stiffness / q - st.base_stress * dq / (q * q);
+  const double amplification = interaction_cell::interaction_fraction(s) / q; // g(s)
+  st.normal_stress = st.base_stress / q
+                     + _base_seating_stress * (amplification - _seating_amplification);
+  st.normal_stiffness
+      = st.base_stiffness / q - (st.base_stress + _base_seating_stress) * dq / (q * q);
   // I2 shift ε = (2F/E*) a √(1-s²)/s and dε/dξ = (2a/E*)[F' √(1-s²)/s - F A'/(2s³√(1-s²))].
   if (s > 0.0)
   {
@@ -215,7 +245,7 @@ ClosureResponse TangJiao::response(const State& st) const
   if (st.status != Status::contact && st.status != Status::quadrature_not_converged)
     return {st.base_stress, st.base_stiffness, st.reported_area_ratio, st.reported_area_rate,
             st.status};
-  if (_options.variant == TangJiaoVariant::as_published)
+  if (_options.variant == TangJiaoVariant::stress_interaction)
     return {st.normal_stress, st.normal_stiffness, st.reported_area_ratio,
             st.reported_area_rate, st.status};
   // I2: Δ = ξ - ε(ξ), dΔ/dξ = 1 - ε'.
@@ -386,7 +416,7 @@ double TangJiao::internal_closure(double closure) const
 
 std::pair<double, TangJiao::State> TangJiao::solve_internal(double closure) const
 {
-  if (_options.variant == TangJiaoVariant::as_published || !(closure > 0.0))
+  if (_options.variant == TangJiaoVariant::stress_interaction || !(closure > 0.0))
     return {closure, state(closure)};
   // Solve g(ξ) = ξ - ε(ξ) - Δ = 0 on [Δ, ξ_max]: g(Δ) = -ε(Δ) <= 0, g increasing (dε/dξ < 1
   // below the limit). Safeguarded Newton from ξ = Δ; the state of the last iterate is returned

@@ -15,17 +15,32 @@
 ///   - Eq. (7): F = f2 + f3.
 ///
 /// Reading of Eq. (7) (theory §5). Taken literally, f2 is a displacement (π E* times the
-/// Boussinesq integral of Eq. (5)) and cannot be added to a stress. The dimensionally
-/// consistent reading: F is the nominal stress of the joint; the added term is the
-/// interaction part of the cell's nominal stress, P_int/(π b²) = (1 - Q(s)) F, with
-/// Q(s) = (2/π)[arccos s + s√(1-s²)] the Hertz fraction of the cell load. Hence
+/// Boussinesq integral of Eq. (5)) and cannot be added to a stress, and the excerpt of the
+/// paper does not say how F and the closure are obtained from the cell. The two variants
+/// below are the project's dimensionally consistent readings, not the paper's words: F is
+/// the nominal stress of the joint; the added term is the interaction part of the cell's
+/// nominal stress, P_int/(π b²) = (1 - Q(s)) F, with Q(s) = (2/π)[arccos s + s√(1-s²)] the
+/// Hertz fraction of the cell load. Hence
 ///
-///   - variant I1 ("as published", default): F(Δ) = f3(Δ)/Q(s(Δ)); the closure is Δ itself.
-///     The paper's p̄ iteration is the contraction F ← f3 + (1-Q) F, whose fixed point this
-///     is. A/A0 reported: the base law's elastic area (the Eq. (2) area when the base has
-///     none), i.e. the interaction changes the stress, not the contact area.
-///   - variant I2 ("kinematic"): the interaction also lifts each contact's surroundings: the
-///     closure shifts by ε = (2F/E*)√(b²-a²), the p̄ term of the finite-fringe local approach.
+///   - variant I1 ("stress interaction", default; the project's reading of Eq. (7) that
+///     follows the paper's iteration most directly): the closure drives the base law and
+///     the area of Eq. (2) directly (ξ = Δ) and the interaction changes the stress only:
+///     F(Δ) = σ_model(Δ)/Q(s(Δ)) - σ_seat/Q(s0), where σ_model = f3 + σ_seat is the base
+///     model's stress (f3 the seated stress the base law returns, σ_seat its
+///     seating_stress()) and s0 the area root at Δ = 0+. Subtracting the cell's own stress
+///     at the seating state (not σ_seat/Q(s)) keeps F(0) = 0 with one cell relation for the
+///     whole stress, so the law changes with the seating datum only by a shift of Δ and σ.
+///     With σ_seat = 0 (an empirical summit list seated at its highest summit) F = f3/Q.
+///     The paper's p̄ iteration is the contraction F_model ← σ_model + (1-Q) F_model, whose
+///     fixed point σ_model/Q this is. A/A0 reported: the base law's elastic area (the
+///     Eq. (2) area when the base has none), i.e. the interaction changes the stress, not
+///     the contact area.
+///   - variant I2 ("kinematic"): the internal closure ξ drives the base law and the area of
+///     Eq. (2), and the interaction also lifts each contact's surroundings: the observed
+///     closure is Δ = ξ - ε(ξ) with ε = (2F/E*)√(b²-a²), the p̄ term of the finite-fringe
+///     local approach, F the seated I1 stress above (so ε(0) = 0: ε is the lift produced by
+///     the load added since seating; the lift of the seating load itself is part of the
+///     datum, and it is infinite for a base with a seating stress but no area at Δ = 0).
 ///     The law is F at the observed closure Δ = ξ - ε(ξ), parametric in the internal closure
 ///     ξ; Δ → ξ is inverted by a bracketed, safeguarded Newton solve; the tangent is
 ///     dF/dξ / (1 - dε/dξ), the area rate dA/dξ / (1 - dε/dξ). Monotone only while
@@ -81,8 +96,12 @@ namespace rockjoint::constitutive
 /// Which reading of Eq. (7) (see the file comment).
 enum class TangJiaoVariant : int
 {
-  as_published = 1, ///< I1: F = f3/Q(s), closure unchanged (default)
-  kinematic = 2,    ///< I2: F at Δ = ξ - ε(ξ), ε = (2F/E*)√(b²-a²)
+  /// I1, the project's stress reading of Eq. (7) (default): F = σ_model/Q(s) - σ_seat/Q(s0),
+  /// closure unchanged.
+  stress_interaction = 1,
+  /// Former name of stress_interaction; it is the project's reading, not the paper's words.
+  as_published [[deprecated("use TangJiaoVariant::stress_interaction")]] = 1,
+  kinematic = 2, ///< I2: F at Δ = ξ - ε(ξ), ε = (2F/E*)√(b²-a²)
 };
 
 /// What sets maximum_closure() of a TangJiao law.
@@ -117,7 +136,7 @@ private:
 struct TangJiaoOptions
 {
   /// Reading of Eq. (7).
-  TangJiaoVariant variant = TangJiaoVariant::as_published;
+  TangJiaoVariant variant = TangJiaoVariant::stress_interaction;
   /// Geometric overlap samples for Eq. (2): closures Δ_i [m] (empty: the base law's elastic
   /// contact area) ...
   std::vector<double> overlap_closure = {};
@@ -148,7 +167,14 @@ public:
   std::vector<Parameter> parameters() const override;
   bool provides_contact_area() const override { return true; }
   double maximum_closure() const override { return _maximum_closure; }
-  double seating_stress() const override { return _base->seating_stress(); }
+  /// Cell stress at Δ = 0 [Pa]: σ_seat/Q(s0), σ_seat the base law's seating stress and s0
+  /// the Eq. (2) area root there (equal to σ_seat when s0 = 0).
+  double seating_stress() const override
+  {
+    return _base_seating_stress / _seating_load_fraction;
+  }
+  /// s0 = √(A/A0) of Eq. (2) at Δ = 0+ (the seating state) [-].
+  double seating_area_root() const { return _seating_area_root; }
   /// Δ(σ) [m]; std::domain_error naming the validity limit if σ exceeds the stress there.
   double closure_at_stress(double normal_stress) const override;
 
@@ -201,6 +227,10 @@ private:
   TangJiaoOptions _options;
   std::optional<OverlapCurve> _overlap;
   double _contact_radius;
+  double _base_seating_stress = 0.0;   // σ_seat of the base law [Pa]
+  double _seating_area_root = 0.0;     // s0 [-]
+  double _seating_load_fraction = 1.0; // Q(s0) [-]
+  double _seating_amplification = 0.0; // g(s0) = 1/Q(s0) - 1 [-]
   double _maximum_internal;
   double _maximum_closure;
   TangJiaoLimit _limit = TangJiaoLimit::none;

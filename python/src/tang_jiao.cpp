@@ -22,12 +22,13 @@ namespace
 {
 TangJiaoVariant parse_variant(const std::string& v)
 {
-  if (v == "I1" || v == "i1" || v == "as_published")
-    return TangJiaoVariant::as_published;
+  // "as_published" is accepted as the former name of I1 (the project's reading of Eq. (7)).
+  if (v == "I1" || v == "i1" || v == "stress_interaction" || v == "as_published")
+    return TangJiaoVariant::stress_interaction;
   if (v == "I2" || v == "i2" || v == "kinematic")
     return TangJiaoVariant::kinematic;
   throw py::value_error("TangJiao: variant '" + v
-                        + "' is invalid; it must be 'I1' (as published) or 'I2' (kinematic)");
+                        + "' is invalid; it must be 'I1' (stress interaction, the project's reading of Eq. (7)) or 'I2' (kinematic)");
 }
 
 std::vector<double> to_vector(const std::optional<DoubleArray>& a)
@@ -102,7 +103,9 @@ void declare_tang_jiao(py::module_& m)
   py::class_<TangJiao, ClosureLaw, std::shared_ptr<TangJiao>>(
       m, "TangJiao",
       "Tang & Jiao (2018) self-consistent interaction over a base law f3 (theory §5).\n"
-      "I1 (default): F = f3/Q(s), s = √(A/A0); I2: F at Δ = ξ - ε(ξ), ε = (2F/E*)√(b²-a²).\n"
+      "Two project readings of Eq. (7) (not the paper's words; docs/theory.md §5):\n"
+      "I1 (default): F = σ_model/Q(s) - σ_seat/Q(s0), s = √(A/A0), closure unchanged;\n"
+      "I2: F at Δ = ξ - ε(ξ), ε = (2F/E*)√(b²-a²).\n"
       "Validity limit at s = maximum_area_root (I2 also at dε/dξ = maximum_shift_rate).")
       .def(py::init(&make_tang_jiao), py::arg("base"), py::arg("composite_modulus") = py::none(),
            py::arg("radius") = py::none(), py::arg("summit_height_std") = py::none(),

@@ -36,7 +36,9 @@ def test_i1_is_base_stress_over_q_on_arrays():
     s, k, a, status = law.evaluate(d)
     assert s.shape == d.shape and status.shape == d.shape
     ratio = 0.5 * (1 - np.exp(-d / 0.2e-3))
-    expected = base.normal_stress(d) / q_ref(np.sqrt(ratio))
+    # Consistent seating (theory §5): F = σ_model/Q(s) - σ_seat/Q(s0), here s0 = 0.
+    seat = base.seating_stress
+    expected = (base.normal_stress(d) + seat) / q_ref(np.sqrt(ratio)) - seat
     np.testing.assert_allclose(s, expected, rtol=1e-5)  # interpolated overlap curve
     np.testing.assert_allclose(a, ratio, rtol=1e-4)
     assert np.all(status == int(rockjoint.Status.contact))
@@ -70,13 +72,16 @@ def test_i2_needs_a_seated_area_and_shifts_closure():
         make_law(variant="I2")
     # With a seating contact area (A/A0 = s0² = 1e-4 at Δ = 0, as a GW reference gives) it
     # works. Near Δ = 0, F ≈ F'(0) ξ and ξ ≈ Δ/(1 - ε'(0)) with
-    # ε'(0) = (2a/E*) F'(0) √(1-s0²)/s0, F'(0) = k3(0)/Q(s0) = (σ0/B)/Q(s0):
+    # ε'(0) = (2a/E*) F'(0) √(1-s0²)/s0, F'(0) = k3(0)/Q(s0) - σ0 Q_Δ(0)/Q(s0)² with
+    # k3(0) = σ0/B, Q_Δ = -(2/π) s0 A'(0)/√(1-s0²), A'(0) = (0.5 - s0²)/L:
     # σ_I2/σ_I1 - 1 → ε'(0)/(1 - ε'(0)).
     base, i1 = make_law(seated=1e-4)
     _, i2 = make_law(seated=1e-4, variant="I2")
     assert i2.variant == "I2"
     s0 = 1e-2
-    slope = 0.1e6 / 0.05e-3 / float(q_ref(s0))
+    q0 = float(q_ref(s0))
+    dq0 = -2 / math.pi * s0 * (0.5 - s0 * s0) / 0.2e-3 / math.sqrt(1 - s0 * s0)
+    slope = 0.1e6 / 0.05e-3 / q0 - 0.1e6 * dq0 / q0**2
     rate = 2 * i2.contact_radius / E_STAR * slope * math.sqrt(1 - s0 * s0) / s0
     rel = i2.normal_stress(1e-12) / i1.normal_stress(1e-12) - 1
     assert rel == pytest.approx(rate / (1 - rate), rel=1e-4)
@@ -155,5 +160,6 @@ def test_over_tang_substrate_from_asperity_parameters():
     d = np.array([1e-5, 5e-5])
     f3 = base.normal_stress(d)
     s = np.sqrt(base.contact_area_ratio(d))
-    np.testing.assert_allclose(law.normal_stress(d) / f3 - 1, 4 * s**3 / (3 * np.pi),
-                               rtol=1e-2)
+    # On the models' total stresses: F_model/σ_model - 1 = 1/Q - 1 ≈ 4s³/(3π).
+    total = (law.normal_stress(d) + law.seating_stress) / (f3 + base.seating_stress)
+    np.testing.assert_allclose(total - 1, 4 * s**3 / (3 * np.pi), rtol=1e-2)
