@@ -34,5 +34,11 @@ from ._rockjoint.constitutive import (  # noqa: F401  (Tang & Jiao 2018, theory 
 )
 from .tabulation import TabulatedLaw, plot_table, tabulate  # noqa: F401
 from . import laws  # noqa: F401,E402  (the law factory: rockjoint.laws.make_law, ...)
+from .calibration import (  # noqa: F401, E402  (fit a law to a measured closure curve)
+    Calibration,
+    ClosureCurve,
+    calibrate,
+    read_closure_curve,
+)
 
 __version__ = "0.1.0"

@@ -10,6 +10,7 @@ void declare_asperity_models(py::module_& m);
 void declare_tang_jiao(py::module_& m);
 void declare_tabulation(py::module_& m);
 void declare_topography(py::module_& m);
+void declare_calibration(py::module_& m);
 } // namespace rockjoint::python
 
 PYBIND11_MODULE(_rockjoint, m)
@@ -23,4 +24,7 @@ PYBIND11_MODULE(_rockjoint, m)
   py::module_ topography
       = m.def_submodule("topography", "Joint-wall topography -> closure-law parameters (SI units)");
   rockjoint::python::declare_topography(topography);
+  py::module_ calibration = m.def_submodule(
+      "calibration", "Fitting closure laws to measured closure curves (Levenberg-Marquardt)");
+  rockjoint::python::declare_calibration(calibration);
 }
