@@ -342,13 +342,14 @@ class Calibration:
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
         c = self.curve
-        s_fine = np.linspace(0.0, c.normal_stress[-1], 300)
+        top_stress = c.normal_stress[-1]
+        s_fine = np.concatenate([[0.0], np.geomspace(1e-4 * top_stress, top_stress, 300)])
         fig, (top, bottom) = plt.subplots(2, 1, figsize=(6.4, 6.4), sharex=False,
                                           gridspec_kw={"height_ratios": [2.2, 1]})
         top.plot(c.closure * 1e3, c.normal_stress * 1e-6, "o", ms=4, label="measured")
         top.plot(self.predicted_closure(s_fine) * 1e3, s_fine * 1e-6, "-",
                  label=f"fitted {self.law_name}")
-        top.set_xlabel("closure Δ [mm]")
+        top.set_xlabel("closure Δ (datum of the curve) [mm]")
         top.set_ylabel("normal stress σ [MPa]")
         top.legend(loc="upper left")
         top.set_title(", ".join(f"{p.symbol} = {p.value / p.scale:.4g} ± "
