@@ -33,8 +33,8 @@ from typing import Callable, Dict, List, Optional, Sequence
 import numpy as np
 
 from ._rockjoint import calibration as _cpp_calibration
-from ._rockjoint.constitutive import (BartonBandis, ClosureLaw, ExponentialLaw,
-                                      GreenwoodWilliamson, TangJiao, TangSubstrate)
+from ._rockjoint.constitutive import AsperityParameters, ClosureLaw
+from .laws import make_law
 
 __all__ = ["ClosureCurve", "FittedParameter", "Calibration", "read_closure_curve",
            "calibrate", "LAWS"]
@@ -221,18 +221,20 @@ class _LawSpec:
 
 
 def _gw_type(values, given, interaction: bool) -> ClosureLaw:
+    """A GW-type law from (η, σ_s) and the given E*, β through the law factory."""
     eta, sigma_s = values
-    e_star, beta = given["composite_modulus"], given["summit_radius"]
+    stats = AsperityParameters(composite_modulus=given["composite_modulus"],
+                               summit_density=eta, summit_radius=given["summit_radius"],
+                               summit_height_std=sigma_s)
     distribution = given.get("distribution", "gaussian")
-    base_kind = given.get("base", "tang_substrate" if interaction else "greenwood_williamson")
-    if base_kind == "tang_substrate":
-        kw = {}
-        if given.get("base_radius") is not None:
-            kw["base_radius"] = given["base_radius"]
-        base = TangSubstrate(e_star, eta, beta, sigma_s, distribution=distribution, **kw)
-    else:
-        base = GreenwoodWilliamson(e_star, eta, beta, sigma_s, distribution=distribution)
-    return TangJiao(base, variant=given.get("variant", "I1")) if interaction else base
+    if not interaction:
+        return make_law("greenwood_williamson", stats, distribution=distribution)
+    variant = given.get("variant", "I1")
+    if given.get("base", "tang_substrate") == "greenwood_williamson":
+        base = make_law("greenwood_williamson", stats, distribution=distribution)
+        return make_law("tang_jiao", stats, base=base, variant=variant)
+    kw = {} if given.get("base_radius") is None else {"base_radius": given["base_radius"]}
+    return make_law("tang_jiao", stats, distribution=distribution, variant=variant, **kw)
 
 
 _ETA = _Unknown("summit_density", "η", "1/mm²", 1e6)
@@ -242,11 +244,13 @@ LAWS: Dict[str, _LawSpec] = {
     "barton_bandis": _LawSpec(
         (_Unknown("initial_normal_stiffness", "K_ni", "MPa/mm", 1e9),
          _Unknown("maximum_closure", "V_m", "mm", 1e-3)), (),
-        lambda v, g: BartonBandis(v[0], v[1]), False),
+        lambda v, g: make_law("barton_bandis", initial_normal_stiffness=v[0],
+                              maximum_closure=v[1]), False),
     "exponential": _LawSpec(
         (_Unknown("maximum_closure", "V_m", "mm", 1e-3),
          _Unknown("characteristic_stress", "σ_c", "MPa", 1e6)), (),
-        lambda v, g: ExponentialLaw(v[0], v[1]), False),
+        lambda v, g: make_law("exponential", maximum_closure=v[0],
+                              characteristic_stress=v[1]), False),
     "greenwood_williamson": _LawSpec(
         (_ETA, _SIGMA_S), ("composite_modulus", "summit_radius"),
         lambda v, g: _gw_type(v, g, False), True),
