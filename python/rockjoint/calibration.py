@@ -384,17 +384,18 @@ def _initial_guess(name: str, spec: _LawSpec, curve: ClosureCurve, given: dict,
     """Starting values (SI) from the shape of the curve."""
     s, d = curve.normal_stress, curve.closure
     pos = (d > 0) & (s > 0)
+    extra = [0.0] if fit_offset else []  # empirical laws: offset starts at 0
     if name == "barton_bandis":
         # σ/Δ = K_ni + σ/V_m is linear in σ (theory §6).
         slope, intercept = (np.polyfit(s[pos], s[pos] / d[pos], 1) if pos.sum() >= 2
                             else (0.0, 0.0))
         k = intercept if intercept > 0 else float(np.median(s[pos] / d[pos]))
         v = 1.0 / slope if slope > 0 and 1.0 / slope > d[-1] else 1.5 * d[-1]
-        return [k, v]
+        return [k, v] + extra
     if name == "exponential":
         v = 1.2 * d[-1]
         sc = float(np.median(-s[pos] / np.log1p(-d[pos] / v)))
-        return [v, sc]
+        return [v, sc] + extra
     # GW-type: σ_s from the slope of Δ against ln σ (exact for exponential heights), then η
     # so that the law carries the middle stress at the middle closure (σ ∝ η for GW).
     upper = pos & (s >= np.median(s[pos]))

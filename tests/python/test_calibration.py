@@ -112,6 +112,21 @@ def test_intact_deformation_is_removed_from_the_specimen_displacement(tmp_path):
         read_closure_curve(path)
 
 
+def test_empirical_law_with_a_closure_offset():
+    # A Barton-Bandis curve read from its first point (0.2 MPa) on: the offset is the law's
+    # closure there, Δ(0.2 MPa) = σV_m/(K_ni V_m + σ) = 9.68 µm, recovered with K_ni and V_m.
+    law = rockjoint.BartonBandis(20e9, 0.3e-3)
+    closure = law.closure_at_stress(STRESS)
+    shifted = ClosureCurve(STRESS, closure - closure[0])
+    result = calibrate(shifted, "barton_bandis", fit_offset=True)
+    assert [p.name for p in result.parameters] == ["initial_normal_stiffness",
+                                                   "maximum_closure", "closure_offset"]
+    expected = 0.2e6 * 0.3e-3 / (20e9 * 0.3e-3 + 0.2e6)
+    assert result.closure_offset == pytest.approx(expected, rel=1e-7)
+    assert result.parameter("initial_normal_stiffness").value == pytest.approx(20e9, rel=1e-7)
+    np.testing.assert_allclose(result.predicted_closure(STRESS), shifted.closure, atol=1e-12)
+
+
 def test_closure_std_column_weights_the_fit(tmp_path):
     # Noise 0.2 µm on the first 12 points and 2 µm on the rest, declared per row: the
     # weighted fit brackets the truth within 3σ, and with weights 1/std² its χ²/(N-P) is a
