@@ -1,0 +1,259 @@
+#include "elastic_contact.hpp"
+
+#include <rockjoint/constitutive/validation.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace rockjoint::contact
+{
+
+namespace validation = rockjoint::constitutive::validation;
+
+namespace
+{
+/// Number of 4-connected components of the contact set (wrapping at the edges if periodic).
+int count_patches(const std::vector<double>& p, std::size_t rows, std::size_t cols, bool wrap)
+{
+  std::vector<unsigned char> seen(p.size(), 0);
+  std::vector<std::size_t> stack;
+  int patches = 0;
+  for (std::size_t start = 0; start < p.size(); ++start)
+  {
+    if (!(p[start] > 0.0) || seen[start])
+      continue;
+    ++patches;
+    stack.assign(1, start);
+    seen[start] = 1;
+    while (!stack.empty())
+    {
+      const std::size_t k = stack.back();
+      stack.pop_back();
+      const std::size_t i = k / cols, j = k % cols;
+      auto visit = [&](std::ptrdiff_t ii, std::ptrdiff_t jj)
+      {
+        if (wrap)
+        {
+          ii = (ii + std::ptrdiff_t(rows)) % std::ptrdiff_t(rows);
+          jj = (jj + std::ptrdiff_t(cols)) % std::ptrdiff_t(cols);
+        }
+        else if (ii < 0 || jj < 0 || ii >= std::ptrdiff_t(rows) || jj >= std::ptrdiff_t(cols))
+          return;
+        const std::size_t n = std::size_t(ii) * cols + std::size_t(jj);
+        if (p[n] > 0.0 && !seen[n])
+        {
+          seen[n] = 1;
+          stack.push_back(n);
+        }
+      };
+      visit(std::ptrdiff_t(i) - 1, std::ptrdiff_t(j));
+      visit(std::ptrdiff_t(i) + 1, std::ptrdiff_t(j));
+      visit(std::ptrdiff_t(i), std::ptrdiff_t(j) - 1);
+      visit(std::ptrdiff_t(i), std::ptrdiff_t(j) + 1);
+    }
+  }
+  return patches;
+}
+} // namespace
+
+ElasticContact::ElasticContact(const topography::Surface& aperture, double composite_modulus,
+                               Kernel kernel, ContactOptions options)
+    : _half_space(static_cast<std::size_t>(aperture.rows()),
+                  static_cast<std::size_t>(aperture.cols()), aperture.spacing_x(),
+                  aperture.spacing_y(), composite_modulus, kernel),
+      _options(options), _rows(static_cast<std::size_t>(aperture.rows())),
+      _cols(static_cast<std::size_t>(aperture.cols()))
+{
+  validation::positive("ElasticContact", "tolerance", options.tolerance, "");
+  if (options.maximum_iterations < 1)
+    validation::fail("ElasticContact", "maximum_iterations", options.maximum_iterations, "",
+                     ">= 1");
+  const std::size_t n = _rows * _cols;
+  _aperture.assign(aperture.heights().data(), aperture.heights().data() + n);
+  _valid.assign(n, 0);
+  double lowest = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < n; ++k)
+    if (!std::isnan(_aperture[k]))
+    {
+      _valid[k] = 1;
+      ++_valid_count;
+      lowest = std::min(lowest, _aperture[k]);
+    }
+  if (_valid_count < 2)
+    throw std::invalid_argument("ElasticContact: the aperture has " + std::to_string(_valid_count)
+                                + " valid (non-NaN) point(s); at least 2 are needed");
+  for (std::size_t k = 0; k < n; ++k)
+    _aperture[k] = _valid[k] ? _aperture[k] - lowest : 0.0; // first contact at d = 0
+  _u.assign(n, 0.0);
+  _t.assign(n, 0.0);
+  _r.assign(n, 0.0);
+  _previous.assign(n, 0.0);
+  _pressure.assign(n, 0.0);
+  if (kernel == Kernel::non_periodic)
+  {
+    for (std::size_t k = 0; k < n; ++k)
+      _t[k] = _valid[k] ? 1.0 : 0.0;
+    _half_space.displacement(_t, _u);
+    double sum = 0.0;
+    for (std::size_t k = 0; k < n; ++k)
+      if (_valid[k])
+        sum += _u[k];
+    _bulk_compliance = sum / double(_valid_count);
+  }
+}
+
+ContactState ElasticContact::solve(double mean_pressure, bool keep_fields)
+{
+  validation::positive("ElasticContact::solve", "mean_pressure", mean_pressure, "Pa");
+  const std::size_t n = _rows * _cols;
+  std::vector<double>& p = _pressure;
+  const double total = mean_pressure * double(_valid_count); // Σ p over the scanned points
+  // Warm start: the previous pressure scaled to the new load, or uniform.
+  if (_last_stress > 0.0)
+    for (double& x : p)
+      x *= mean_pressure / _last_stress;
+  else
+    for (std::size_t k = 0; k < n; ++k)
+      p[k] = _valid[k] ? mean_pressure : 0.0;
+
+  // Polonsky & Keer (1999), load-controlled constrained conjugate gradients. Gap g = u + e - d
+  // with the rigid approach d = mean of (u + e) over the contact set S = {p > 0}; the search
+  // direction t is conjugate on S, restarted (δ = 0) whenever points re-enter contact.
+  ContactState st;
+  st.mean_pressure = mean_pressure;
+  std::fill(_t.begin(), _t.end(), 0.0);
+  double g_old = 1.0, approach = 0.0;
+  bool conjugate = false;
+  int it = 0;
+  for (; it < _options.maximum_iterations; ++it)
+  {
+    _half_space.displacement(p, _u);
+    double sum = 0.0;
+    std::size_t in_contact = 0;
+    for (std::size_t k = 0; k < n; ++k)
+    {
+      _u[k] += _aperture[k]; // u now holds u + e
+      if (_valid[k] && p[k] > 0.0)
+      {
+        sum += _u[k];
+        ++in_contact;
+      }
+    }
+    approach = sum / double(in_contact);
+    double g_norm = 0.0;
+    for (std::size_t k = 0; k < n; ++k)
+    {
+      _u[k] -= approach; // u now holds the gap g
+      if (_valid[k] && p[k] > 0.0)
+        g_norm += _u[k] * _u[k];
+    }
+    const double beta = conjugate ? g_norm / g_old : 0.0;
+    for (std::size_t k = 0; k < n; ++k)
+      _t[k] = _valid[k] && p[k] > 0.0 ? _u[k] + beta * _t[k] : 0.0;
+    g_old = g_norm;
+    _half_space.displacement(_t, _r);
+    double r_mean = 0.0;
+    for (std::size_t k = 0; k < n; ++k)
+      if (_valid[k] && p[k] > 0.0)
+        r_mean += _r[k];
+    r_mean /= double(in_contact);
+    double gt = 0.0, rt = 0.0;
+    for (std::size_t k = 0; k < n; ++k)
+      if (_valid[k] && p[k] > 0.0)
+      {
+        gt += _u[k] * _t[k];
+        rt += (_r[k] - r_mean) * _t[k];
+      }
+    const double tau = rt > 0.0 ? gt / rt : 0.0;
+    _previous = p;
+    for (std::size_t k = 0; k < n; ++k)
+      if (_valid[k] && p[k] > 0.0)
+        p[k] = std::max(p[k] - tau * _t[k], 0.0);
+    bool overlap = false; // points without pressure that interpenetrate go back into contact
+    for (std::size_t k = 0; k < n; ++k)
+      if (_valid[k] && p[k] == 0.0 && _u[k] < 0.0)
+      {
+        p[k] = -tau * _u[k];
+        overlap = true;
+      }
+    conjugate = !overlap;
+    double load = 0.0;
+    for (double x : p)
+      load += x;
+    if (!(load > 0.0))
+    {
+      for (std::size_t k = 0; k < n; ++k)
+        p[k] = _valid[k] ? mean_pressure : 0.0; // lost every contact: restart uniform
+      conjugate = false;
+      continue;
+    }
+    double change = 0.0;
+    for (std::size_t k = 0; k < n; ++k)
+    {
+      p[k] *= total / load;
+      change += std::abs(p[k] - _previous[k]);
+    }
+    st.relative_change = change / total;
+    if (st.relative_change <= _options.tolerance)
+    {
+      st.converged = true;
+      ++it;
+      break;
+    }
+  }
+  st.iterations = it;
+  _last_stress = mean_pressure;
+
+  // Final state from the final pressure: d, gap, complementarity.
+  _half_space.displacement(p, _u);
+  double sum = 0.0;
+  std::size_t in_contact = 0;
+  for (std::size_t k = 0; k < n; ++k)
+    if (_valid[k] && p[k] > 0.0)
+    {
+      sum += _u[k] + _aperture[k];
+      ++in_contact;
+    }
+  approach = sum / double(in_contact);
+  st.approach = approach;
+  st.closure = approach - mean_pressure * _bulk_compliance;
+  st.contact_area_ratio = double(in_contact) / double(_valid_count);
+  st.minimum_gap = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    if (!_valid[k])
+      continue;
+    const double g = _u[k] + _aperture[k] - approach;
+    st.complementarity = std::max(st.complementarity, std::abs(p[k] * g));
+    if (!(p[k] > 0.0))
+      st.minimum_gap = std::min(st.minimum_gap, g);
+  }
+  st.contact_patches = count_patches(p, _rows, _cols, _half_space.kernel() == Kernel::periodic);
+  if (keep_fields)
+  {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    st.pressure.resize(n);
+    st.gap.resize(n);
+    for (std::size_t k = 0; k < n; ++k)
+    {
+      st.pressure[k] = _valid[k] ? p[k] : nan;
+      st.gap[k] = _valid[k] ? std::max(_u[k] + _aperture[k] - approach, 0.0) : nan;
+    }
+  }
+  return st;
+}
+
+std::vector<ContactState> ElasticContact::closure_curve(std::span<const double> mean_pressures,
+                                                        bool keep_fields)
+{
+  std::vector<ContactState> out;
+  out.reserve(mean_pressures.size());
+  for (double s : mean_pressures)
+    out.push_back(solve(s, keep_fields));
+  return out;
+}
+
+} // namespace rockjoint::contact

@@ -1,0 +1,89 @@
+#pragma once
+/// @file elastic_contact.hpp
+/// Exact (to discretisation) frictionless elastic contact of a joint's composite topography:
+/// the reference every closure law is measured against (docs/contact.md).
+///
+/// Aperture e(x) >= 0 on the grid (shifted so that min e = 0: first contact), rigid approach
+/// d, gap g = e - d + u >= 0, pressure p >= 0, p g = 0, mean of p over the scanned points = σ,
+/// u = K p (half_space.hpp). Solved at prescribed σ by the constrained conjugate gradients of
+/// Polonsky & Keer (1999), warm-started from the previous load.
+///
+/// Datum of the reported closure: the approach from first contact, net of the bulk
+/// deformation the blocks of a model already carry (theory §0). Periodic kernel: mean(u) = 0,
+/// so the closure is d itself. Non-periodic kernel: d also contains the mean displacement of
+/// the scanned patch under the uniform pressure σ; that bulk part, σ·c with c = mean(K·1), is
+/// subtracted (the raw d is reported as `approach`).
+/// Masked (NaN) points carry no pressure and are not counted in A0: a hole in the scan is a
+/// point that cannot touch.
+#include "half_space.hpp"
+
+#include <rockjoint/topography/surface.hpp>
+
+#include <span>
+#include <vector>
+
+namespace rockjoint::contact
+{
+
+/// Stopping rule of the contact solver.
+struct ContactOptions
+{
+  /// Σ|p - p_prev| / Σ p between iterations at which a load is converged (Polonsky-Keer).
+  double tolerance = 1e-8;
+  int maximum_iterations = 2000;
+};
+
+/// The contact at one nominal stress.
+struct ContactState
+{
+  double mean_pressure = 0.0; ///< σ [Pa], the prescribed mean of p over the scanned points
+  double approach = 0.0;      ///< d [m], rigid approach from first contact (raw)
+  double closure = 0.0;       ///< Δ [m], d net of the bulk deformation (see file comment)
+  /// A/A0: fraction of the scanned points in contact. Biased upward by about one node row at
+  /// the edges of every contact spot (a node is in or out; the true edge is inside the cell).
+  double contact_area_ratio = 0.0;
+  int contact_patches = 0;     ///< 4-connected contact spots (periodic wrap for that kernel)
+  int iterations = 0;          ///< conjugate-gradient iterations of this load
+  bool converged = false;      ///< the tolerance was met within maximum_iterations
+  double relative_change = 0.0;   ///< last Σ|Δp| / Σ p
+  double complementarity = 0.0;   ///< max p·g [Pa·m] over the grid
+  double minimum_gap = 0.0;       ///< min g [m] off contact (>= -solver tolerance)
+  std::vector<double> pressure;   ///< p [Pa], row-major (NaN where masked)
+  std::vector<double> gap;        ///< g [m] under load: the mechanical aperture (NaN where masked)
+};
+
+class ElasticContact
+{
+public:
+  /// @param aperture aperture field e [m] of the composite topography (NaN = masked)
+  /// @param composite_modulus E* [Pa]
+  /// Throws std::invalid_argument for a grid with fewer than 2 valid points or E* <= 0.
+  ElasticContact(const topography::Surface& aperture, double composite_modulus, Kernel kernel,
+                 ContactOptions options = {});
+
+  /// Contact at mean pressure σ > 0 [Pa], warm-started from the previous solve (its pressure
+  /// scaled to σ). `keep_fields`: fill pressure and gap.
+  ContactState solve(double mean_pressure, bool keep_fields = true);
+
+  /// One state per stress (in the given order; increasing stresses warm-start best).
+  std::vector<ContactState> closure_curve(std::span<const double> mean_pressures,
+                                          bool keep_fields = false);
+
+  /// c = mean over the scanned points of the displacement under unit uniform pressure [m/Pa]
+  /// (0 for the periodic kernel): the bulk compliance removed from the approach.
+  double bulk_compliance() const { return _bulk_compliance; }
+  std::size_t valid_count() const { return _valid_count; }
+
+private:
+  HalfSpace _half_space;
+  ContactOptions _options;
+  std::size_t _rows, _cols, _valid_count = 0;
+  std::vector<double> _aperture; // shifted: min 0 over valid points
+  std::vector<unsigned char> _valid;
+  std::vector<double> _pressure; // last converged pressure (warm start)
+  double _last_stress = 0.0;
+  double _bulk_compliance = 0.0;
+  std::vector<double> _u, _t, _r, _previous; // work arrays
+};
+
+} // namespace rockjoint::contact

@@ -1,0 +1,149 @@
+#include "half_space.hpp"
+
+#include <rockjoint/constitutive/validation.hpp>
+
+#include <fftw3.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+namespace rockjoint::contact
+{
+
+namespace validation = rockjoint::constitutive::validation;
+
+namespace
+{
+/// G(X, Y) = X asinh(Y/|X|) + Y asinh(X/|Y|): the double antiderivative of 1/√(X²+Y²)
+/// (∂²G/∂X∂Y = 1/ρ) without the X ln|X| + Y ln|Y| terms, which cancel in the four-corner sum
+/// below; written with asinh so that no ln(Y + ρ) loses digits for Y < 0.
+double love_primitive(double x, double y)
+{
+  double g = 0.0;
+  if (x != 0.0)
+    g += x * std::asinh(y / std::abs(x));
+  if (y != 0.0)
+    g += y * std::asinh(x / std::abs(y));
+  return g;
+}
+} // namespace
+
+struct HalfSpace::Fft
+{
+  std::size_t m0, m1;     // transform grid (padded for the non-periodic kernel)
+  double* real = nullptr; // m0 × m1
+  fftw_complex* spectrum = nullptr; // m0 × (m1/2 + 1)
+  std::vector<std::complex<double>> kernel; // K̂ / (m0 m1): the normalisation folded in
+  fftw_plan forward = nullptr, backward = nullptr;
+
+  Fft(std::size_t rows, std::size_t cols) : m0(rows), m1(cols)
+  {
+    real = fftw_alloc_real(m0 * m1);
+    spectrum = fftw_alloc_complex(m0 * (m1 / 2 + 1));
+    if (!real || !spectrum)
+      throw std::bad_alloc();
+    const int n0 = static_cast<int>(m0), n1 = static_cast<int>(m1);
+    forward = fftw_plan_dft_r2c_2d(n0, n1, real, spectrum, FFTW_ESTIMATE);
+    backward = fftw_plan_dft_c2r_2d(n0, n1, spectrum, real, FFTW_ESTIMATE);
+    kernel.resize(m0 * (m1 / 2 + 1));
+  }
+  ~Fft()
+  {
+    fftw_destroy_plan(forward);
+    fftw_destroy_plan(backward);
+    fftw_free(real);
+    fftw_free(spectrum);
+  }
+};
+
+HalfSpace::HalfSpace(std::size_t rows, std::size_t cols, double spacing_x, double spacing_y,
+                     double composite_modulus, Kernel kernel)
+    : _rows(rows), _cols(cols),
+      _hx(validation::positive("HalfSpace", "spacing_x", spacing_x, "m")),
+      _hy(validation::positive("HalfSpace", "spacing_y", spacing_y, "m")),
+      _modulus(validation::positive("HalfSpace", "composite_modulus", composite_modulus, "Pa")),
+      _kernel(kernel)
+{
+  if (rows < 2 || cols < 2)
+    throw std::invalid_argument("HalfSpace: grid " + std::to_string(rows) + " x "
+                                + std::to_string(cols) + " is too small (at least 2 x 2)");
+  const bool periodic = kernel == Kernel::periodic;
+  _fft = std::make_unique<Fft>(periodic ? rows : 2 * rows, periodic ? cols : 2 * cols);
+  Fft& f = *_fft;
+  const std::size_t half = f.m1 / 2 + 1;
+  const double scale = 1.0 / static_cast<double>(f.m0 * f.m1);
+  if (periodic)
+  {
+    // û = 2 p̂/(E*|q|), q = 2π (k_x/L_x, k_y/L_y); q = 0 dropped (mean displacement 0).
+    const double lx = _hx * static_cast<double>(cols), ly = _hy * static_cast<double>(rows);
+    for (std::size_t i = 0; i < f.m0; ++i)
+    {
+      const double ki = i <= f.m0 / 2 ? double(i) : double(i) - double(f.m0);
+      const double qy = 2.0 * std::numbers::pi * ki / ly;
+      for (std::size_t j = 0; j < half; ++j)
+      {
+        const double qx = 2.0 * std::numbers::pi * double(j) / lx;
+        const double q = std::hypot(qx, qy);
+        f.kernel[i * half + j] = q > 0.0 ? 2.0 / (_modulus * q) * scale : 0.0;
+      }
+    }
+    return;
+  }
+  // Love's influence coefficients on the wrapped 2n grid (offsets -n..n-1), transformed once.
+  for (std::size_t i = 0; i < f.m0; ++i)
+  {
+    const double dy = (i < rows ? double(i) : double(i) - double(f.m0)) * _hy;
+    for (std::size_t j = 0; j < f.m1; ++j)
+    {
+      const double dx = (j < cols ? double(j) : double(j) - double(f.m1)) * _hx;
+      f.real[i * f.m1 + j] = influence(dx, dy);
+    }
+  }
+  fftw_execute(f.forward);
+  for (std::size_t k = 0; k < f.kernel.size(); ++k)
+    f.kernel[k] = std::complex<double>(f.spectrum[k][0], f.spectrum[k][1]) * scale;
+}
+
+HalfSpace::~HalfSpace() = default;
+
+double HalfSpace::influence(double dx, double dy) const
+{
+  // Uniform unit pressure on [-a, a] × [-b, b]: u = (1/(π E*)) ∫∫ dA/ρ (Boussinesq), the
+  // four-corner sum of the primitive (Love 1929; Johnson 1985, Eq. 3.25).
+  const double a = 0.5 * _hx, b = 0.5 * _hy;
+  const double sum = love_primitive(dx + a, dy + b) - love_primitive(dx + a, dy - b)
+                     - love_primitive(dx - a, dy + b) + love_primitive(dx - a, dy - b);
+  return sum / (std::numbers::pi * _modulus);
+}
+
+void HalfSpace::displacement(std::span<const double> pressure, std::span<double> displacement)
+{
+  const std::size_t n = _rows * _cols;
+  if (pressure.size() != n || displacement.size() != n)
+    throw std::invalid_argument("HalfSpace::displacement: arrays must have rows*cols = "
+                                + std::to_string(n) + " entries (got "
+                                + std::to_string(pressure.size()) + " and "
+                                + std::to_string(displacement.size()) + ")");
+  Fft& f = *_fft;
+  if (f.m0 != _rows)
+    std::fill(f.real, f.real + f.m0 * f.m1, 0.0); // zero padding
+  for (std::size_t i = 0; i < _rows; ++i)
+    std::copy_n(pressure.data() + i * _cols, _cols, f.real + i * f.m1);
+  fftw_execute(f.forward);
+  const std::size_t m = f.kernel.size();
+  for (std::size_t k = 0; k < m; ++k)
+  {
+    const std::complex<double> c
+        = std::complex<double>(f.spectrum[k][0], f.spectrum[k][1]) * f.kernel[k];
+    f.spectrum[k][0] = c.real();
+    f.spectrum[k][1] = c.imag();
+  }
+  fftw_execute(f.backward);
+  for (std::size_t i = 0; i < _rows; ++i)
+    std::copy_n(f.real + i * f.m1, _cols, displacement.data() + i * _cols);
+}
+
+} // namespace rockjoint::contact

@@ -1,0 +1,66 @@
+#pragma once
+/// @file half_space.hpp
+/// Surface displacement of an elastic half-space under a pressure field on a regular grid:
+/// the influence operator u = K p of the boundary-element contact reference
+/// (docs/contact.md). Lengths in m, pressures in Pa, modulus E* in Pa (composite: the
+/// contact of two elastic walls is that of a rigid surface carrying the composite topography
+/// with a half-space of modulus E*, theory §1).
+///
+/// Periodic (synthetic periodic surfaces): û(q) = 2 p̂(q)/(E*|q|) for q ≠ 0 and û(0) = 0, i.e.
+/// mean(u) = 0: the uniform-pressure (bulk) deformation is removed exactly.
+/// Non-periodic (real scans): each node carries a uniform pressure on its h_x × h_y cell
+/// whose displacement is Love's closed form (Johnson 1985, §3.2); the discrete convolution is
+/// applied by FFT on a zero-padded 2n_y × 2n_x grid (DC-FFT, Liu et al. 2000), so no image
+/// of the patch loads it. The mean displacement then contains the bulk compliance of the
+/// patch, which the contact solver removes when it reports closure.
+#include <complex>
+#include <cstddef>
+#include <memory>
+#include <span>
+#include <vector>
+
+namespace rockjoint::contact
+{
+
+/// Which half-space the grid sits on.
+enum class Kernel : int
+{
+  periodic = 0,     ///< the grid is one period of an infinite periodic surface
+  non_periodic = 1, ///< the grid is an isolated patch of an infinite half-space
+};
+
+class HalfSpace
+{
+public:
+  /// @param rows, cols grid size (row-major like numpy; x along a row)
+  /// @param spacing_x, spacing_y lattice steps [m], > 0
+  /// @param composite_modulus E* [Pa], > 0
+  /// Throws std::invalid_argument naming a bad argument.
+  HalfSpace(std::size_t rows, std::size_t cols, double spacing_x, double spacing_y,
+            double composite_modulus, Kernel kernel);
+  ~HalfSpace();
+  HalfSpace(const HalfSpace&) = delete;
+  HalfSpace& operator=(const HalfSpace&) = delete;
+
+  /// u = K p: surface displacement [m] (positive away from the other wall) under the nodal
+  /// pressures `pressure` [Pa] (rows·cols, row-major). Not thread-safe (shared FFT buffers).
+  void displacement(std::span<const double> pressure, std::span<double> displacement);
+
+  /// Displacement [m] at node (0, 0)'s cell centre of a unit pressure on the cell of node (i, j)
+  /// — the non-periodic influence coefficient (Love); for checks and the bulk term.
+  double influence(double dx, double dy) const;
+
+  std::size_t rows() const { return _rows; }
+  std::size_t cols() const { return _cols; }
+  Kernel kernel() const { return _kernel; }
+  double composite_modulus() const { return _modulus; }
+
+private:
+  struct Fft; // FFTW plans and buffers (kept out of the header)
+  std::size_t _rows, _cols;
+  double _hx, _hy, _modulus;
+  Kernel _kernel;
+  std::unique_ptr<Fft> _fft;
+};
+
+} // namespace rockjoint::contact
