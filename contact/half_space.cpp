@@ -46,8 +46,8 @@ struct HalfSpace::Fft
     if (!real || !spectrum)
       throw std::bad_alloc();
     const int n0 = static_cast<int>(m0), n1 = static_cast<int>(m1);
-    forward = fftw_plan_dft_r2c_2d(n0, n1, real, spectrum, FFTW_ESTIMATE);
-    backward = fftw_plan_dft_c2r_2d(n0, n1, spectrum, real, FFTW_ESTIMATE);
+    forward = fftw_plan_dft_r2c_2d(n0, n1, real, spectrum, FFTW_MEASURE);
+    backward = fftw_plan_dft_c2r_2d(n0, n1, spectrum, real, FFTW_MEASURE);
     kernel.resize(m0 * (m1 / 2 + 1));
   }
   ~Fft()

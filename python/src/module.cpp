@@ -11,6 +11,7 @@ void declare_tang_jiao(py::module_& m);
 void declare_tabulation(py::module_& m);
 void declare_topography(py::module_& m);
 void declare_calibration(py::module_& m);
+void declare_contact(py::module_& m);
 } // namespace rockjoint::python
 
 PYBIND11_MODULE(_rockjoint, m)
@@ -27,4 +28,7 @@ PYBIND11_MODULE(_rockjoint, m)
   py::module_ calibration = m.def_submodule(
       "calibration", "Fitting closure laws to measured closure curves (Levenberg-Marquardt)");
   rockjoint::python::declare_calibration(calibration);
+  py::module_ contact = m.def_submodule(
+      "contact", "Boundary-element contact reference of the composite topography (SI units)");
+  rockjoint::python::declare_contact(contact);
 }

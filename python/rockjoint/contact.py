@@ -1,0 +1,109 @@
+"""Exact elastic contact of a joint's own topography: the boundary-element reference every
+closure law is measured against (docs/contact.md).
+
+The two walls' frictionless elastic contact is that of a rigid surface carrying the composite
+topography with a half-space of modulus E* (theory §1). Given the aperture field of a contact
+state (``topography.composite_topography(...).aperture``), :func:`closure_curve` solves it at a
+sequence of nominal stresses (Polonsky-Keer constrained conjugate gradients on an FFT kernel,
+warm-started from load to load) and :func:`exact_elastic_law` turns the curve into a
+:class:`rockjoint.TabulatedLaw` that the FE coupling uses like any other table.
+
+SI units: Pa, m. Closure is measured from first contact, net of the bulk deformation of the
+blocks (theory §0; periodic kernel: mean displacement 0; non-periodic: the mean displacement of
+the patch under uniform σ is subtracted, the raw rigid approach is kept as ``approach``).
+"""
+from __future__ import annotations
+
+import dataclasses
+import logging
+from typing import List, Optional, Sequence
+
+import numpy as np
+
+from ._rockjoint import contact as _cpp
+from ._rockjoint.topography import Surface
+
+log = logging.getLogger(__name__)
+
+Kernel = _cpp.Kernel
+
+
+@dataclasses.dataclass
+class ClosureCurve:
+    """The BEM answer at each nominal stress (arrays over the loads, SI)."""
+
+    stress: np.ndarray              # σ [Pa]
+    closure: np.ndarray             # Δ [m] from first contact, net of bulk deformation
+    approach: np.ndarray            # d [m], raw rigid approach (= closure for periodic)
+    contact_area_ratio: np.ndarray  # A/A0 [-] (node count: biased up by ~1 node row per spot edge)
+    contact_patches: np.ndarray     # 4-connected contact spots
+    iterations: np.ndarray          # CG iterations per load
+    complementarity: np.ndarray     # max p g [Pa m]
+    minimum_gap: np.ndarray         # min g off contact [m]
+    composite_modulus: float        # E* [Pa]
+    spacing: float                  # h [m]
+    shape: tuple                    # grid (rows, cols)
+    periodic: bool
+    tolerance: float
+    pressure: Optional[List[np.ndarray]] = None   # p [Pa] per load (keep_fields=True)
+    gap: Optional[List[np.ndarray]] = None        # g [m] per load: the mechanical aperture
+    _states: list = dataclasses.field(default_factory=list, repr=False)
+
+
+def closure_curve(aperture: Surface, composite_modulus: float, stresses: Sequence[float], *,
+                  periodic: bool = True, tolerance: float = 1e-8, maximum_iterations: int = 2000,
+                  keep_fields: bool = False) -> ClosureCurve:
+    """Solve the contact of `aperture` (e [m], NaN = masked, min e is taken as first contact)
+    against a half-space of modulus E* [Pa] at each nominal stress in `stresses` [Pa] (> 0;
+    increasing order warm-starts best). `periodic`: the grid is one period of a periodic
+    surface (synthetic joints) or an isolated scan (False: zero-padded Love kernel).
+    Raises ValueError for bad input, RuntimeError if a load does not converge."""
+    stresses = np.asarray(stresses, dtype=float).ravel()
+    if stresses.size == 0 or not np.all(np.isfinite(stresses)) or np.any(stresses <= 0):
+        raise ValueError("closure_curve: stresses must be a non-empty list of finite values > 0 Pa")
+    kernel = Kernel.periodic if periodic else Kernel.non_periodic
+    solver = _cpp.ElasticContact(aperture, float(composite_modulus), kernel,
+                                 _cpp.ContactOptions(tolerance, maximum_iterations))
+    rows, cols = aperture.shape
+    states, pressure, gap = [], [], []
+    for i, s in enumerate(stresses):
+        st, p, g = solver.solve(float(s), keep_fields, rows, cols)
+        if not st.converged:
+            raise RuntimeError(f"closure_curve: load {i} (σ = {s:g} Pa) did not converge in "
+                               f"{maximum_iterations} iterations (last change "
+                               f"{st.relative_change:.2e}, tolerance {tolerance:g})")
+        log.info("BEM σ = %.4g MPa: Δ = %.5g mm, A/A0 = %.4g, %d iterations", s * 1e-6,
+                 st.closure * 1e3, st.contact_area_ratio, st.iterations)
+        states.append(st)
+        if keep_fields:
+            pressure.append(p)
+            gap.append(g)
+
+    def column(name):
+        return np.array([getattr(st, name) for st in states])
+
+    return ClosureCurve(stress=stresses, closure=column("closure"), approach=column("approach"),
+                        contact_area_ratio=column("contact_area_ratio"),
+                        contact_patches=column("contact_patches"),
+                        iterations=column("iterations"),
+                        complementarity=column("complementarity"),
+                        minimum_gap=column("minimum_gap"),
+                        composite_modulus=float(composite_modulus),
+                        spacing=max(aperture.spacing_x, aperture.spacing_y),
+                        shape=(rows, cols), periodic=periodic, tolerance=tolerance,
+                        pressure=pressure if keep_fields else None,
+                        gap=gap if keep_fields else None, _states=states)
+
+
+def exact_elastic_law(curve: ClosureCurve, residual_stiffness: Optional[float] = None):
+    """The exact elastic law of the joint: a monotone C¹ TabulatedLaw through (0, 0) and the
+    curve's (Δ, σ) points (PCHIP slopes limited to the Fritsch-Carlson disc, a Hertzian onset
+    k(0+) = 0), with the exact derivative of that interpolant as tangent. Beyond the last load:
+    the table's linear continuation (status validity_limit); below 0: its opening branch with
+    `residual_stiffness` [Pa/m] (default 1e-6 σ_max/Δ_max)."""
+    rows, cols = curve.shape
+    kernel = Kernel.periodic if curve.periodic else Kernel.non_periodic
+    return _cpp.exact_elastic_law(curve._states, curve.composite_modulus, curve.spacing,
+                                  float(rows), float(cols), kernel, curve.tolerance,
+                                  float("nan") if residual_stiffness is None
+                                  else float(residual_stiffness))

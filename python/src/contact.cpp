@@ -1,0 +1,93 @@
+// Bindings of rockjoint::contact: the boundary-element contact reference (SI units). The
+// Python layer rockjoint/contact.py owns the curve object and the defaults.
+#include "array_helpers.hpp"
+
+#include <rockjoint/contact/exact_law.hpp>
+
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <memory>
+
+namespace py = pybind11;
+
+namespace rockjoint::python
+{
+using namespace rockjoint::contact;
+
+namespace
+{
+py::array_t<double> field(const std::vector<double>& v, std::size_t rows, std::size_t cols)
+{
+  if (v.empty())
+    return py::array_t<double>();
+  py::array_t<double> out({rows, cols});
+  std::copy(v.begin(), v.end(), out.mutable_data());
+  return out;
+}
+} // namespace
+
+void declare_contact(py::module_& m)
+{
+  py::enum_<Kernel>(m, "Kernel", "Half-space kernel of the contact reference")
+      .value("periodic", Kernel::periodic)
+      .value("non_periodic", Kernel::non_periodic);
+
+  py::class_<ContactState>(m, "ContactState", "The contact at one nominal stress (SI)")
+      .def_readonly("mean_pressure", &ContactState::mean_pressure, "σ [Pa]")
+      .def_readonly("approach", &ContactState::approach, "d [m], raw rigid approach")
+      .def_readonly("closure", &ContactState::closure, "Δ [m], net of bulk deformation")
+      .def_readonly("contact_area_ratio", &ContactState::contact_area_ratio, "A/A0 [-]")
+      .def_readonly("contact_patches", &ContactState::contact_patches)
+      .def_readonly("iterations", &ContactState::iterations)
+      .def_readonly("converged", &ContactState::converged)
+      .def_readonly("relative_change", &ContactState::relative_change)
+      .def_readonly("complementarity", &ContactState::complementarity, "max p g [Pa m]")
+      .def_readonly("minimum_gap", &ContactState::minimum_gap, "min g off contact [m]");
+
+  py::class_<ElasticContact>(m, "ElasticContact",
+                             "Frictionless elastic contact of an aperture field (Polonsky-Keer)")
+      .def(py::init<const topography::Surface&, double, Kernel, ContactOptions>(),
+           py::arg("aperture"), py::arg("composite_modulus"), py::arg("kernel"),
+           py::arg("options"))
+      .def(
+          "solve",
+          [](ElasticContact& c, double sigma, bool keep_fields, std::size_t rows, std::size_t cols)
+          {
+            ContactState st;
+            {
+              py::gil_scoped_release release;
+              st = c.solve(sigma, keep_fields);
+            }
+            return py::make_tuple(st, field(st.pressure, rows, cols), field(st.gap, rows, cols));
+          },
+          py::arg("mean_pressure"), py::arg("keep_fields"), py::arg("rows"), py::arg("cols"))
+      .def_property_readonly("bulk_compliance", &ElasticContact::bulk_compliance)
+      .def_property_readonly("valid_count", &ElasticContact::valid_count);
+
+  py::class_<ContactOptions>(m, "ContactOptions")
+      .def(py::init(
+               [](double tol, int its)
+               {
+                 ContactOptions o;
+                 o.tolerance = tol;
+                 o.maximum_iterations = its;
+                 return o;
+               }),
+           py::arg("tolerance") = ContactOptions{}.tolerance,
+           py::arg("maximum_iterations") = ContactOptions{}.maximum_iterations);
+
+  m.def(
+      "exact_elastic_law",
+      [](const std::vector<ContactState>& curve, double modulus, double spacing, double rows,
+         double cols, Kernel kernel, double tolerance, double residual_stiffness)
+      {
+        return std::make_shared<constitutive::TabulatedLaw>(exact_elastic_law(
+            curve, ContactSource{modulus, spacing, rows, cols, kernel, tolerance},
+            residual_stiffness));
+      },
+      py::arg("curve"), py::arg("composite_modulus"), py::arg("spacing"), py::arg("rows"),
+      py::arg("cols"), py::arg("kernel"), py::arg("tolerance"), py::arg("residual_stiffness"));
+}
+
+} // namespace rockjoint::python

@@ -1,0 +1,96 @@
+"""The boundary-element contact reference from Python: grid convergence on a band-limited
+surface, masked points, bad input, and the exact elastic law as a table (docs/contact.md)."""
+import numpy as np
+import pytest
+
+import rockjoint
+from rockjoint import contact
+from rockjoint import topography as topo
+
+E_STAR = rockjoint.composite_modulus(50e9, 0.25)
+STRESSES = np.array([1e6, 5e6, 20e6])
+
+
+def band_limited_aperture(n: int, side: float = 8e-3) -> topo.Surface:
+    """A smooth periodic aperture (a few long-wavelength cosines, amplitude ~10 µm), sampled
+    on n x n points: the same surface at every n, so refining the grid must converge."""
+    x = np.arange(n) * side / n
+    X, Y = np.meshgrid(x, x)
+    k = 2 * np.pi / side
+    s = (6e-6 * np.cos(k * X) + 4e-6 * np.cos(2 * k * Y + 0.3)
+         + 2e-6 * np.cos(k * (X + 2 * Y) + 1.1) + 1.5e-6 * np.sin(3 * k * X - k * Y))
+    return topo.Surface(s - s.min(), side / n)
+
+
+def test_closure_converges_under_grid_refinement():
+    closures = [contact.closure_curve(band_limited_aperture(n), E_STAR, STRESSES).closure
+                for n in (64, 128, 256)]
+    d1 = np.max(np.abs(closures[1] - closures[0]) / closures[2])
+    d2 = np.max(np.abs(closures[2] - closures[1]) / closures[2])
+    assert d2 < 0.5 * d1, (d1, d2)   # the change halves at least with each refinement
+    assert d2 < 5e-3
+
+
+def test_load_balance_gap_and_complementarity_on_a_rough_joint():
+    u, l = topo.mated_pair(topo.SelfAffineSpec(0.8, 1e-3), (128, 128), 0.25e-3, 2.5e-3, seed=4)
+    ap = topo.composite_topography(u, l).aperture
+    c = contact.closure_curve(ap, E_STAR, STRESSES, keep_fields=True)
+    assert np.all(np.diff(c.closure) > 0) and np.all(np.diff(c.contact_area_ratio) > 0)
+    for s, p, g, cmp in zip(STRESSES, c.pressure, c.gap, c.complementarity):
+        assert np.mean(p) == pytest.approx(s, rel=1e-12)
+        assert p.min() >= 0.0 and g.min() >= 0.0
+        assert np.all(g[p > 0] == 0.0) or np.max(g[p > 0]) < 1e-9 * c.closure[-1]
+        assert cmp < 1e-6 * s * c.closure[-1]
+    assert np.array_equal(c.closure, c.approach)   # periodic: no bulk term
+
+
+def test_non_periodic_closure_is_the_approach_net_of_the_patch_bulk_compliance():
+    ap = band_limited_aperture(64)
+    c = contact.closure_curve(ap, E_STAR, STRESSES, periodic=False)
+    solver = rockjoint._rockjoint.contact.ElasticContact(
+        ap, E_STAR, contact.Kernel.non_periodic, rockjoint._rockjoint.contact.ContactOptions())
+    # Independent bulk term: Boussinesq mean displacement of a uniformly loaded square of side
+    # L is (σ L/E*) · (4/π)·[asinh(1) + (1 - √2)/3] (Johnson 1985, mean of Love's solution).
+    side = 8e-3
+    mean_square = side / E_STAR * 4.0 / np.pi * (np.arcsinh(1.0) + (1.0 - np.sqrt(2.0)) / 3.0)
+    assert solver.bulk_compliance == pytest.approx(mean_square, rel=2e-3)
+    np.testing.assert_allclose(c.approach - c.closure, STRESSES * solver.bulk_compliance,
+                               rtol=1e-12)
+
+
+def test_masked_points_carry_no_pressure_and_bad_input_is_named():
+    ap = band_limited_aperture(64)
+    h = ap.heights.copy()
+    h[10:14, 20:30] = np.nan
+    masked = topo.Surface(h, ap.spacing_x)
+    c = contact.closure_curve(masked, E_STAR, [5e6], keep_fields=True)
+    assert np.all(np.isnan(c.pressure[0][10:14, 20:30]))
+    valid = ~np.isnan(h)
+    assert np.nanmean(c.pressure[0]) == pytest.approx(5e6, rel=1e-12)
+    assert valid.sum() == 64 * 64 - 40
+    with pytest.raises(ValueError, match="stresses"):
+        contact.closure_curve(ap, E_STAR, [1e6, -2e6])
+    with pytest.raises(ValueError, match="composite_modulus"):
+        contact.closure_curve(ap, -1.0, [1e6])
+    nan = topo.Surface(np.full((8, 8), np.nan), 1e-4)
+    with pytest.raises(ValueError, match="valid"):
+        contact.closure_curve(nan, E_STAR, [1e6])
+
+
+def test_exact_elastic_law_passes_through_the_curve_and_is_monotone():
+    u, l = topo.mated_pair(topo.SelfAffineSpec(0.8, 1e-3), (128, 128), 0.25e-3, 2.5e-3, seed=2)
+    ap = topo.composite_topography(u, l).aperture
+    stresses = np.geomspace(0.1e6, 30e6, 15)
+    c = contact.closure_curve(ap, E_STAR, stresses)
+    law = contact.exact_elastic_law(c)
+    assert isinstance(law, rockjoint.TabulatedLaw) and law.source_model == "bem_elastic_contact"
+    np.testing.assert_allclose(law.normal_stress(c.closure), stresses, rtol=1e-12)
+    d = np.linspace(1e-9, c.closure[-1], 2000)
+    sigma, k, _, _ = law.evaluate(d)
+    assert np.all(np.diff(sigma) > 0) and np.all(k > 0)
+    # The tangent is the derivative of the interpolant (central differences).
+    mid = d[1:-1]
+    fd = (law.normal_stress(mid + 1e-10) - law.normal_stress(mid - 1e-10)) / 2e-10
+    np.testing.assert_allclose(fd, law.normal_stiffness(mid), rtol=1e-4)
+    for s in (0.5e6, 3e6, 12e6):
+        assert law.normal_stress(law.closure_at_stress(s)) == pytest.approx(s, rel=1e-10)
