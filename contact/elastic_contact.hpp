@@ -84,6 +84,8 @@ private:
   double _last_stress = 0.0;
   double _bulk_compliance = 0.0;
   std::vector<double> _u, _t, _r, _previous; // work arrays
+  std::vector<std::size_t> _contact;         // the contact set S of an iteration
+  std::vector<double> _t_contact, _r_contact; // t and K t on S
 };
 
 } // namespace rockjoint::contact

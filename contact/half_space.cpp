@@ -90,6 +90,11 @@ HalfSpace::HalfSpace(std::size_t rows, std::size_t cols, double spacing_x, doubl
         f.kernel[i * half + j] = q > 0.0 ? 2.0 / (_modulus * q) * scale : 0.0;
       }
     }
+    // Real-space kernel: the displacement field of a unit nodal pressure at node (0, 0).
+    std::copy_n(reinterpret_cast<const double*>(f.kernel.data()), 2 * f.kernel.size(),
+                reinterpret_cast<double*>(f.spectrum));
+    fftw_execute(f.backward);
+    _kernel_real.assign(f.real, f.real + f.m0 * f.m1);
     return;
   }
   // Love's influence coefficients on the wrapped 2n grid (offsets -n..n-1), transformed once.
@@ -102,6 +107,7 @@ HalfSpace::HalfSpace(std::size_t rows, std::size_t cols, double spacing_x, doubl
       f.real[i * f.m1 + j] = influence(dx, dy);
     }
   }
+  _kernel_real.assign(f.real, f.real + f.m0 * f.m1);
   fftw_execute(f.forward);
   for (std::size_t k = 0; k < f.kernel.size(); ++k)
     f.kernel[k] = std::complex<double>(f.spectrum[k][0], f.spectrum[k][1]) * scale;
@@ -117,6 +123,34 @@ double HalfSpace::influence(double dx, double dy) const
   const double sum = love_primitive(dx + a, dy + b) - love_primitive(dx + a, dy - b)
                      - love_primitive(dx - a, dy + b) + love_primitive(dx - a, dy - b);
   return sum / (std::numbers::pi * _modulus);
+}
+
+void HalfSpace::displacement_on(std::span<const std::size_t> nodes, std::span<const double> values,
+                                std::span<double> out) const
+{
+  const std::ptrdiff_t m0 = std::ptrdiff_t(_fft->m0), m1 = std::ptrdiff_t(_fft->m1);
+  const std::size_t m = nodes.size();
+  thread_local std::vector<std::ptrdiff_t> row, col;
+  row.resize(m);
+  col.resize(m);
+  for (std::size_t b = 0; b < m; ++b)
+  {
+    row[b] = std::ptrdiff_t(nodes[b] / _cols);
+    col[b] = std::ptrdiff_t(nodes[b] % _cols);
+  }
+  const double* kernel = _kernel_real.data();
+  for (std::size_t a = 0; a < m; ++a)
+  {
+    double sum = 0.0;
+    for (std::size_t b = 0; b < m; ++b)
+    {
+      std::ptrdiff_t di = row[a] - row[b], dj = col[a] - col[b]; // wrapped offset
+      di += di < 0 ? m0 : 0;
+      dj += dj < 0 ? m1 : 0;
+      sum += kernel[di * m1 + dj] * values[b];
+    }
+    out[a] = sum;
+  }
 }
 
 void HalfSpace::displacement(std::span<const double> pressure, std::span<double> displacement)

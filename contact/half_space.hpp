@@ -46,9 +46,15 @@ public:
   /// pressures `pressure` [Pa] (rows·cols, row-major). Not thread-safe (shared FFT buffers).
   void displacement(std::span<const double> pressure, std::span<double> displacement);
 
-  /// Displacement [m] at node (0, 0)'s cell centre of a unit pressure on the cell of node (i, j)
-  /// — the non-periodic influence coefficient (Love); for checks and the bulk term.
+  /// Displacement [m] at offset (dx, dy) from the centre of a cell carrying unit pressure:
+  /// the non-periodic influence coefficient (Love's closed form).
   double influence(double dx, double dy) const;
+
+  /// u = K p restricted to a node set: out[a] = Σ_b K(node_a - node_b) values[b], by direct
+  /// summation over the real-space kernel (|nodes|² operations): cheaper than the FFT while the
+  /// set is small (a contact set of a few per cent at most). Same K as displacement().
+  void displacement_on(std::span<const std::size_t> nodes, std::span<const double> values,
+                       std::span<double> out) const;
 
   std::size_t rows() const { return _rows; }
   std::size_t cols() const { return _cols; }
@@ -57,6 +63,7 @@ public:
 
 private:
   struct Fft; // FFTW plans and buffers (kept out of the header)
+  std::vector<double> _kernel_real; // K at every wrapped offset of the transform grid
   std::size_t _rows, _cols;
   double _hx, _hy, _modulus;
   Kernel _kernel;
