@@ -65,7 +65,9 @@ def joint_law():
     say(f"composite topography of the {n}x{n} scan at h = {SPACING * 1e3:g} mm:")
     say(f"  η = {params.summit_density * 1e-6:.3f} /mm², β = {params.summit_radius * 1e3:.3f} mm, "
         f"σ_s = {params.summit_height_std * 1e3:.4f} mm, E* = {params.composite_modulus * 1e-9:.2f} GPa")
-    laws = rockjoint.laws.laws_from_topography(params)  # GW, Tang, Tang & Jiao (I1 over Tang)
+    # GW, Tang, Tang & Jiao and the recommended law, seated at the measured first contact.
+    laws = rockjoint.laws.laws_from_topography(params, summits=analysis, empirical=False)
+    say(f"  law for the FE model: {rockjoint.laws.RECOMMENDATION}")
     return laws, params
 
 
@@ -113,7 +115,7 @@ def main():
 
     # %% 1. Micro: the joint's roughness gives its closure law ------------------------------
     laws, params = joint_law()
-    law = laws["tang_jiao"].law
+    law = laws[rockjoint.laws.RECOMMENDED].law
     table = tabulated(law, out("granite_tang_jiao.rjt"))
 
     # %% 2. Macro: jointed and intact cubes under the same loads ----------------------------
@@ -170,7 +172,7 @@ def plot(rows, laws, path):
     stress = np.linspace(0.0, MAX_STRESS, 200)[1:]
     for key, named in laws.items():
         # At A/A0 ~ 1 % Tang & Jiao lies on Tang (theory §5): dashed, so both stay visible.
-        in_fe = key == "tang_jiao"
+        in_fe = key == rockjoint.laws.RECOMMENDED
         a2.plot(np.r_[0, named.law.closure_at_stress(stress)] * 1e3, np.r_[0, stress] * 1e-6,
                 "--" if in_fe else "-", lw=2 if in_fe else 1.5,
                 label=f"{named.label} law" + (" (table in the FE model)" if in_fe else ""))

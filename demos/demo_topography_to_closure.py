@@ -139,7 +139,8 @@ def main():
             # colour = model, solid = Gaussian (η, β, σ_s), dashed = measured summit list;
             # Tang & Jiao is drawn dotted on top: at A/A0 ~ 1 % it sits on the Tang curve.
             empirical, geometric = "empirical" in key, "geometric" in key
-            colour = {"greenwood_williamson": "C0", "tang_substrate": "C1", "tang_jiao": "C2"}[
+            colour = {"greenwood_williamson": "C0", "tang_substrate": "C1", "tang_jiao": "C2",
+                      rockjoint.laws.RECOMMENDED: "C4"}[
                 key.replace("_empirical", "").replace("_geometric", "")]
             style = ":" if key.startswith("tang_jiao") else ("--" if empirical else "-")
             if geometric:

@@ -122,8 +122,9 @@ def make_law(model: str, parameters: Optional[AsperityParameters] = None, **opti
     ``distribution`` ("gaussian", "exponential" or an empirical (heights, radii, area) list, for
     which only the composite modulus of `parameters` is used), ``deflection_coefficient``,
     ``base_radius``, ``reference_separation``, ``seating_stress``, ``tolerance``; "tang_jiao"
-    also ``variant``, ``overlap_closure``/``overlap_area_ratio``, and ``base`` (a ready base law,
-    default Tang's substrate law from the same options). Empirical models take their own
+    also ``variant``, ``overlap_closure``/``overlap_area_ratio``, ``cell_radius`` /
+    ``cell_height_std`` (R and σ of Eq. (1); default β and σ_s of the base), and ``base`` (a
+    ready base law, default Tang's substrate law from the same options). Empirical models take their own
     constructor's keywords (e.g. make_law("barton_bandis", initial_normal_stiffness=2e10,
     maximum_closure=3e-4)).
     """
@@ -133,8 +134,8 @@ def make_law(model: str, parameters: Optional[AsperityParameters] = None, **opti
         cls = {"barton_bandis": BartonBandis, "logarithmic": LogarithmicLaw,
                "exponential": ExponentialLaw}[model]
         return cls(**options)
-    tang_jiao = {k: options.pop(k) for k in ("variant", "overlap_closure", "overlap_area_ratio")
-                 if k in options}
+    tang_jiao = {k: options.pop(k) for k in ("variant", "overlap_closure", "overlap_area_ratio",
+                                             "cell_radius", "cell_height_std") if k in options}
     base = options.pop("base", None)
     if model != "tang_jiao" and (tang_jiao or base is not None):
         raise ValueError(f"{model}: {', '.join(list(tang_jiao) + ['base'] * (base is not None))} "
@@ -160,6 +161,15 @@ def make_law(model: str, parameters: Optional[AsperityParameters] = None, **opti
     for k in ("overlap_closure", "overlap_area_ratio"):
         if k in tang_jiao:
             tang_jiao[k] = np.asarray(tang_jiao[k], dtype=float)
+    # Eq. (1) inputs of the interaction cell: by default R = β and σ_s of the base law; a
+    # choice documented in theory §5 lets either be replaced (e.g. the surface rms for σ).
+    radius, height_std = tang_jiao.pop("cell_radius", None), tang_jiao.pop("cell_height_std", None)
+    if radius is not None or height_std is not None:
+        stats = base.asperity_parameters
+        tang_jiao.update(composite_modulus=stats.composite_modulus,
+                         radius=stats.summit_radius if radius is None else radius,
+                         summit_height_std=(stats.summit_height_std if height_std is None
+                                            else height_std))
     return TangJiao(base, **tang_jiao)
 
 
@@ -228,22 +238,49 @@ def _table_options(path: str, doc: dict) -> dict:
 
 
 # ---- from a topography -------------------------------------------------------------------------
+#: The law recommended for a joint described by its topography, and why. Evidence:
+#: bench/results/accuracy_ladder.md (every law against the exact elastic contact, BEM, of
+#: the same walls on the project's synthetic granite-like and sandstone-like joints).
+RECOMMENDED = "tang_jiao_i2_gw"
+RECOMMENDATION = (
+    "Tang & Jiao I2 over GW, seated at the measured first contact: of every law rockjoint offers "
+    "it has the smallest mean closure error against exact elastic contact (BEM) of the same "
+    "walls on the project's synthetic joints (loads 1-30 MPa: sandstone-like 1.9 %, increment "
+    "-4.4 %; granite-like 7.3 %, increment -12.9 %), at ~7 µs per evaluation "
+    "(bench/results/accuracy_ladder.md). It misses the 3 % target on well-mated joints.")
+
+
+def first_contact_separation(summits, parameters: AsperityParameters,
+                             distribution: str = "gaussian") -> float:
+    """Seating datum d0 [m] of a parametric law at the measured first contact: the highest
+    summit of `summits` (a topography.TopographyAnalysis) above the mean summit height, in the
+    law's height frame (Gaussian heights: mean summit at 0; exponential: at σ_s)."""
+    z = np.asarray(summits.summits["heights"], dtype=float)
+    if z.size < 2:
+        raise ValueError(f"{z.size} summit(s): no first-contact datum")
+    mean_in_frame = parameters.summit_height_std if distribution == "exponential" else 0.0
+    return float(z.max() - z.mean()) + mean_in_frame
+
+
 def laws_from_topography(parameters: AsperityParameters, *, summits=None,
+                         seating: str = "first_contact", empirical: bool = True,
                          overlap: Optional[Tuple[Sequence[float], Sequence[float]]] = None,
                          distribution: str = "gaussian", variant: str = "I1",
                          **substrate) -> Dict[str, NamedLaw]:
     """The asperity laws of one joint from its measured statistics, keyed by identifier:
 
-    - "greenwood_williamson", "tang_substrate", "tang_jiao" (variant over Tang; elastic area in
-      Eq. (2)) on the parametric height `distribution`;
-    - with `summits` (a topography.TopographyAnalysis): the same three over the measured summit
-      list, keys with suffix "_empirical" (each summit its own radius);
+    - "greenwood_williamson", "tang_substrate", "tang_jiao" (`variant` over Tang; elastic area
+      in Eq. (2)) on the parametric height `distribution`, and RECOMMENDED =
+      "tang_jiao_i2_gw" (I2 over GW), all seated by `seating`: "first_contact" (default: the
+      measured highest summit, needs `summits`; the BEM datum, see RECOMMENDATION) or
+      "mean+3.5" (mean summit height + 3.5 σ_s, the laws' own default);
+    - with `summits` (a topography.TopographyAnalysis) and `empirical`: GW, Tang and Tang &
+      Jiao over the measured summit list, keys with suffix "_empirical" (each summit its own
+      radius, seated at the highest);
     - with `summits` and `overlap` (topography.overlap_curve(joint.aperture)):
       "tang_jiao_empirical_geometric", whose Eq. (2) uses fraction{e <= Δ}.
 
     `substrate`: deflection_coefficient, base_radius (the laws' defaults unless given).
-    Seating: the laws' defaults — parametric d0 = mean summit height + 3.5 σ_s; empirical: the
-    highest summit (first contact), which is also the datum of the overlap curve.
     """
     unknown = set(substrate) - {"deflection_coefficient", "base_radius"}
     if unknown:
@@ -251,26 +288,39 @@ def laws_from_topography(parameters: AsperityParameters, *, summits=None,
     if overlap is not None and summits is None:
         raise ValueError("overlap: the geometric overlap curve is measured from first contact; "
                          "give summits= too (the empirical laws share that datum)")
+    if seating == "first_contact":
+        if summits is None:
+            raise ValueError("seating='first_contact' needs summits= (the analysed topography "
+                             "gives the highest summit); or pass seating='mean+3.5'")
+        seat = {"reference_separation": first_contact_separation(summits, parameters,
+                                                                 distribution)}
+    elif seating == "mean+3.5":
+        seat = {}
+    else:
+        raise ValueError(f"seating {seating!r}: expected 'first_contact' or 'mean+3.5'")
     laws: Dict[str, NamedLaw] = {}
 
     def add(key, label, description, law):
         laws[key] = NamedLaw(key, label, law, description)
 
-    def family(suffix: str, label_suffix: str, dist):
-        gw = make_law("greenwood_williamson", parameters, distribution=dist)
-        tang = make_law("tang_substrate", parameters, distribution=dist, **substrate)
+    def family(suffix: str, label_suffix: str, options: dict):
+        gw = make_law("greenwood_williamson", parameters, **options)
+        tang = make_law("tang_substrate", parameters, **options, **substrate)
         add("greenwood_williamson" + suffix, "GW" + label_suffix, MODELS["greenwood_williamson"]
             .description, gw)
         add("tang_substrate" + suffix, "Tang" + label_suffix, MODELS["tang_substrate"].description,
             tang)
         add("tang_jiao" + suffix, "Tang & Jiao" + label_suffix, MODELS["tang_jiao"].description,
             make_law("tang_jiao", base=tang, variant=variant))
-        return tang
+        return gw, tang
 
-    family("", "", distribution)
-    if summits is not None:
+    gw, _ = family("", "", dict(distribution=distribution, **seat))
+    add(RECOMMENDED, "Tang & Jiao I2 over GW (recommended)", RECOMMENDATION,
+        make_law("tang_jiao", base=gw, variant="I2"))
+    if summits is not None and empirical:
         from .topography import empirical_summits
-        tang = family("_empirical", " (empirical summits)", empirical_summits(summits))
+        _, tang = family("_empirical", " (empirical summits)",
+                         dict(distribution=empirical_summits(summits)))
         if overlap is not None:
             closure, ratio = overlap
             add("tang_jiao_empirical_geometric", "Tang & Jiao (empirical, geometric area)",

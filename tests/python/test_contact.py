@@ -94,3 +94,29 @@ def test_exact_elastic_law_passes_through_the_curve_and_is_monotone():
     np.testing.assert_allclose(fd, law.normal_stiffness(mid), rtol=1e-4)
     for s in (0.5e6, 3e6, 12e6):
         assert law.normal_stress(law.closure_at_stress(s)) == pytest.approx(s, rel=1e-10)
+
+
+def test_cli_prints_the_bem_reference_beside_the_laws(tmp_path):
+    import subprocess
+    import sys
+    import os
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in sys.path if p), MPLBACKEND="Agg")
+    run = lambda *a: subprocess.run([sys.executable, "-m", "rockjoint", "topography", *a],  # noqa: E731
+                                    cwd=tmp_path, env=env, capture_output=True, text=True)
+    r = run("synth", "--rms", "1.0", "--shape", "64", "64", "--matedness", "2.5", "--upper",
+            "u.txt", "--lower", "l.txt")
+    assert r.returncode == 0, r.stderr
+    r = run("analyse", "u.txt", "l.txt", "--young", "50", "--reference", "bem", "--bem-kernel",
+            "periodic", "--figures", "figs", "--resample", "--json", "p.json")
+    assert r.returncode == 0, r.stderr
+    assert "exact elastic contact (BEM, periodic)" in r.stdout and "recommended:" in r.stdout
+    assert (tmp_path / "figs" / "closure_curves.png").stat().st_size > 10_000
+    import json
+    report = json.loads((tmp_path / "p.json").read_text())
+    # The printed BEM closure is the library's own closure_curve on the same aperture.
+    u = topo.read_surface(tmp_path / "u.txt")
+    l_ = topo.read_surface(tmp_path / "l.txt")
+    ap = topo.composite_topography(u, l_).aperture
+    ref = contact.closure_curve(ap, E_STAR, np.array([1, 3, 10, 30]) * 1e6).closure
+    np.testing.assert_allclose(list(report["bem_closure_mm"].values()),
+                               ref * 1e3, rtol=1e-10)

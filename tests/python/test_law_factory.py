@@ -91,7 +91,7 @@ def test_laws_from_topography_are_named_objects_keyed_by_identifier():
     assert params.sampling_interval == 0.5e-3
     laws = rl.laws_from_topography(params, summits=result,
                                    overlap=topo.overlap_curve(joint.aperture))
-    assert set(laws) == {"greenwood_williamson", "tang_substrate", "tang_jiao",
+    assert set(laws) == {"greenwood_williamson", "tang_substrate", "tang_jiao", rl.RECOMMENDED,
                          "greenwood_williamson_empirical", "tang_substrate_empirical",
                          "tang_jiao_empirical", "tang_jiao_empirical_geometric"}
     for key, named in laws.items():
@@ -99,3 +99,26 @@ def test_laws_from_topography_are_named_objects_keyed_by_identifier():
         assert isinstance(named.law, rockjoint.ClosureLaw)
     with pytest.raises(ValueError, match="give summits= too"):
         rl.laws_from_topography(params, overlap=topo.overlap_curve(joint.aperture))
+
+
+def test_topography_laws_are_seated_at_the_measured_first_contact_by_default():
+    u, l = topo.mated_pair(topo.SelfAffineSpec(0.8, 1e-3), (96, 96), 0.5e-3, 2.5e-3, seed=5)
+    result = topo.analyse(topo.composite_topography(u, l).composite)
+    params = topo.closure_parameters(result, young=50e9, poisson=0.25)
+    z = result.summits["heights"]
+    d = np.linspace(1e-6, 1e-4, 6)
+    first = rl.laws_from_topography(params, summits=result, empirical=False)
+    seated = rockjoint.GreenwoodWilliamson(params.composite_modulus, params.summit_density,
+                                           params.summit_radius, params.summit_height_std,
+                                           reference_separation=z.max() - z.mean())
+    np.testing.assert_allclose(first["greenwood_williamson"].law.normal_stress(d),
+                               seated.normal_stress(d), rtol=1e-14)
+    old = rl.laws_from_topography(params, seating="mean+3.5")
+    default = rockjoint.GreenwoodWilliamson(params.composite_modulus, params.summit_density,
+                                            params.summit_radius, params.summit_height_std)
+    np.testing.assert_allclose(old["greenwood_williamson"].law.normal_stress(d),
+                               default.normal_stress(d), rtol=1e-14)
+    assert set(first) == {"greenwood_williamson", "tang_substrate", "tang_jiao", rl.RECOMMENDED}
+    assert "bench/results/accuracy_ladder.md" in first[rl.RECOMMENDED].description
+    with pytest.raises(ValueError, match="needs summits="):
+        rl.laws_from_topography(params)

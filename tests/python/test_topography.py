@@ -210,8 +210,12 @@ def test_closure_laws_take_the_measured_parameters():
     named = rockjoint.laws.laws_from_topography(params, summits=result,
                                                 overlap=topo.overlap_curve(joint.aperture))
     laws = {key: n.law for key, n in named.items()}
+    # Seated at the measured first contact (the default): the highest summit above the mean
+    # summit height, the Gaussian law's frame.
+    z = result.summits["heights"]
     reference = rockjoint.GreenwoodWilliamson(e_star, st.summit_density, st.summit_radius,
-                                              st.summit_height_std)
+                                              st.summit_height_std,
+                                              reference_separation=z.max() - z.mean())
     d = np.linspace(1e-6, 0.1e-3, 7)
     np.testing.assert_allclose(laws["greenwood_williamson"].normal_stress(d), reference.normal_stress(d),
                                rtol=1e-14)

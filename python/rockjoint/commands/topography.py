@@ -51,6 +51,12 @@ def add_parser(subparsers) -> None:
     a.add_argument("--geometric-area", action="store_true",
                    help="also Tang & Jiao over the measured summits with the geometric overlap "
                         "fraction{e <= Δ} as the contact area of Eq. (2)")
+    a.add_argument("--reference", choices=("bem",), default=None,
+                   help="also solve the exact elastic contact of the walls (boundary elements) "
+                        "and print every law's closure error against it (needs --young)")
+    a.add_argument("--bem-kernel", choices=("periodic", "non-periodic"), default="non-periodic",
+                   help="half-space kernel of --reference bem: non-periodic for a measured scan "
+                        "(default), periodic for a synthetic periodic pair")
     a.add_argument("--json", help="write the parameters to this JSON file")
     a.set_defaults(topography_func=_analyse)
     p.set_defaults(func=run, topography_parser=p)
@@ -89,7 +95,7 @@ def _synth(args) -> int:
 
 def _analyse(args) -> int:
     from rockjoint import topography as topo
-    from rockjoint.laws import laws_from_topography
+    from rockjoint.laws import RECOMMENDATION, laws_from_topography
     read = dict(spacing=args.spacing, height_unit=args.height_unit)
     upper = topo.read_surface(args.upper, **read)
     if args.lower:
@@ -140,20 +146,59 @@ def _analyse(args) -> int:
               f" ν {args.poisson})")
         overlap = topo.overlap_curve(joint.aperture) if args.geometric_area else None
         laws = laws_from_topography(params, summits=result, overlap=overlap)
-        stresses = [s * 1e6 for s in args.stresses]
-        print(f"{'law':<42}" + "".join(f"{f'Δ @ {s:g} MPa [mm]':>18}" for s in args.stresses))
+        stresses = np.array(sorted(args.stresses)) * 1e6
+        curves = {key: _closures(named.law, stresses) for key, named in laws.items()}
+        bem = None
+        if args.reference == "bem":
+            from rockjoint import contact
+            bem = contact.closure_curve(joint.aperture, params.composite_modulus, stresses,
+                                        periodic=args.bem_kernel == "periodic").closure
+            report["bem_closure_mm"] = dict(zip(map(str, sorted(args.stresses)), bem * 1e3))
+        print(f"\nrecommended: {RECOMMENDATION}")
+        print(f"\nclosure Δ [mm] (laws seated at the measured first contact)"
+              + (" and relative error against the BEM reference" if bem is not None else ""))
+        print(f"{'law':<42}" + "".join(f"{f'{s:g} MPa':>16}" for s in sorted(args.stresses)))
+        if bem is not None:
+            print(f"{'exact elastic contact (BEM, ' + args.bem_kernel + ')':<42}"
+                  + "".join(f"{v * 1e3:>16.4g}" for v in bem))
         report["closure_mm"] = {}
         for key, named in laws.items():
-            row = []
-            for s in stresses:
-                try:
-                    row.append(float(named.law.closure_at_stress(s)) * 1e3)
-                except (ValueError, RuntimeError, ArithmeticError):
-                    row.append(float("nan"))
-            report["closure_mm"][key] = dict(zip(map(str, args.stresses), row))
-            print(f"{named.label:<42}" + "".join(f"{v:>18.4g}" for v in row))
+            row = curves[key]
+            report["closure_mm"][key] = dict(zip(map(str, sorted(args.stresses)), row * 1e3))
+            cells = [f"{v * 1e3:.4g}" + (f" ({100 * (v / b - 1):+.1f}%)" if bem is not None else "")
+                     for v, b in zip(row, bem if bem is not None else row)]
+            print(f"{named.label:<42}" + "".join(f"{c:>16}" for c in cells))
+        if args.figures:
+            print("pictures: " + _plot_closure(os.path.join(args.figures, "closure_curves.png"),
+                                               laws, curves, stresses, bem))
     if args.json:
         with open(args.json, "w") as fh:
             json.dump(report, fh, indent=2)
         print(f"parameters: {args.json}")
     return 0
+
+
+def _closures(law, stresses) -> np.ndarray:
+    out = np.full(len(stresses), np.nan)
+    for i, s in enumerate(stresses):
+        try:
+            out[i] = law.closure_at_stress(s)
+        except (ValueError, RuntimeError, ArithmeticError):   # beyond a law's validity limit
+            pass
+    return out
+
+
+def _plot_closure(path, laws, curves, stresses, bem) -> str:
+    """Closure curves of the laws (and the BEM reference) in mm against MPa."""
+    from rockjoint.laws import RECOMMENDED
+    from rockjoint.topography import _pyplot, _save
+    plt = _pyplot()
+    fig, ax = plt.subplots(figsize=(7, 5))
+    for key, named in laws.items():
+        ax.plot(np.r_[0, curves[key]] * 1e3, np.r_[0, stresses] * 1e-6,
+                "-" if key == RECOMMENDED else "--", lw=2 if key == RECOMMENDED else 1,
+                label=named.label)
+    if bem is not None:
+        ax.plot(np.r_[0, bem] * 1e3, np.r_[0, stresses] * 1e-6, "ko-", label="exact elastic (BEM)")
+    return _save(plt, fig, ax, path, "closure: laws against the exact elastic contact",
+                 "closure Δ [mm]", "normal stress σ [MPa]")
