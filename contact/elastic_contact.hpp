@@ -84,8 +84,10 @@ private:
   double _last_stress = 0.0;
   double _bulk_compliance = 0.0;
   std::vector<double> _u, _t, _r, _previous; // work arrays
-  std::vector<std::size_t> _contact;         // the contact set S of an iteration
-  std::vector<double> _t_contact, _r_contact; // t and K t on S
+  std::vector<std::size_t> _contact;  // the contact set S of an iteration
+  std::vector<std::size_t> _entering; // points re-entering contact in an iteration
+  std::vector<unsigned char> _member; // 1 on S (the list's membership, for the full-grid scan)
+  std::vector<double> _gap_contact, _t_contact, _r_contact; // g, t and K t on S
 };
 
 } // namespace rockjoint::contact

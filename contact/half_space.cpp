@@ -162,18 +162,38 @@ void HalfSpace::displacement(std::span<const double> pressure, std::span<double>
                                 + std::to_string(pressure.size()) + " and "
                                 + std::to_string(displacement.size()) + ")");
   Fft& f = *_fft;
-  if (f.m0 != _rows)
-    std::fill(f.real, f.real + f.m0 * f.m1, 0.0); // zero padding
-  for (std::size_t i = 0; i < _rows; ++i)
-    std::copy_n(pressure.data() + i * _cols, _cols, f.real + i * f.m1);
-  fftw_execute(f.forward);
+  // Periodic kernel: the caller's arrays have the transform's layout, so FFTW reads and writes
+  // them directly (new-array execute; r2c keeps its input) when they are aligned like the
+  // planning buffers; otherwise, and for the zero-padded kernel, through the buffer.
+  const bool direct = f.m0 == _rows
+                      && fftw_alignment_of(const_cast<double*>(pressure.data()))
+                             == fftw_alignment_of(f.real)
+                      && fftw_alignment_of(displacement.data()) == fftw_alignment_of(f.real);
+  if (direct)
+    fftw_execute_dft_r2c(f.forward, const_cast<double*>(pressure.data()), f.spectrum);
+  else
+  {
+    if (f.m0 != _rows)
+      std::fill(f.real, f.real + f.m0 * f.m1, 0.0); // zero padding
+    for (std::size_t i = 0; i < _rows; ++i)
+      std::copy_n(pressure.data() + i * _cols, _cols, f.real + i * f.m1);
+    fftw_execute(f.forward);
+  }
+  // Spectrum × kernel written out: std::complex's operator* checks for NaN (C99 Annex G)
+  // at a cost that shows on large grids.
   const std::size_t m = f.kernel.size();
+  const double* kernel = reinterpret_cast<const double*>(f.kernel.data());
   for (std::size_t k = 0; k < m; ++k)
   {
-    const std::complex<double> c
-        = std::complex<double>(f.spectrum[k][0], f.spectrum[k][1]) * f.kernel[k];
-    f.spectrum[k][0] = c.real();
-    f.spectrum[k][1] = c.imag();
+    const double a = f.spectrum[k][0], b = f.spectrum[k][1];
+    const double c = kernel[2 * k], d = kernel[2 * k + 1];
+    f.spectrum[k][0] = a * c - b * d;
+    f.spectrum[k][1] = a * d + b * c;
+  }
+  if (direct)
+  {
+    fftw_execute_dft_c2r(f.backward, f.spectrum, displacement.data());
+    return;
   }
   fftw_execute(f.backward);
   for (std::size_t i = 0; i < _rows; ++i)
