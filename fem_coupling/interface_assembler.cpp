@@ -36,10 +36,14 @@ InterfaceAssembler::InterfaceAssembler(int gdim, int degree, QuadratureRule rule
   check_size(vertex_coordinates.size(), np * gdim * gdim, "vertex_coordinates");
   check_size(minus_interior_points.size(), np * gdim, "minus_interior_points");
   for (std::size_t i = 0; i < np * nn; ++i)
+  {
     if (_minus_nodes[i] < 0 || _plus_nodes[i] < 0 || _minus_nodes[i] == _plus_nodes[i])
       throw std::invalid_argument("InterfaceAssembler: pair " + std::to_string(i / nn)
                                   + " has a negative node index or a node shared by both "
                                     "sides (joint nodes must be split)");
+    const auto largest = static_cast<std::size_t>(std::max(_minus_nodes[i], _plus_nodes[i]));
+    _minimum_local_size = std::max(_minimum_local_size, (largest + 1) * std::size_t(gdim));
+  }
 
   for (const auto& [tag, b] : _behaviours)
     validate(b, "tag " + std::to_string(tag));
@@ -111,8 +115,21 @@ std::array<double, 3> InterfaceAssembler::local_jump(std::int32_t p, int q,
   return local;
 }
 
+void InterfaceAssembler::check_local_array(const char* who, const char* array,
+                                           std::size_t size) const
+{
+  if (size < _minimum_local_size)
+    throw std::invalid_argument(std::string("InterfaceAssembler::") + who + ": '" + array
+                                + "' has " + std::to_string(size)
+                                + " entries; the joint pairs address local dofs up to "
+                                + std::to_string(_minimum_local_size)
+                                + " (the local array of the function space, ghosts included)");
+}
+
 bool InterfaceAssembler::assemble_residual(std::span<const double> u, std::span<double> residual)
 {
+  check_local_array("assemble_residual", "u", u.size());
+  check_local_array("assemble_residual", "residual", residual.size());
   const int nn = _quadrature.num_nodes, nq = _quadrature.num_points();
   bool finite = true;
   for (std::int32_t p = 0; p < num_pairs(); ++p)
@@ -162,6 +179,14 @@ void InterfaceAssembler::update_state(std::span<const double> u)
 void InterfaceAssembler::pair_matrix(std::int32_t p, std::span<const double> u,
                                      std::span<double> matrix) const
 {
+  check_local_array("pair_matrix", "u", u.size());
+  if (p < 0 || p >= num_pairs())
+    throw std::out_of_range("InterfaceAssembler::pair_matrix: pair " + std::to_string(p)
+                            + " is not in [0, " + std::to_string(num_pairs()) + ")");
+  if (matrix.size() < static_cast<std::size_t>(pair_size()) * pair_size())
+    throw std::invalid_argument("InterfaceAssembler::pair_matrix: 'matrix' has "
+                                + std::to_string(matrix.size()) + " entries; pair_size()² = "
+                                + std::to_string(pair_size() * pair_size()) + " are needed");
   const int nn = _quadrature.num_nodes, nq = _quadrature.num_points(), g = _gdim;
   const int n = pair_size();
   std::fill(matrix.begin(), matrix.begin() + n * n, 0.0);
@@ -204,6 +229,7 @@ void InterfaceAssembler::pair_matrix(std::int32_t p, std::span<const double> u,
 
 double InterfaceAssembler::maximum_closure_ratio(std::span<const double> u) const
 {
+  check_local_array("maximum_closure_ratio", "u", u.size());
   double ratio = 0.0;
   for_each_limited_point(
       [&](std::int32_t p, int q, double limit)
@@ -218,6 +244,8 @@ double InterfaceAssembler::admissible_step_length(std::span<const double> u,
                                                   std::span<const double> du,
                                                   double fraction) const
 {
+  check_local_array("admissible_step_length", "u", u.size());
+  check_local_array("admissible_step_length", "du", du.size());
   double alpha = 1.0;
   for_each_limited_point(
       [&](std::int32_t p, int q, double limit)

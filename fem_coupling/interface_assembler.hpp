@@ -56,6 +56,12 @@ public:
 
   /// Unrolled local dof indices of pair p (minus nodes, then plus nodes; node-major).
   void pair_dofs(std::int32_t p, std::span<std::int32_t> dofs) const;
+  /// Entries a local (ghosted, unrolled) array must have at least: (largest node index + 1)·gdim.
+  std::size_t minimum_local_size() const { return _minimum_local_size; }
+  /// Throw std::invalid_argument naming `who`, `array` and both sizes unless `size` >=
+  /// minimum_local_size(). Every public method that reads or writes a local array calls it once
+  /// (API boundary; nothing is checked inside the loops).
+  void check_local_array(const char* who, const char* array, std::size_t size) const;
 
   /// Add the interface residual at displacement `u` into `residual` (both local, unrolled,
   /// ghosts included; call before the reverse ghost update) and refresh the point state.
@@ -114,6 +120,7 @@ private:
   }
 
   int _gdim;
+  std::size_t _minimum_local_size = 0;
   FacetQuadrature _quadrature;
   std::vector<std::int32_t> _minus_nodes, _plus_nodes, _tags;
   std::vector<LocalFrame> _frames;

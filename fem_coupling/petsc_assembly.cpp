@@ -11,6 +11,9 @@ void assemble_interface_matrix(Mat A, const InterfaceAssembler& assembler,
                                std::span<const double> u,
                                std::span<const std::int8_t> constrained, double scale)
 {
+  assembler.check_local_array("assemble_interface_matrix", "u", u.size());
+  if (!constrained.empty())
+    assembler.check_local_array("assemble_interface_matrix", "constrained", constrained.size());
   const int n = assembler.pair_size();
   std::vector<std::int32_t> dofs(n);
   std::vector<PetscInt> rows(n);

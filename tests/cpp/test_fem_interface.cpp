@@ -244,3 +244,34 @@ TEST(FemInterface, MissingBehaviourIsAClearError)
                         "j"),
                std::invalid_argument);
 }
+
+TEST(FemInterface, LocalArraysShorterThanThePairsAddressAreRefusedWithNames)
+{
+  // One 2D pair on nodes 0..3: every local array needs (3 + 1)·2 = 8 entries.
+  PairFixture f(2);
+  auto a = f.make({std::make_shared<constitutive::BartonBandis>(1e10, 1e-3)});
+  EXPECT_EQ(a.minimum_local_size(), 8u);
+  std::vector<double> u(8, 0.0), short_u(7, 0.0), residual(8, 0.0), short_residual(6, 0.0),
+      matrix(a.pair_size() * a.pair_size());
+  auto expect_named = [](auto&& call, const std::string& array)
+  {
+    try
+    {
+      call();
+      FAIL() << "expected std::invalid_argument for " << array;
+    }
+    catch (const std::invalid_argument& e)
+    {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("'" + array + "'"), std::string::npos) << what;
+      EXPECT_NE(what.find("8"), std::string::npos) << what;
+    }
+  };
+  expect_named([&] { a.assemble_residual(short_u, residual); }, "u");
+  expect_named([&] { a.assemble_residual(u, short_residual); }, "residual");
+  expect_named([&] { a.pair_matrix(0, short_u, matrix); }, "u");
+  expect_named([&] { a.maximum_closure_ratio(short_u); }, "u");
+  expect_named([&] { a.admissible_step_length(u, short_u, 0.9); }, "du");
+  EXPECT_THROW(a.pair_matrix(1, u, matrix), std::out_of_range);
+  EXPECT_TRUE(a.assemble_residual(u, residual)); // the right sizes still work
+}
