@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import logging
 import os
 import platform
 import subprocess
@@ -33,6 +34,7 @@ E, NU, KNI, VM, KS, STRESS = 20e9, 0.25, 1e10, 1e-3, 1e9, 5e6
 
 
 def worker(mesh_size: float, out: str) -> None:
+    logging.basicConfig(level=logging.INFO, format="%(message)s")  # Newton progress (rank 0)
     import numpy as np
     from mpi4py import MPI
 

@@ -413,9 +413,8 @@ class JointedRockModel:
         if restart:
             self.u.x.array[:] = 0.0
             self.load_factor = 0.0
-        log = print if self.comm.rank == 0 else (lambda *a, **k: None)
         t0 = time.perf_counter()
-        reports = solve_load_path(self, load_steps, self.newton_options, log)
+        reports = solve_load_path(self, load_steps, self.newton_options)
         self.timings["newton"] += time.perf_counter() - t0
         self.interface.update_state(self.u.x.array)
         self.solution = JointedSolution(self.u, self.interface.state(), reports, self)

@@ -12,9 +12,13 @@ converges in at most `easy_iterations` lets the next one grow by `growth`.
 """
 from __future__ import annotations
 
+import logging
 from dataclasses import dataclass, field
 
 import numpy as np
+
+#: Progress (residual norms, step cuts) at INFO on rank 0; enable with logging.basicConfig.
+log = logging.getLogger(__name__)
 
 
 class ConvergenceError(RuntimeError):
@@ -35,7 +39,7 @@ class NewtonOptions:
     #: many points sit at the open/closed kink (stiff joints carrying ~zero normal stress)
     line_search: bool = False
     max_backtracks: int = 8
-    verbose: bool = True
+    verbose: bool = True  #: log the residual of every iteration (INFO, logger rockjoint.fem.newton)
 
 
 @dataclass
@@ -52,7 +56,7 @@ class StepReport:
         return len(self.step_lengths)
 
 
-def solve_load_path(problem, load_steps: int, options: NewtonOptions, log=print) -> list:
+def solve_load_path(problem, load_steps: int, options: NewtonOptions) -> list:
     """Drive the load factor from problem.load_factor (usually 0) to 1. Returns the StepReports
     (failed attempts included); raises ConvergenceError if the increment falls below the minimum."""
     if int(load_steps) != load_steps or load_steps < 1:
@@ -65,7 +69,7 @@ def solve_load_path(problem, load_steps: int, options: NewtonOptions, log=print)
         if 1.0 - target < 1e-12:
             target = 1.0
         problem.save_state()
-        report = newton(problem, target, options, log)
+        report = newton(problem, target, options)
         reports.append(report)
         if report.converged:
             lam = target
@@ -74,9 +78,9 @@ def solve_load_path(problem, load_steps: int, options: NewtonOptions, log=print)
         else:
             problem.restore_state()
             increment *= 0.5
-            if options.verbose:
-                log(f"  load step to λ = {target:.6g} failed ({report.reason}); cutting the increment "
-                    f"to {increment:.3g}")
+            if options.verbose and _rank(problem) == 0:
+                log.info("load step to λ = %.6g failed (%s); cutting the increment to %.3g",
+                         target, report.reason, increment)
             if increment < options.min_load_increment:
                 raise ConvergenceError(
                     f"load stepping failed: increment {increment:.3g} below min_load_increment "
@@ -84,7 +88,7 @@ def solve_load_path(problem, load_steps: int, options: NewtonOptions, log=print)
     return reports
 
 
-def newton(problem, load_factor: float, options: NewtonOptions, log=print) -> StepReport:
+def newton(problem, load_factor: float, options: NewtonOptions) -> StepReport:
     """Newton iterations at a fixed load factor (the problem keeps u; restore on failure)."""
     problem.load_factor = load_factor
     report = StepReport(load_factor)
@@ -93,9 +97,9 @@ def newton(problem, load_factor: float, options: NewtonOptions, log=print) -> St
     for it in range(options.max_iterations + 1):
         rnorm = problem.residual()
         report.residual_norms.append(rnorm)
-        if options.verbose:
+        if options.verbose and _rank(problem) == 0:
             alpha = f"  α = {report.step_lengths[-1]:.3g}" if report.step_lengths else ""
-            log(f"  λ = {load_factor:.6g}  it {it:2d}  ||r|| = {rnorm:.6e}{alpha}")
+            log.info("λ = %.6g  it %2d  ||r|| = %.6e%s", load_factor, it, rnorm, alpha)
         if not np.isfinite(rnorm):
             report.reason = "non-finite residual (closure beyond the law's maximum?)"
             return report
@@ -131,3 +135,9 @@ def _backtrack(problem, alpha: float, rnorm: float, options: NewtonOptions) -> f
         problem.apply_increment(-alpha)
         alpha *= 0.5
     return alpha
+
+
+def _rank(problem) -> int:
+    """MPI rank of the problem's communicator (0 without one): progress is logged once."""
+    comm = getattr(problem, "comm", None)
+    return comm.rank if comm is not None else 0
