@@ -125,9 +125,26 @@ def test_intact_block_solves_and_writes_xdmf_without_joint_file(tmp_path):
     model.fix("bottom", "y")
     model.fix("left", "x")
     model.add_traction("top", (0.0, -2e6))
-    model.solve()
+    sol = model.solve()
     assert model.boundary_mean_displacement("top")[1] == pytest.approx(-2e6 * 2.0 * (1 - 0.2**2) / 1e10,
                                                                        rel=1e-8)
+    assert sol.newton_iterations == 1   # a linear model: one solve meets the residual tolerance
     path = str(tmp_path / "intact.xdmf")
     assert model.write_xdmf(path) == [path]
     assert not os.path.exists(str(tmp_path / "intact_joints.xdmf"))
+
+
+def test_intact_block_with_cg_needs_one_newton_iteration():
+    """CG + GAMG stops on the true residual, so one linear solve of the (linear) intact model
+    meets Newton's tolerance; the settlement is the plane-strain closed form σH(1-ν²)/E."""
+    intact = distribute(meshes.jointed_block((1.0, 2.0), [], dim=2, mesh_size=0.1, comm=MPI.COMM_WORLD),
+                        MPI.COMM_WORLD)
+    model = JointedRockModel(intact, rock=(1e10, 0.2), joints={}, linear_solver="iterative",
+                             newton=NewtonOptions(verbose=False))
+    model.fix("bottom", "y")
+    model.fix("left", "x")
+    model.add_traction("top", (0.0, -2e6))
+    sol = model.solve()
+    assert sol.newton_iterations == 1
+    assert model.boundary_mean_displacement("top")[1] == pytest.approx(-2e6 * 2.0 * (1 - 0.2**2) / 1e10,
+                                                                       rel=1e-8)

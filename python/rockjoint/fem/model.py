@@ -389,6 +389,10 @@ class JointedRockModel:
             self.counts["linear_solve"] += 1
         self.du.x.scatter_forward()
 
+    def increment_norms(self) -> tuple:
+        """(||du||, ||u||) of the last Newton increment and the current displacement [m]."""
+        return self.du.vector.norm(), self.u.vector.norm()
+
     def admissible_step(self, fraction: float) -> float:
         alpha = self.interface._cpp.admissible_step_length(self.u.x.array, self.du.x.array, fraction)
         return self.comm.allreduce(alpha, op=_min_op())

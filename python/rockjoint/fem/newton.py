@@ -1,8 +1,10 @@
 """Newton's method with a closure-limiting step and adaptive load stepping.
 
 The problem object supplies residual() (returns ||r||, inf if not finite), jacobian(),
-solve_increment(), admissible_step(fraction), apply_increment(α), load_norm(λ) and
-save_state()/restore_state(). Stiffening laws (Barton-Bandis: σ → ∞ as Δ → V_m) defeat plain
+solve_increment(), admissible_step(fraction), apply_increment(α), load_norm(λ),
+save_state()/restore_state() and optionally increment_norms() -> (||du||, ||u||) and comm.
+Newton stops on the residual (relative to the load, or to the initial residual when the load
+is zero), on an increment at round-off, and fails on stagnation or a non-finite residual. Stiffening laws (Barton-Bandis: σ → ∞ as Δ → V_m) defeat plain
 Newton from zero once the load passes about K_ni·V_m (docs/fem.md, pitfall 7): every
 step is shortened so that no closure moves more than `closure_limit` (0.95) of its remaining
 room to the law's maximum closure (fraction to the boundary; with Δ = 0 at the start this is
@@ -39,6 +41,13 @@ class NewtonOptions:
     #: many points sit at the open/closed kink (stiff joints carrying ~zero normal stress)
     line_search: bool = False
     max_backtracks: int = 8
+    #: converged when a step moves u by at most this × ||u|| (nothing left above round-off; used
+    #: only if the problem offers increment_norms())
+    increment_rtol: float = 1e-14
+    #: failed (stagnation) when ||r|| has not fallen below stagnation_factor × its value
+    #: stagnation_window iterations earlier; the load step is then cut
+    stagnation_window: int = 8
+    stagnation_factor: float = 0.9
     verbose: bool = True  #: log the residual of every iteration (INFO, logger rockjoint.fem.newton)
 
 
@@ -97,6 +106,9 @@ def newton(problem, load_factor: float, options: NewtonOptions) -> StepReport:
     for it in range(options.max_iterations + 1):
         rnorm = problem.residual()
         report.residual_norms.append(rnorm)
+        if it == 0 and scale == 0.0 and np.isfinite(rnorm):
+            # No load at this step (e.g. unloading to zero): relative to the initial residual.
+            tol = options.atol + options.rtol * rnorm
         if options.verbose and _rank(problem) == 0:
             alpha = f"  α = {report.step_lengths[-1]:.3g}" if report.step_lengths else ""
             log.info("λ = %.6g  it %2d  ||r|| = %.6e%s", load_factor, it, rnorm, alpha)
@@ -108,6 +120,11 @@ def newton(problem, load_factor: float, options: NewtonOptions) -> StepReport:
             return report
         if it == options.max_iterations:
             break
+        window = options.stagnation_window
+        if it >= window and not rnorm < options.stagnation_factor * report.residual_norms[-1 - window]:
+            report.reason = (f"stagnation: ||r|| = {rnorm:.3e} has not fallen below "
+                             f"{options.stagnation_factor:g} × its value {window} iterations ago")
+            return report
         problem.jacobian()
         problem.solve_increment()
         # Closure-limiting step: no closure may move more than `closure_limit` of its remaining
@@ -121,6 +138,14 @@ def newton(problem, load_factor: float, options: NewtonOptions) -> StepReport:
         else:
             problem.apply_increment(alpha)
         report.step_lengths.append(alpha)
+        norms = getattr(problem, "increment_norms", None)
+        if norms is not None:
+            du, u = norms()
+            if alpha * du <= options.increment_rtol * u:
+                report.converged = True
+                report.reason = (f"step {alpha * du:.3e} <= increment_rtol × ||u|| (residual "
+                                 f"{rnorm:.3e} at round-off)")
+                return report
     report.reason = f"no convergence in {options.max_iterations} iterations"
     return report
 
