@@ -21,7 +21,7 @@ from mpi4py import MPI  # noqa: E402
 
 import rockjoint  # noqa: E402
 from rockjoint import meshes  # noqa: E402
-from rockjoint.fem import JointedRockModel  # noqa: E402
+from rockjoint.fem import JointedRockModel, NewtonOptions  # noqa: E402
 from rockjoint.fem.distributed_mesh import distribute  # noqa: E402
 
 E, NU = 20e9, 0.25
@@ -136,3 +136,22 @@ def test_body_force_joint_carries_the_weight_above():
     assert force == pytest.approx(rho_g * (H - h) * width, rel=1e-9)
     joints = sol.gather_joints()
     assert np.all(joints["normal_stress"] > 0)
+
+
+def test_a_table_driven_past_its_range_is_reported_not_silent(caplog):
+    """A Barton-Bandis table up to 5 MPa loaded to 8 MPa: the joints answer on the table's
+    linear continuation (status validity_limit); the solution says so per joint and the model
+    logs a warning. Inside the range nothing is reported."""
+    law = rockjoint.BartonBandis(KNI, VM)
+    table = rockjoint.tabulate(law, max_stress=5e6)
+    model = column_model(2, table, newton=NewtonOptions(verbose=False))
+    model.add_traction("top", (0.0, -8e6))
+    with caplog.at_level(logging.WARNING, logger="rockjoint.fem.model"):
+        sol = model.solve()
+    beyond = sol.beyond_law_range()
+    assert set(beyond) == {f"joint_{i + 1}" for i in range(len(JOINTS))}
+    assert all(n > 0 for n in beyond.values())
+    assert "past its range" in caplog.text and "joint_1" in caplog.text
+    inside = column_model(2, table, newton=NewtonOptions(verbose=False))
+    inside.add_traction("top", (0.0, -3e6))
+    assert inside.solve().beyond_law_range() == {}

@@ -16,6 +16,7 @@ columns of supported dofs left out, so supported rows stay identity rows).
 """
 from __future__ import annotations
 
+import logging
 import time
 from dataclasses import dataclass, field
 
@@ -30,6 +31,8 @@ from .. import _rockjoint
 from .interface import JointBehaviour, JointInterface, ShearModel
 from .linear_solver import LinearSolver, LinearSolveError, rigid_body_modes  # noqa: F401
 from .newton import ConvergenceError, NewtonOptions, solve_load_path  # noqa: F401
+
+log = logging.getLogger(__name__)
 
 _COMPONENTS = {"x": 0, "y": 1, "z": 2}
 
@@ -84,6 +87,20 @@ class JointedSolution:
     @property
     def newton_iterations(self) -> int:
         return sum(r.iterations for r in self.reports)
+
+    def beyond_law_range(self) -> dict:
+        """{joint name: number of points (all ranks)} whose law answered outside its range:
+        status validity_limit (a table driven past its last knot, continued linearly; a Tang &
+        Jiao law at its cap). Empty when every point is inside its law's range."""
+        status = np.asarray(self.joints["status"])
+        tags = np.asarray(self.joints["tag"])
+        limit = int(_rockjoint.constitutive.Status.validity_limit)
+        out = {}
+        for name, tag in _names(self.model.dmesh, "joints").items():
+            count = self.model.comm.allreduce(int(np.count_nonzero((status == limit) & (tags == tag))))
+            if count:
+                out[name] = count
+        return out
 
 
 class JointedRockModel:
@@ -422,6 +439,12 @@ class JointedRockModel:
         self.timings["newton"] += time.perf_counter() - t0
         self.interface.update_state(self.u.x.array)
         self.solution = JointedSolution(self.u, self.interface.state(), reports, self)
+        beyond = self.solution.beyond_law_range()
+        if beyond and self.comm.rank == 0:
+            # Never silent: the answer there is the table's linear continuation, not the law.
+            log.warning("joint law driven past its range (status validity_limit) at %s; the "
+                        "response there is the table's linear continuation: tabulate to a higher "
+                        "maximum stress", ", ".join(f"{n} ({c} points)" for n, c in beyond.items()))
         return self.solution
 
     def boundary_mean_displacement(self, boundary: str) -> np.ndarray:
