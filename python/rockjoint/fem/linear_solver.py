@@ -62,7 +62,7 @@ class LinearSolver:
 
     def __init__(self, comm, kind: str = "auto", num_dofs: int = 0, direct_dof_limit: int = 60_000,
                  near_nullspace=None, rtol: float = 1e-10, check_tolerance: float = 1e-6,
-                 symmetric: bool = True, options: dict | None = None):
+                 symmetric: bool = True, options: dict | None = None, prefix: str | None = None):
         if kind not in ("direct", "iterative", "auto"):
             raise ValueError(f"linear solver must be 'direct', 'iterative' or 'auto', got {kind!r}")
         if kind == "auto":
@@ -71,7 +71,7 @@ class LinearSolver:
         self.check_tolerance = check_tolerance
         self.near_nullspace = near_nullspace
         self.ksp = PETSc.KSP().create(comm)
-        self._prefix = f"rockjoint_ls_{id(self)}_"
+        self._prefix = prefix if prefix is not None else f"rockjoint_ls_{id(self)}_"
         self.ksp.setOptionsPrefix(self._prefix)
         opts = PETSc.Options()
         if kind == "direct":

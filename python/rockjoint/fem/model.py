@@ -121,12 +121,18 @@ class JointedRockModel:
     quadrature: "nodal" (default; smooth tractions for stiff joints) or "gauss".
     linear_solver: "auto" (MUMPS up to 60k dofs, else CG+GAMG), "direct" or "iterative".
     newton: NewtonOptions (tolerances, closure limit, load-step control, verbosity).
+    petsc_options: {option: value} for the linear solver's KSP/PC, without the leading dash
+        (DOLFINx convention, e.g. {"ksp_type": "gmres", "pc_type": "hypre"}); applied after the
+        defaults of `linear_solver`, so they override them.
+    options_prefix: the linear solver's PETSc options prefix (default: a unique one), so that
+        command-line options such as -<prefix>ksp_monitor reach it.
     """
 
     def __init__(self, dmesh, element_degree: int = 1, rock=None, joints=None, shear_stiffness=0.0,
                  shear_stiffness_ratio=None, residual_stiffness=0.0, plane: str | None = None,
                  quadrature: str = "nodal", linear_solver: str = "auto",
-                 newton: NewtonOptions | None = None):
+                 newton: NewtonOptions | None = None, petsc_options: dict | None = None,
+                 options_prefix: str | None = None):
         self.dmesh = dmesh
         self.mesh = dmesh.mesh
         self.comm = self.mesh.comm
@@ -145,6 +151,18 @@ class JointedRockModel:
         self.plane = plane if self.gdim == 2 else None
         self.quadrature = quadrature
         self.linear_solver_kind = linear_solver
+        if petsc_options is not None and not isinstance(petsc_options, dict):
+            raise ValueError(f"petsc_options must be a dict {{option: value}}, got "
+                             f"{type(petsc_options).__name__}")
+        for key in petsc_options or {}:
+            if not isinstance(key, str) or key.startswith("-") or not key:
+                raise ValueError(f"petsc_options key {key!r}: give option names without the "
+                                 f"leading dash, e.g. 'ksp_type'")
+        self.petsc_options = dict(petsc_options or {})
+        if options_prefix is not None and (not isinstance(options_prefix, str)
+                                           or options_prefix.startswith("-")):
+            raise ValueError(f"options_prefix {options_prefix!r}: a string without a leading dash")
+        self.options_prefix = options_prefix
         self.newton_options = newton or NewtonOptions()
         self.rock = self._check_rock(rock)
         self.behaviours = self._check_joints(joints, shear_stiffness, shear_stiffness_ratio, residual_stiffness)
@@ -351,7 +369,8 @@ class JointedRockModel:
         if kind == "iterative" or (kind == "auto" and num_dofs > 60_000):
             nullspace = rigid_body_modes(V)
         self.linear_solver = LinearSolver(self.comm, kind, num_dofs=num_dofs, near_nullspace=nullspace,
-                                          symmetric=symmetric)
+                                          symmetric=symmetric, options=self.petsc_options,
+                                          prefix=self.options_prefix)
         self.num_dofs = num_dofs
         self.load_factor = 0.0
         self._saved = None
