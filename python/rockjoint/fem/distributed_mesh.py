@@ -89,6 +89,19 @@ class DistributedJointMesh:
         """Tag of the joint ``name`` (KeyError listing the available joints)."""
         return _tag(self.names, "joints", name)
 
+    def partition_balance(self) -> dict:
+        """How the work is shared (collective; the same dict on every rank): per rank the owned
+        cells, owned vertices and joint pairs, and the imbalance max/mean of the owned cells
+        (1 = perfect). Pairs are assembled by the rank owning their minus cell, so a partition
+        that keeps both sides of the joints together may load ranks unevenly."""
+        comm = self.mesh.comm
+        tdim = self.mesh.topology.dim
+        local = (self.mesh.topology.index_map(tdim).size_local,
+                 self.mesh.topology.index_map(0).size_local, len(self.pairs))
+        cells, vertices, pairs = (list(x) for x in zip(*comm.allgather(local)))
+        return {"cells": cells, "vertices": vertices, "pairs": pairs,
+                "cell_imbalance": max(cells) / (sum(cells) / len(cells))}
+
 
 def _tag(names: dict, kind: str, name: str) -> int:
     for tag, n in names[kind].items():
