@@ -108,10 +108,7 @@ double ClosureLaw::closure_at_stress(double target) const
       throw std::domain_error(msg.str());
     }
     lo = hi;
-    // Double towards infinity, or halve the distance to a finite maximum closure.
-    hi = std::isfinite(dmax) ? 0.5 * (hi + dmax) : 2.0 * hi;
-    if (std::isfinite(dmax) && (dmax - hi) <= 1e-15 * dmax)
-      hi = dmax;
+    hi = root_finding::grow_towards(hi, dmax);
     rhi = evaluate(hi);
   }
 

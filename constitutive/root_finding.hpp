@@ -45,7 +45,9 @@ struct Options
 };
 
 /// The last evaluated iterate, the final bracket (lo: r <= 0 side, hi: r >= 0 side) and the
-/// number of residual evaluations. `converged` is false only if maximum_iterations ran out.
+/// number of residual evaluations. `converged` is false if maximum_iterations ran out or the
+/// bracket was refused; `bracketed` is false (and x NaN, no evaluation made) if lo > hi, an
+/// end is not finite, or a given end residual has the wrong sign (r_lo > 0 or r_hi < 0).
 struct Root
 {
   double x;
@@ -53,18 +55,38 @@ struct Root
   double hi;
   int evaluations = 0;
   bool converged = false;
+  bool bracketed = true;
 };
+
+/// Next trial end when a bracket is grown upwards from x > 0 towards `limit`: x doubled
+/// when the limit is +∞, otherwise the distance to the limit halved (the limit itself once
+/// within 1e-15 relative of it, so the growth ends in finitely many steps).
+inline double grow_towards(double x, double limit)
+{
+  if (!std::isfinite(limit))
+    return 2.0 * x;
+  const double next = 0.5 * (x + limit);
+  return limit - next <= 1e-15 * limit ? limit : next;
+}
 
 /// Root of an increasing residual on [lo, hi] with r(lo) <= 0 <= r(hi), starting from x0 (a
 /// point of the closed bracket, e.g. an end whose residual the caller has at hand; NaN or a
-/// point outside: the first point comes from the bracket as a later step would). `r_lo`, `r_hi`: the residual at the ends if known (NaN otherwise; the
-/// secant needs both). `residual(x)` returns a Residual. Never throws.
+/// point outside: the first point comes from the bracket as a later step would). `r_lo`,
+/// `r_hi`: the residual at the ends if known (NaN otherwise; the secant needs both; a known
+/// end of the wrong sign is reported as not bracketed). `residual(x)` returns a Residual.
+/// Never throws.
 template <class F>
 Root find_root(F&& residual, double lo, double hi, double x0, const Options& options = {},
                double r_lo = std::numeric_limits<double>::quiet_NaN(),
                double r_hi = std::numeric_limits<double>::quiet_NaN())
 {
   Root out{x0, lo, hi};
+  if (!(std::isfinite(lo) && std::isfinite(hi) && lo <= hi) || r_lo > 0.0 || r_hi < 0.0)
+  {
+    out.x = std::numeric_limits<double>::quiet_NaN();
+    out.bracketed = false;
+    return out;
+  }
   int side = 0; // which end moved last (Illinois halves the stale end's value)
   auto tolerance = [&](double x)
   { return options.relative_tolerance * std::max(std::abs(x), options.absolute_scale); };

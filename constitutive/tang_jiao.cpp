@@ -296,8 +296,8 @@ void TangJiao::locate_limit()
       for (int k = 0; k < 2000; ++k)
       {
         lo = hi;
-        hi = std::isfinite(base_max) ? 0.5 * (hi + base_max) : 2.0 * hi;
-        if (std::isfinite(base_max) && base_max - hi <= 1e-15 * base_max)
+        hi = root_finding::grow_towards(hi, base_max);
+        if (std::isfinite(base_max) && hi == base_max) // A never reaches the cap below it
           break;
         if (area_at(hi) >= target)
         {
