@@ -1,13 +1,12 @@
-// The shared root finder (root_finding.hpp) and the monotone interpolant of sampled data
-// (monotone_hermite.hpp data_slopes), against roots and functions known in closed form.
-#include <rockjoint/constitutive/monotone_hermite.hpp>
+// The shared root finder (root_finding.hpp), against roots known in closed form or as
+// published constants.
 #include <rockjoint/constitutive/root_finding.hpp>
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
-#include <vector>
 
 using namespace rockjoint::constitutive;
 using root_finding::find_root;
@@ -87,34 +86,57 @@ TEST(RootFinding, RunningOutOfIterationsIsReportedNotThrown)
   EXPECT_GE(root.hi, 0.123456789);
 }
 
-TEST(MonotoneHermite, DataSlopesReproduceALineAndKeepMonotoneDataMonotone)
+TEST(RootFinding, NewtonFindsTheDottieNumber)
 {
-  // Linear data: every slope is the line's slope, so the interpolant is the line.
-  std::vector<double> x{0.0, 0.1, 0.35, 0.4, 1.0}, y(5), m(5);
-  for (std::size_t i = 0; i < x.size(); ++i)
-    y[i] = 2.0 + 3.0 * x[i];
-  hermite::data_slopes(x, y, m);
-  for (double mi : m)
-    EXPECT_NEAR(mi, 3.0, 1e-14);
-  // Steep-then-flat monotone data (a plateau): the interpolant never decreases and is flat
-  // on the plateau.
-  std::vector<double> yp{0.0, 0.9, 1.0, 1.0, 1.0}, mp(5);
-  hermite::data_slopes(x, yp, mp);
-  double previous = -1.0;
-  for (std::size_t i = 0; i + 1 < x.size(); ++i)
+  // x = cos x, the fixed point of the cosine: 0.739085133215160641655... (OEIS A003957).
+  const auto root = find_root([](double x) { return Residual{x - std::cos(x), 1.0 + std::sin(x)}; },
+                              0.0, 1.0, 0.0);
+  EXPECT_TRUE(root.converged);
+  EXPECT_NEAR(root.x, 0.739085133215160641655, 2e-16);
+  EXPECT_LE(root.evaluations, 8);
+}
+
+TEST(RootFinding, AnEndOfTheWrongSignIsReportedAsNotBracketed)
+{
+  // r(x) = x - 2 on [0, 1] has no root there: the caller's end values say so, and the finder
+  // refuses without evaluating instead of returning an end as if it were a root.
+  int calls = 0;
+  auto r = [&](double x)
   {
-    const hermite::Segment seg
-        = hermite::make_segment(x[i], x[i + 1], yp[i], yp[i + 1], mp[i], mp[i + 1]);
-    for (int k = 0; k <= 100; ++k)
-    {
-      const double xi = x[i] + (x[i + 1] - x[i]) * k / 100.0;
-      double v, dv;
-      hermite::evaluate(seg, xi, v, dv);
-      EXPECT_GE(v, previous - 1e-15) << "at x = " << xi;
-      EXPECT_GE(dv, -1e-13);
-      if (i >= 2)
-        EXPECT_DOUBLE_EQ(v, 1.0);
-      previous = v;
-    }
+    ++calls;
+    return Residual{x - 2.0, 1.0};
+  };
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const auto low_end_positive = find_root(r, 0.0, 1.0, nan, {}, 1.0, nan);
+  const auto high_end_negative = find_root(r, 0.0, 1.0, nan, {}, nan, -1.0);
+  const auto reversed = find_root(r, 1.0, 0.0, 0.5);
+  const auto infinite = find_root(r, 0.0, std::numeric_limits<double>::infinity(), 0.5);
+  for (const auto& root : {low_end_positive, high_end_negative, reversed, infinite})
+  {
+    EXPECT_FALSE(root.bracketed);
+    EXPECT_FALSE(root.converged);
+    EXPECT_TRUE(std::isnan(root.x));
+    EXPECT_EQ(root.evaluations, 0);
   }
+  EXPECT_EQ(calls, 0);
+  // A bracketed call reports bracketed.
+  EXPECT_TRUE(find_root(r, 0.0, 3.0, 0.0).bracketed);
+}
+
+TEST(RootFinding, GrowTowardsDoublesOrHalvesTheDistanceToTheLimit)
+{
+  const double inf = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(root_finding::grow_towards(0.25, inf), 0.5);
+  EXPECT_EQ(root_finding::grow_towards(0.5, 1.0), 0.75);
+  // From 1/2 towards 1 the distance is 2^-(k+1) after k steps: it falls below 1e-15 at
+  // k = 49 (2^-50 ≈ 8.9e-16), where the limit itself is returned.
+  double x = 0.5;
+  int steps = 0;
+  while (x != 1.0 && steps < 100)
+  {
+    x = root_finding::grow_towards(x, 1.0);
+    ++steps;
+  }
+  EXPECT_EQ(x, 1.0);
+  EXPECT_EQ(steps, 49);
 }
