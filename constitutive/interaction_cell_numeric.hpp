@@ -21,9 +21,9 @@
 ///
 /// All integrands are analytic on their closed intervals (a < b), so Gauss-Legendre rules of
 /// `quadrature_order` nodes converge spectrally. The algorithm, as in the paper:
-///   1. for a trial local approach δ_loc, a bracketed root find (Brent) on p̄ drives the
-///      edge coefficient to zero ("p̄ too large → fringe pressure blows up, too small →
-///      negative");
+///   1. for a trial local approach δ_loc, a bracketed root find on p̄ (Illinois steps of the
+///      shared root finder, root_finding.hpp) drives the edge coefficient to zero ("p̄ too
+///      large → fringe pressure blows up, too small → negative");
 ///   2. an outer bracketed root find on δ_loc enforces self-consistency p̄ π b² = P (Eq. (3)).
 /// The displacement fields of a unit p̄ are computed once per cell (influence coefficients),
 /// so each root-finder step is cheap.

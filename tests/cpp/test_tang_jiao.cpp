@@ -624,8 +624,8 @@ TEST(TangJiaoOverGwLaws, TendsToTangThenGwAsContactAreaVanishes)
 
 TEST(TangJiaoOverGwLaws, TheoryExampleSurface)
 {
-  // Reference values: the worked example of the project's specification
-  // (../shared/theory/closure-models.md §7, repeated in docs/theory.md §7): E 50 GPa, ν 0.25,
+  // Reference values: the worked example of the project's specification (docs/theory.md
+  // §7): E 50 GPa, ν 0.25,
   // η 0.3 mm⁻², β 2.5 mm, σ_s 0.05 mm, Gaussian, κ_s 8/(3π), r0 1 mm: about 0.125 mm
   // closure at 10 MPa with A/A0 ≈ 0.8 % and a ≈ 0.47 mm (a is Eq. (1) in closed form:
   // 0.75 √(π 2.5 · 0.05) mm = 0.470 mm). The specification fixes the surface, not the
