@@ -1,7 +1,8 @@
 #pragma once
 // Checks every closure law must pass: open branch exact, strictly increasing σ,
 // k > 0 in contact, analytic k = central finite differences of σ, Δ(σ(Δ)) = Δ, batch =
-// pointwise. Reference: the law's own σ only through finite differences and inversion.
+// pointwise; and, for laws without a maximum closure, the same at extreme closures.
+// Reference: the law's own σ only through finite differences and inversion.
 #include <rockjoint/constitutive/closure_law.hpp>
 
 #include <gtest/gtest.h>
@@ -76,6 +77,27 @@ inline void check_law(const constitutive::ClosureLaw& law, double top,
     EXPECT_EQ(k[i], r.normal_stiffness);
     EXPECT_EQ(a[i], r.contact_area_ratio);
     EXPECT_EQ(st[i], r.status);
+  }
+}
+
+/// Extreme closures of a law with no maximum closure (1e-15 m to 1 m, twelve decades past
+/// any roughness scale the callers use): every response in contact and finite, σ strictly
+/// increasing, k > 0, Δ(σ(Δ)) = Δ to 1e-10 relative.
+inline void check_extreme_closures(const constitutive::ClosureLaw& law)
+{
+  using constitutive::Status;
+  double previous = 0.0;
+  for (double d : {1e-15, 1e-13, 1e-11, 1e-9, 1e-7, 1e-5, 1e-3, 1e-1, 1.0})
+  {
+    const auto r = law.evaluate(d);
+    ASSERT_EQ(r.status, Status::contact) << d;
+    ASSERT_TRUE(std::isfinite(r.normal_stress) && std::isfinite(r.normal_stiffness)
+                && std::isfinite(r.contact_area_ratio) && std::isfinite(r.contact_area_rate))
+        << d;
+    EXPECT_GT(r.normal_stress, previous) << d;
+    EXPECT_GT(r.normal_stiffness, 0.0) << d;
+    previous = r.normal_stress;
+    EXPECT_NEAR(law.closure_at_stress(r.normal_stress), d, 1e-10 * d) << d;
   }
 }
 

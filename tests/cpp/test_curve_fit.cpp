@@ -11,25 +11,11 @@
 #include <string>
 #include <vector>
 
+#include "expect_error.hpp"
+
 using namespace rockjoint::constitutive::calibration;
 
-namespace
-{
-/// Expect std::invalid_argument whose message contains `what`.
-template <class F>
-void expect_error(F&& f, const std::string& what)
-{
-  try
-  {
-    f();
-    ADD_FAILURE() << "no exception for " << what;
-  }
-  catch (const std::invalid_argument& e)
-  {
-    EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
-  }
-}
-} // namespace
+using rockjoint::testing::expect_error;
 
 TEST(CurveFit, WeightedStraightLineMatchesTheNormalEquations)
 {

@@ -17,6 +17,7 @@
 #include <thread>
 #include <vector>
 
+#include "expect_error.hpp"
 #include "gw_reference.hpp"
 #include "law_checks.hpp"
 
@@ -240,19 +241,7 @@ TEST(GreenwoodWilliamson, HardCasesStayFiniteMonotoneAndInvertible)
         const auto at0 = law.evaluate(0.0);
         EXPECT_EQ(at0.normal_stress, 0.0);
         EXPECT_EQ(at0.status, Status::open);
-        double previous = 0.0;
-        for (double d : {1e-15, 1e-13, 1e-11, 1e-9, 1e-7, 1e-5, 1e-3, 1e-1, 1.0})
-        {
-          const auto r = law.evaluate(d);
-          ASSERT_EQ(r.status, Status::contact) << d;
-          ASSERT_TRUE(std::isfinite(r.normal_stress) && std::isfinite(r.normal_stiffness)
-                      && std::isfinite(r.contact_area_ratio) && std::isfinite(r.contact_area_rate))
-              << d;
-          EXPECT_GT(r.normal_stress, previous) << d;
-          EXPECT_GT(r.normal_stiffness, 0.0) << d;
-          previous = r.normal_stress;
-          EXPECT_NEAR(law.closure_at_stress(r.normal_stress), d, 1e-10 * d) << d;
-        }
+        rockjoint::testing::check_extreme_closures(law);
       }
 }
 
@@ -345,23 +334,7 @@ TEST(GreenwoodWilliamson, NestedIntegrationOfTheLawIsSafe)
   EXPECT_NEAR(r.value, expected, 1e-9 * expected);
 }
 
-namespace
-{
-/// Expect std::invalid_argument whose message names `what`.
-template <class F>
-void expect_named_error(F&& make, const std::string& what)
-{
-  try
-  {
-    make();
-    ADD_FAILURE() << "no exception for " << what;
-  }
-  catch (const std::invalid_argument& e)
-  {
-    EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
-  }
-}
-} // namespace
+using rockjoint::testing::expect_error;
 
 TEST(GreenwoodWilliamson, RejectsBadParametersWithNamedErrors)
 {
@@ -369,29 +342,29 @@ TEST(GreenwoodWilliamson, RejectsBadParametersWithNamedErrors)
   const double inf = std::numeric_limits<double>::infinity();
   for (double bad : {nan, inf, -inf, -1.0, 0.0})
   {
-    expect_named_error(
+    expect_error(
         [&] {
           GreenwoodWilliamson({bad, eta, beta, sigma_s});
         },
         "composite_modulus");
-    expect_named_error([&] { GreenwoodWilliamson({Es, bad, beta, sigma_s}); }, "summit_density");
-    expect_named_error([&] { GreenwoodWilliamson({Es, eta, bad, sigma_s}); }, "summit_radius");
-    expect_named_error([&] { GreenwoodWilliamson({Es, eta, beta, bad}); }, "summit_height_std");
-    expect_named_error(
+    expect_error([&] { GreenwoodWilliamson({Es, bad, beta, sigma_s}); }, "summit_density");
+    expect_error([&] { GreenwoodWilliamson({Es, eta, bad, sigma_s}); }, "summit_radius");
+    expect_error([&] { GreenwoodWilliamson({Es, eta, beta, bad}); }, "summit_height_std");
+    expect_error(
         [&] {
           GreenwoodWilliamson(example, HeightDistribution::gaussian,
                               SeatingReference::at_stress(bad));
         },
         "seating_stress");
-    expect_named_error([&] { EmpiricalSummits({0.0}, {1e-3}, bad); }, "area");
-    expect_named_error([&] { EmpiricalSummits({0.0, 1e-6}, {1e-3, bad}, 1e-6); }, "radii[1]");
-    expect_named_error([&] { GreenwoodWilliamson(bad, EmpiricalSummits({0.0}, {1e-3}, 1e-6)); },
-                       "composite_modulus");
+    expect_error([&] { EmpiricalSummits({0.0}, {1e-3}, bad); }, "area");
+    expect_error([&] { EmpiricalSummits({0.0, 1e-6}, {1e-3, bad}, 1e-6); }, "radii[1]");
+    expect_error([&] { GreenwoodWilliamson(bad, EmpiricalSummits({0.0}, {1e-3}, 1e-6)); },
+                 "composite_modulus");
   }
   for (double bad : {nan, inf})
   {
-    expect_named_error([&] { EmpiricalSummits({0.0, bad}, {1e-3, 1e-3}, 1e-6); }, "heights[1]");
-    expect_named_error(
+    expect_error([&] { EmpiricalSummits({0.0, bad}, {1e-3, 1e-3}, 1e-6); }, "heights[1]");
+    expect_error(
         [&]
         {
           GreenwoodWilliamson(example, HeightDistribution::gaussian,
@@ -400,12 +373,12 @@ TEST(GreenwoodWilliamson, RejectsBadParametersWithNamedErrors)
         "reference_separation");
   }
   for (double bad : {nan, 0.0, 1.0, -1e-10, 2.0})
-    expect_named_error([&] { GreenwoodWilliamson(example, HeightDistribution::gaussian, {}, bad); },
-                       "quadrature_tolerance");
-  expect_named_error([&] { EmpiricalSummits({}, {}, 1e-6); }, "heights");
-  expect_named_error([&] { EmpiricalSummits({0.0, 1.0}, {1e-3}, 1e-6); }, "radii");
-  expect_named_error([&] { GreenwoodWilliamson(example, HeightDistribution::empirical); },
-                     "distribution");
+    expect_error([&] { GreenwoodWilliamson(example, HeightDistribution::gaussian, {}, bad); },
+                 "quadrature_tolerance");
+  expect_error([&] { EmpiricalSummits({}, {}, 1e-6); }, "heights");
+  expect_error([&] { EmpiricalSummits({0.0, 1.0}, {1e-3}, 1e-6); }, "radii");
+  expect_error([&] { GreenwoodWilliamson(example, HeightDistribution::empirical); },
+               "distribution");
   GreenwoodWilliamson law(example);
   EXPECT_TRUE(std::isinf(law.maximum_closure()));
   EXPECT_TRUE(law.provides_contact_area());

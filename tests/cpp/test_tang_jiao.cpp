@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "expect_error.hpp"
 #include "law_checks.hpp"
 
 using namespace rockjoint::constitutive;
@@ -468,23 +469,7 @@ TEST(TangJiao, HardClosures)
   }
 }
 
-namespace
-{
-/// Expect std::invalid_argument whose message contains `name`.
-template <class F>
-void expect_named_error(F&& f, const std::string& name)
-{
-  try
-  {
-    f();
-    ADD_FAILURE() << "no exception for " << name;
-  }
-  catch (const std::invalid_argument& e)
-  {
-    EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
-  }
-}
-} // namespace
+using rockjoint::testing::expect_error;
 
 TEST(TangJiao, RejectsBadParametersWithNamedErrors)
 {
@@ -492,27 +477,27 @@ TEST(TangJiao, RejectsBadParametersWithNamedErrors)
   const double E = rock.composite_modulus, R = rock.summit_radius, s = rock.summit_height_std;
   for (double bad : {nan_, inf_, -1.0, 0.0})
   {
-    expect_named_error([&] { TangJiao(base, bad, R, s); }, "composite_modulus");
-    expect_named_error([&] { TangJiao(base, E, bad, s); }, "radius");
-    expect_named_error([&] { TangJiao(base, E, R, bad); }, "summit_height_std");
+    expect_error([&] { TangJiao(base, bad, R, s); }, "composite_modulus");
+    expect_error([&] { TangJiao(base, E, bad, s); }, "radius");
+    expect_error([&] { TangJiao(base, E, R, bad); }, "summit_height_std");
   }
   for (double bad : {nan_, 0.0, 1.0, -0.5, 2.0, inf_})
   {
     TangJiaoOptions o;
     o.maximum_area_root = bad;
-    expect_named_error([&] { TangJiao(base, o); }, "maximum_area_root");
+    expect_error([&] { TangJiao(base, o); }, "maximum_area_root");
     TangJiaoOptions p;
     p.maximum_shift_rate = bad;
-    expect_named_error([&] { TangJiao(base, p); }, "maximum_shift_rate");
+    expect_error([&] { TangJiao(base, p); }, "maximum_shift_rate");
   }
-  expect_named_error([&] { TangJiao(std::shared_ptr<const ClosureLaw>(), E, R, s); }, "base");
-  expect_named_error([&] { TangJiao(std::shared_ptr<const AsperityLaw>()); }, "base");
+  expect_error([&] { TangJiao(std::shared_ptr<const ClosureLaw>(), E, R, s); }, "base");
+  expect_error([&] { TangJiao(std::shared_ptr<const AsperityLaw>()); }, "base");
   // A base law without a contact area and no geometric curve.
-  expect_named_error([&] { TangJiao(std::make_shared<LogarithmicLaw>(5e-5, 1e5), E, R, s); },
-                     "provides no contact area");
+  expect_error([&] { TangJiao(std::make_shared<LogarithmicLaw>(5e-5, 1e5), E, R, s); },
+               "provides no contact area");
   TangJiaoOptions v;
   v.variant = static_cast<TangJiaoVariant>(7);
-  expect_named_error([&] { TangJiao(base, v); }, "variant");
+  expect_error([&] { TangJiao(base, v); }, "variant");
 
   // Malformed geometric curves.
   auto with_curve = [&](std::vector<double> x, std::vector<double> y)
@@ -522,14 +507,14 @@ TEST(TangJiao, RejectsBadParametersWithNamedErrors)
     o.overlap_area_ratio = std::move(y);
     return [=] { TangJiao(base, o); };
   };
-  expect_named_error(with_curve({0.0}, {0.0}), "at least 2");
-  expect_named_error(with_curve({0.0, 1e-4}, {0.0}), "must match");
-  expect_named_error(with_curve({0.0, 1e-4, 2e-4}, {0.0, 0.3, 0.2}), "overlap_area_ratio[2]");
-  expect_named_error(with_curve({0.0, 2e-4, 1e-4}, {0.0, 0.1, 0.2}), "overlap_closure[2]");
-  expect_named_error(with_curve({0.0, nan_}, {0.0, 0.1}), "overlap_closure[1]");
-  expect_named_error(with_curve({0.0, 1e-4}, {0.0, nan_}), "overlap_area_ratio[1]");
-  expect_named_error(with_curve({0.0, 1e-4}, {0.0, 1.5}), "overlap_area_ratio[1]");
-  expect_named_error(with_curve({1e-5, 1e-4}, {0.0, 0.1}), "overlap_closure[0]");
+  expect_error(with_curve({0.0}, {0.0}), "at least 2");
+  expect_error(with_curve({0.0, 1e-4}, {0.0}), "must match");
+  expect_error(with_curve({0.0, 1e-4, 2e-4}, {0.0, 0.3, 0.2}), "overlap_area_ratio[2]");
+  expect_error(with_curve({0.0, 2e-4, 1e-4}, {0.0, 0.1, 0.2}), "overlap_closure[2]");
+  expect_error(with_curve({0.0, nan_}, {0.0, 0.1}), "overlap_closure[1]");
+  expect_error(with_curve({0.0, 1e-4}, {0.0, nan_}), "overlap_area_ratio[1]");
+  expect_error(with_curve({0.0, 1e-4}, {0.0, 1.5}), "overlap_area_ratio[1]");
+  expect_error(with_curve({1e-5, 1e-4}, {0.0, 0.1}), "overlap_closure[0]");
   // I2 over a base stress linear in Δ with an area vanishing at Δ = 0: ε ~ √Δ, no monotone
   // branch.
   {
@@ -538,13 +523,13 @@ TEST(TangJiao, RejectsBadParametersWithNamedErrors)
     o.variant = TangJiaoVariant::kinematic;
     o.overlap_closure = x;
     o.overlap_area_ratio = y;
-    expect_named_error([&] { TangJiao(std::make_shared<LogarithmicLaw>(5e-5, 1e5), E, R, s, o); },
-                       "no monotone branch");
+    expect_error([&] { TangJiao(std::make_shared<LogarithmicLaw>(5e-5, 1e5), E, R, s, o); },
+                 "no monotone branch");
     o.variant = TangJiaoVariant::stress_interaction; // I1 is fine with it
     EXPECT_NO_THROW(TangJiao(std::make_shared<LogarithmicLaw>(5e-5, 1e5), E, R, s, o));
   }
   // A curve that already exceeds s_max² at first contact.
-  expect_named_error(with_curve({0.0, 1e-4}, {0.99, 1.0}), "maximum_area_root");
+  expect_error(with_curve({0.0, 1e-4}, {0.99, 1.0}), "maximum_area_root");
 }
 
 TEST(TangJiao, ParametersDescribeTheCompositeLaw)

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "expect_error.hpp"
 #include "gw_reference.hpp"
 #include "law_checks.hpp"
 
@@ -309,20 +310,7 @@ TEST(TangSubstrate, HardCasesStayFiniteMonotoneAndInvertible)
           TangSubstrate law({composite_modulus(young, 0.25), eta, beta, ss}, dist,
                             {substrate::centre_deflection, base});
           EXPECT_EQ(law.evaluate(0.0).status, Status::open);
-          double previous = 0.0;
-          for (double d : {1e-15, 1e-13, 1e-11, 1e-9, 1e-7, 1e-5, 1e-3, 1e-1, 1.0})
-          {
-            const auto r = law.evaluate(d);
-            ASSERT_EQ(r.status, Status::contact) << d;
-            ASSERT_TRUE(std::isfinite(r.normal_stress) && std::isfinite(r.normal_stiffness)
-                        && std::isfinite(r.contact_area_ratio)
-                        && std::isfinite(r.contact_area_rate))
-                << d;
-            EXPECT_GT(r.normal_stress, previous) << d;
-            EXPECT_GT(r.normal_stiffness, 0.0) << d;
-            previous = r.normal_stress;
-            EXPECT_NEAR(law.closure_at_stress(r.normal_stress), d, 1e-10 * d) << d;
-          }
+          rockjoint::testing::check_extreme_closures(law);
         }
 }
 
@@ -331,18 +319,7 @@ TEST(TangSubstrate, RejectsBadParametersWithNamedErrors)
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const double inf = std::numeric_limits<double>::infinity();
   auto expect_named = [](auto make, const std::string& what)
-  {
-    try
-    {
-      make();
-      ADD_FAILURE() << "no exception for " << what;
-    }
-    catch (const std::invalid_argument& e)
-    {
-      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
-      EXPECT_NE(std::string(e.what()).find("TangSubstrate"), std::string::npos) << e.what();
-    }
-  };
+  { rockjoint::testing::expect_error(make, {what, "TangSubstrate"}); };
   // Δ = +∞ is a hard limit, not NaN, for every distribution.
   EXPECT_EQ(TangSubstrate(example).evaluate(inf).status, Status::beyond_maximum_closure);
   const auto crushed = TangSubstrate(Es, EmpiricalSummits({0.0}, {1e-3}, 1e-6)).evaluate(inf);

@@ -10,6 +10,8 @@
 #include <limits>
 #include <string>
 
+#include "expect_error.hpp"
+
 using namespace rockjoint::topography;
 
 namespace
@@ -21,22 +23,7 @@ std::string temp_file(const std::string& name, const std::string& content)
   return path.string();
 }
 
-/// Run f, expect std::invalid_argument whose message contains every fragment.
-template <class F>
-void expect_error(F f, std::initializer_list<std::string> fragments)
-{
-  try
-  {
-    f();
-    ADD_FAILURE() << "no exception thrown";
-  }
-  catch (const std::invalid_argument& e)
-  {
-    for (const auto& s : fragments)
-      EXPECT_NE(std::string(e.what()).find(s), std::string::npos)
-          << "message '" << e.what() << "' lacks '" << s << "'";
-  }
-}
+using rockjoint::testing::expect_error;
 
 Surface sample_surface()
 {
