@@ -1,17 +1,19 @@
 #pragma once
 // The library's contract for bad input, checked one way in every test: it throws
-// std::invalid_argument and the message names the problem (parameter, file, line, ...).
+// std::invalid_argument (std::domain_error, std::runtime_error where the library documents
+// them) and the message names the problem (parameter, file, line, limit, ...).
 #include <gtest/gtest.h>
 
 #include <initializer_list>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace rockjoint::testing
 {
 
-/// Run f; expect std::invalid_argument whose message contains every fragment.
-template <class F>
+/// Run f; expect an Error whose message contains every fragment.
+template <class Error = std::invalid_argument, class F>
 void expect_error(F&& f, std::initializer_list<std::string> fragments)
 {
   std::string expected;
@@ -22,7 +24,7 @@ void expect_error(F&& f, std::initializer_list<std::string> fragments)
     f();
     ADD_FAILURE() << "no exception for " << expected;
   }
-  catch (const std::invalid_argument& e)
+  catch (const Error& e)
   {
     for (const auto& s : fragments)
       EXPECT_NE(std::string(e.what()).find(s), std::string::npos)
@@ -30,11 +32,11 @@ void expect_error(F&& f, std::initializer_list<std::string> fragments)
   }
 }
 
-/// Run f; expect std::invalid_argument whose message contains `fragment`.
-template <class F>
+/// Run f; expect an Error whose message contains `fragment`.
+template <class Error = std::invalid_argument, class F>
 void expect_error(F&& f, const std::string& fragment)
 {
-  expect_error(std::forward<F>(f), {fragment});
+  expect_error<Error>(std::forward<F>(f), {fragment});
 }
 
 } // namespace rockjoint::testing
