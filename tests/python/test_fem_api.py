@@ -170,3 +170,20 @@ def test_petsc_options_and_prefix_reach_the_linear_solver(dmesh):
     for bad in ({"-ksp_type": "cg"}, ["ksp_type"]):
         with pytest.raises(ValueError, match="petsc_options"):
             JointedRockModel(dmesh, rock=(1e10, 0.2), joints={"joint_1": LAW}, petsc_options=bad)
+
+
+def test_direct_solver_factorises_a_symmetric_jacobian_by_cholesky(dmesh):
+    """Constant joint shear stiffness: J is symmetric, MUMPS Cholesky; k_s proportional to k_n:
+    not symmetric, LU. Both give the column's closed-form settlement."""
+    p = 3e6
+    ref = -(p * 2.0 * (1 - 0.2**2) / 1e10 + LAW.closure_at_stress(p))
+    for shear, factor in (({"shear_stiffness": 1e9}, "cholesky"),
+                          ({"shear_stiffness_ratio": 0.1}, "lu")):
+        model = JointedRockModel(dmesh, rock=(1e10, 0.2), joints={"joint_1": LAW},
+                                 linear_solver="direct", newton=NewtonOptions(verbose=False), **shear)
+        model.fix("bottom", "y")
+        model.fix("left", "x")
+        model.add_traction("top", (0.0, -p))
+        model.solve()
+        assert model.linear_solver.ksp.getPC().getType() == factor
+        assert model.boundary_mean_displacement("top")[1] == pytest.approx(ref, rel=1e-8)
