@@ -66,8 +66,12 @@ class NewtonOptions:
     #: linear tolerance of each Newton step: "eisenstat_walker" (inexact Newton, module docstring)
     #: or "fixed" (every step to the linear solver's own rtol)
     forcing: str = "eisenstat_walker"
-    forcing_initial: float = 0.3     #: η of the first iteration of a load step
-    forcing_max: float = 0.9         #: upper bound of η
+    #: η of the first iteration of a load step, and the upper bound of η: tighter than the
+    #: textbook 0.3 / 0.9, because while a stiffening law drives ||r|| up (the first steps from
+    #: rest overshoot the closure), choice 2 would keep η at its bound and waste Newton iterations
+    #: (measured on the benchmark blocks: 6 instead of 7 iterations)
+    forcing_initial: float = 0.1
+    forcing_max: float = 0.5
     forcing_gamma: float = 0.9       #: γ of choice 2
     forcing_alpha: float = 2.0       #: α of choice 2
 
