@@ -1,24 +1,27 @@
-"""JointedRockModel: elastic rock blocks (DOLFINx) + zero-thickness joints (rockjoint C++).
+"""JointedRockModel: elastic rock blocks (DOLFINx) + zero-thickness joints (rockjoint C++),
+followed along a staged load path (docs/staged-analysis.md).
 
     model = JointedRockModel(dmesh, rock={"block_1": (E, nu), ...}, joints={"joint_1": law},
-                             shear_stiffness=1e10, plane="strain")
+                             shear_stiffness=1e10, plane="strain", density=2700.0)
     model.fix("bottom", "y"); model.fix("left", "x")
-    model.add_traction("top", (0.0, -1e6))
-    solution = model.solve(load_steps=1)
-    model.write_xdmf("out.xdmf")
+    model.set_in_situ_stress(InSituStress.depth_dependent(surface=500.0, density=2700.0, k0=0.5))
+    model.solve(name="in-situ")                       # the initial state: u = 0
+    model.excavate("tunnel"); model.solve(load_steps=5, name="excavation")
+    model.add_pressure("tunnel", 1e6); model.solve(name="lining")
 
-Units: SI (Pa, m, N). Compression positive for joint normal stress; closure Δ = -[[u]]·n.
-Supports are zero displacements of the chosen components. The bulk is linear elastic, so its
-matrix K (with the supports) and the load vector f are assembled once; Newton's residual is
-r = K u - λ f + r_joint(u), with r_joint added to the ghosted local vector before the reverse
-ghost update, and the Jacobian is K + J_joint(u) (joint blocks via MatSetValuesLocal, rows and
-columns of supported dofs left out, so supported rows stay identity rows).
+Units: SI (Pa, m, N). Compression positive for joint normal stress; closure Δ = -[[u]]·n; bulk
+stress tensors tension positive. The bulk is linear elastic: its matrix K (with the supports) is
+assembled when the supports change, the load vectors when the loads change. Newton's residual is
+    r = K u + K_fc u_c + ∫ε(v):σ0 dx - f(λ) + r_joint(u),   f(λ) = f_prev + λ (f_next - f_prev),
+zero at supported dofs, whose values u_c are the prescribed displacements of λ (K has identity
+rows and zero columns there, so K_fc u_c brings the prescribed values back in). r_joint is added
+to the ghosted local vector before the reverse ghost update; the Jacobian is K + J_joint(u) (joint
+blocks via MatSetValuesLocal, rows and columns of supported dofs left out).
 """
 from __future__ import annotations
 
 import logging
 import time
-from dataclasses import dataclass, field
 
 import numpy as np
 import ufl
@@ -28,9 +31,13 @@ from dolfinx.fem import petsc as fem_petsc
 from petsc4py import PETSc
 
 from .. import _rockjoint
+from .in_situ import STANDARD_GRAVITY, InSituStress
 from .interface import JointBehaviour, JointInterface, ShearModel
 from .linear_solver import LinearSolver, LinearSolveError, rigid_body_modes  # noqa: F401
+from .loads import Load, Support, load_term, make_coefficient, set_coefficient
 from .newton import ConvergenceError, NewtonOptions, solve_load_path  # noqa: F401
+from .stages import JointedProblem, JointedSolution, Stage, StageClock, StageResult, names_of, \
+    snes_load_path  # noqa: F401
 
 log = logging.getLogger(__name__)
 
@@ -38,8 +45,7 @@ _COMPONENTS = {"x": 0, "y": 1, "z": 2}
 
 
 def _names(dmesh, kind: str) -> dict:
-    """{name: tag} of the mesh's groups of `kind`."""
-    return {str(n): int(t) for t, n in dmesh.names[kind].items()}
+    return names_of(dmesh, kind)
 
 
 def _lookup(dmesh, kind: str, name: str) -> int:
@@ -58,49 +64,6 @@ def _per_joint(value, joint_names, what: str) -> dict:
             raise ValueError(f"{what}: unknown joint(s) {sorted(unknown)}; available joints: {sorted(joint_names)}")
         return {n: float(value.get(n, 0.0)) for n in joint_names}
     return {n: float(value) for n in joint_names}
-
-
-@dataclass
-class Loads:
-    tractions: list = field(default_factory=list)    #: (boundary name, vector [Pa])
-    body_forces: list = field(default_factory=list)  #: vector [N/m³]
-    supports: list = field(default_factory=list)     #: (boundary name, component indices)
-
-
-@dataclass
-class JointedSolution:
-    """Result of JointedRockModel.solve: the displacement, the joint point state and the history."""
-    displacement: fem.Function
-    joints: dict       #: point state on this rank (see JointInterface.state)
-    reports: list      #: newton.StepReport per attempted load step
-    model: "JointedRockModel"
-
-    def gather_joints(self) -> dict:
-        """The joint point state of all ranks, concatenated (on every rank)."""
-        comm = self.model.comm
-        out = {}
-        for k, v in self.joints.items():
-            parts = comm.allgather(np.asarray(v))
-            out[k] = np.concatenate(parts, axis=0)
-        return out
-
-    @property
-    def newton_iterations(self) -> int:
-        return sum(r.iterations for r in self.reports)
-
-    def beyond_law_range(self) -> dict:
-        """{joint name: number of points (all ranks)} whose law answered outside its range:
-        status validity_limit (a table driven past its last knot, continued linearly; a Tang &
-        Jiao law at its cap). Empty when every point is inside its law's range."""
-        status = np.asarray(self.joints["status"])
-        tags = np.asarray(self.joints["tag"])
-        limit = int(_rockjoint.constitutive.Status.validity_limit)
-        out = {}
-        for name, tag in _names(self.model.dmesh, "joints").items():
-            count = self.model.comm.allreduce(int(np.count_nonzero((status == limit) & (tags == tag))))
-            if count:
-                out[name] = count
-        return out
 
 
 class JointedRockModel:
@@ -125,14 +88,18 @@ class JointedRockModel:
         (DOLFINx convention, e.g. {"ksp_type": "gmres", "pc_type": "hypre"}); applied after the
         defaults of `linear_solver`, so they override them.
     options_prefix: the linear solver's PETSc options prefix (default: a unique one), so that
-        command-line options such as -<prefix>ksp_monitor reach it.
+        command-line options such as -<prefix>ksp_monitor reach it (SNES options too, with
+        solve(solver="snes")).
+    density: rock density ρ [kg/m³], one value or {block name: ρ}; gives gravity ρ g on the blocks
+        (the load handle `model.gravity`). None: no gravity.
+    gravity: g [m/s²] acting along -y (2D) / -z (3D), or a gravity vector.
     """
 
     def __init__(self, dmesh, element_degree: int = 1, rock=None, joints=None, shear_stiffness=0.0,
                  shear_stiffness_ratio=None, residual_stiffness=0.0, plane: str | None = None,
                  quadrature: str = "nodal", linear_solver: str = "auto",
                  newton: NewtonOptions | None = None, petsc_options: dict | None = None,
-                 options_prefix: str | None = None):
+                 options_prefix: str | None = None, density=None, gravity=STANDARD_GRAVITY):
         self.dmesh = dmesh
         self.mesh = dmesh.mesh
         self.comm = self.mesh.comm
@@ -166,14 +133,25 @@ class JointedRockModel:
         self.newton_options = newton or NewtonOptions()
         self.rock = self._check_rock(rock)
         self.behaviours = self._check_joints(joints, shear_stiffness, shear_stiffness_ratio, residual_stiffness)
-        self.loads = Loads()
+        self.densities = self._check_density(density)  #: {block name: ρ [kg/m³]} ({} without gravity)
+        self._supports: list[Support] = []
+        self._loads: list[Load] = []
+        self._release: dict = {}   #: {boundary: excavation Load} of released in-situ tractions
+        self.in_situ: InSituStress | None = None
+        self.stages: list[StageResult] = []  #: the result of every stage, in order
+        self.gravity: Load | None = None     #: gravity load handle (None without a density)
+        if self.densities:
+            self.gravity = self._add_load("gravity", None, self._gravity_vector(gravity))
         #: wall-clock seconds on this rank: bulk_assembly (K and f, once), interface_residual and
         #: interface_jacobian (all calls), linear_solve (all solves), newton (solve() total), setup
         self.timings = {"bulk_assembly": 0.0, "interface_residual": 0.0, "interface_jacobian": 0.0,
                         "matrix_copy": 0.0, "linear_solve": 0.0, "newton": 0.0, "setup": 0.0}
         #: number of calls behind the timings
         self.counts = {"interface_residual": 0, "interface_jacobian": 0, "linear_solve": 0}
-        self._ready = False
+        self._space_ready = False    # function space, joints, linear solver
+        self._supports_dirty = True  # bulk matrix K (depends on the supports)
+        self._forms_dirty = True     # load forms (depend on the set of loads)
+        self._initialised = False    # initial state (in-situ loads, joint pre-closure) set
         self.solution = None
 
     # ---- input checks --------------------------------------------------------------------
@@ -246,44 +224,184 @@ class JointedRockModel:
             raise ValueError(f"{what} must be {self.gdim} finite components, got {value!r}")
         return v
 
-    # ---- loads and supports --------------------------------------------------------------
-    def fix(self, boundary: str, components="all", block: str | None = None) -> None:
-        """Zero displacement of `components` ("x", "y", "z", indices or "all") on a named boundary;
-        with `block`, only on the part of the boundary that belongs to that block (e.g. a roller
-        under one block while the block above it, held by a joint, may slide)."""
+    def _check_density(self, density) -> dict:
+        if density is None:
+            return {}
+        blocks = _names(self.dmesh, "blocks")
+        if not isinstance(density, dict):
+            density = {b: density for b in blocks}
+        unknown = set(density) - set(blocks)
+        if unknown:
+            raise ValueError(f"density: unknown block(s) {sorted(unknown)}; available blocks: {sorted(blocks)}")
+        missing = set(blocks) - set(density)
+        if missing:
+            raise ValueError(f"density: no value for block(s) {sorted(missing)} (give one for every block)")
+        out = {}
+        for name, rho in density.items():
+            try:
+                rho = float(rho)
+            except (TypeError, ValueError):
+                raise ValueError(f"density[{name!r}] must be a number [kg/m³], got {rho!r}") from None
+            if not (np.isfinite(rho) and rho > 0):
+                raise ValueError(f"density[{name!r}] = {rho} kg/m³ is invalid; it must be finite and > 0")
+            out[name] = rho
+        return out
+
+    def _gravity_vector(self, gravity) -> np.ndarray:
+        if np.ndim(gravity) == 0:
+            g = float(gravity)
+            if not (np.isfinite(g) and g >= 0):
+                raise ValueError(f"gravity = {gravity!r} m/s² is invalid; give g >= 0 or a vector")
+            out = np.zeros(self.gdim)
+            out[-1] = -g  # along -y (2D) / -z (3D)
+            return out
+        return self._vector(gravity, "gravity")
+
+    def _check_load_value(self, load: Load, value):
+        if load.kind == "traction" and callable(value):
+            return value
+        if load.kind in ("traction", "body_force", "gravity"):
+            return self._vector(value, load.kind.replace("_", " "))
+        try:
+            v = float(value)
+        except (TypeError, ValueError):
+            raise ValueError(f"{load.kind} value must be a number, got {value!r}") from None
+        if load.kind == "pressure" and not np.isfinite(v):
+            raise ValueError(f"pressure on {load.boundary!r} must be finite, got {value!r} Pa")
+        if load.kind == "excavation" and not 0.0 <= v <= 1.0:
+            raise ValueError(f"excavation of {load.boundary!r}: the fraction of the in-situ traction left "
+                             f"must be in [0, 1], got {value!r}")
+        return v
+
+    # ---- loads and supports (handles; changes take effect at the next stage) --------------
+    def fix(self, boundary: str, components="all", block: str | None = None, value=0.0) -> Support:
+        """Prescribed displacement `value` [m] (0: a fixed support) of `components` ("x", "y",
+        "z", indices or "all") on a named boundary; one value or one per component. With `block`,
+        only on the part of the boundary that belongs to that block (e.g. a roller under one block
+        while the block above it, held by a joint, may slide). A non-zero or changed value is
+        ramped over the next stage from the displacement the dofs have then."""
         _lookup(self.dmesh, "boundaries", boundary)
         block_tag = None if block is None else _lookup(self.dmesh, "blocks", block)
-        self.loads.supports.append((boundary, self._component_indices(components), block_tag))
-        self._ready = False
+        support = Support(self, boundary, self._component_indices(components), block_tag, value)
+        self._supports.append(support)
+        self._supports_dirty = True
+        return support
 
-    def add_traction(self, boundary: str, traction) -> None:
-        """Surface traction vector [Pa] on a named boundary (scaled by the load factor)."""
+    def add_traction(self, boundary: str, traction) -> Load:
+        """Surface traction [Pa] on a named boundary: a vector, or a callable f(x) -> (gdim, n)
+        of the coordinates x (3, n) (interpolated in the displacement space)."""
+        return self._add_load("traction", boundary, traction)
+
+    def add_pressure(self, boundary: str, pressure: float) -> Load:
+        """Normal pressure p [Pa] on a named boundary (curved ones too): traction t = -p n, n the
+        outward normal of the rock; p > 0 pushes on the surface."""
+        return self._add_load("pressure", boundary, pressure)
+
+    def add_body_force(self, force) -> Load:
+        """Body force per unit volume [N/m³] in every block."""
+        return self._add_load("body_force", None, force)
+
+    def excavate(self, boundary: str, fraction_left: float = 0.0) -> Load:
+        """Excavation of an opening meshed as a hole: the in-situ traction σ0·n that `boundary`
+        carries in the initial state is ramped to `fraction_left` of itself (default 0) over the
+        next stage. The handle's value is that fraction; remove() puts the traction back."""
         _lookup(self.dmesh, "boundaries", boundary)
-        self.loads.tractions.append((boundary, self._vector(traction, "traction")))
-        self._ready = False
+        if self.in_situ is None:
+            raise RuntimeError(f"excavate({boundary!r}) releases the in-situ traction: set_in_situ_stress first")
+        if boundary in self._release:
+            self._release[boundary].value = fraction_left
+            return self._release[boundary]
+        load = Load(self, "excavation", boundary, fraction_left)
+        load.coefficient = self._multiplier(boundary)
+        set_coefficient(load)
+        self._release[boundary] = load
+        return load
 
-    def add_body_force(self, force) -> None:
-        """Body force per unit volume [N/m³] in every block (scaled by the load factor)."""
-        self.loads.body_forces.append(self._vector(force, "body force"))
-        self._ready = False
+    def set_in_situ_stress(self, in_situ: InSituStress) -> None:
+        """The initial stress σ0 (before the first stage): the bulk stress, the tractions σ0·n on
+        every named boundary (carried by the supports on supported components), gravity, and
+        joints pre-closed to their law's closure at the initial normal stress make an equilibrium
+        state with u = 0; ValueError if σ0 and the model's gravity disagree."""
+        if self.stages:
+            raise RuntimeError("set_in_situ_stress: the in-situ stress is the initial state; set it before "
+                               "the first solve()")
+        if not isinstance(in_situ, InSituStress):
+            raise ValueError(f"set_in_situ_stress takes an InSituStress (uniform, depth_dependent, "
+                             f"from_function), got {type(in_situ).__name__}")
+        in_situ.check_dimension(self.gdim)
+        gravity = self.gravity.value if self.gravity is not None and self.gravity.active else None
+        in_situ.check_gravity(self.densities if gravity is not None else {}, gravity)
+        self.in_situ = in_situ
+        self._initialised = False
+        self._forms_dirty = True
+
+    def _add_load(self, kind: str, boundary: str | None, value) -> Load:
+        if boundary is not None:
+            _lookup(self.dmesh, "boundaries", boundary)
+        load = Load(self, kind, boundary, value)
+        self._loads.append(load)
+        self._forms_dirty = True
+        return load
+
+    def _set_load_coefficient(self, load: Load) -> None:
+        as_function = isinstance(load.coefficient, fem.Function)
+        if load.kind == "traction" and callable(load.value) != as_function:
+            load.coefficient = None  # a constant became a field or back: recompile the load form
+            self._forms_dirty = True
+        else:
+            set_coefficient(load)
+
+    def _remove_load(self, load: Load) -> None:
+        if load.kind == "excavation":
+            load.coefficient.value = 1.0
+            del self._release[load.boundary]
+            return
+        self._loads.remove(load)
+        self._forms_dirty = True
+
+    def _remove_support(self, support: Support) -> None:
+        self._supports.remove(support)
+        self._supports_dirty = True
+
+    def _multiplier(self, boundary: str):
+        """The fraction of σ0·n carried by `boundary` (a Constant, 1 until excavated)."""
+        if not hasattr(self, "_multipliers"):
+            self._multipliers = {}
+        if boundary not in self._multipliers:
+            self._multipliers[boundary] = fem.Constant(self.mesh, 1.0)
+        return self._multipliers[boundary]
 
     # ---- setup -----------------------------------------------------------------------------
-    def _setup(self) -> None:
+    def _prepare(self) -> None:
+        if not self._space_ready:
+            self._setup_space()
+        if self._supports_dirty:
+            self._setup_supports()
+        if self._forms_dirty:
+            self._compile_forms()
+        self._collect_prescribed()
+        if not self._initialised:
+            self._initial_state()
+
+    def _setup_space(self) -> None:
         t0 = time.perf_counter()
         mesh, gdim, tdim = self.mesh, self.gdim, self.mesh.topology.dim
         V = fem.VectorFunctionSpace(mesh, ("Lagrange", self.degree))
         self.V = V
         self.u = fem.Function(V, name="displacement")
         self.du = fem.Function(V)
+        self._w = fem.Function(V)  # a displacement whose internal force is wanted (lift, reactions)
 
-        # Lamé parameters per cell from the block tags (DG0).
+        # Lamé parameters and density per cell from the block tags (DG0).
         Q = fem.FunctionSpace(mesh, ("DG", 0))
-        lam, mu = fem.Function(Q), fem.Function(Q)
+        lam, mu, rho = fem.Function(Q), fem.Function(Q), fem.Function(Q)
         tags = self.dmesh.cell_blocks
         ncells = mesh.topology.index_map(tdim).size_local + mesh.topology.index_map(tdim).num_ghosts
         cell_tag = np.full(ncells, -1, dtype=np.int64)
         cell_tag[tags.indices] = tags.values
-        lam_a, mu_a = np.full(ncells, np.nan), np.full(ncells, np.nan)
+        self._cell_tag = cell_tag
+        lam_a, mu_a, rho_a = np.full(ncells, np.nan), np.full(ncells, np.nan), np.zeros(ncells)
+        blocks = _names(self.dmesh, "blocks")
         for tag, (E, nu) in self.rock.items():
             sel = cell_tag == tag
             mu_a[sel] = E / (2 * (1 + nu))
@@ -291,12 +409,15 @@ class JointedRockModel:
             if self.plane == "stress":
                 l = 2 * l * mu_a[sel] / (l + 2 * mu_a[sel])
             lam_a[sel] = l
+        for name, value in self.densities.items():
+            rho_a[cell_tag == blocks[name]] = value
         if np.isnan(mu_a).any():
             raise ValueError("some cells carry no block tag with rock properties")
         dofs = Q.dofmap.list.array
         lam.x.array[dofs] = lam_a
         mu.x.array[dofs] = mu_a
-        self._lame = (lam, mu)
+        rho.x.array[dofs] = rho_a
+        self._lame, self._rho = (lam, mu), rho
 
         def eps(w):
             return ufl.sym(ufl.grad(w))
@@ -304,39 +425,14 @@ class JointedRockModel:
         def sigma(w):
             return 2 * mu * eps(w) + lam * ufl.tr(eps(w)) * ufl.Identity(gdim)
 
-        self.sigma = sigma
+        self.eps, self.sigma = eps, sigma
         du_, v = ufl.TrialFunction(V), ufl.TestFunction(V)
-        a_form = fem.form(ufl.inner(sigma(du_), eps(v)) * ufl.dx)
-        ds = ufl.Measure("ds", domain=mesh, subdomain_data=self.dmesh.boundaries)
-        L = ufl.inner(fem.Constant(mesh, np.zeros(gdim)), v) * ufl.dx
-        for name, t in self.loads.tractions:
-            L += ufl.inner(fem.Constant(mesh, t), v) * ds(_lookup(self.dmesh, "boundaries", name))
-        for f in self.loads.body_forces:
-            L += ufl.inner(fem.Constant(mesh, f), v) * ufl.dx
-        L_form = fem.form(L)
-
-        # Supports: zero components on boundaries.
-        fdim = tdim - 1
-        mesh.topology.create_connectivity(fdim, tdim)
-        bcs = []
-        f2c = mesh.topology.connectivity(fdim, tdim)
-        for name, comps, block_tag in self.loads.supports:
-            facets = self.dmesh.boundary(name)
-            if block_tag is not None:
-                facets = np.array([f for f in facets if cell_tag[f2c.links(f)[0]] == block_tag], dtype=np.int32)
-            for c in comps:
-                Vc = V.sub(c)
-                dofs_c = fem.locate_dofs_topological(Vc, fdim, facets)
-                bcs.append(fem.dirichletbc(PETSc.ScalarType(0), dofs_c, Vc))
-        self.bcs = bcs
-        imap, bs = V.dofmap.index_map, V.dofmap.index_map_bs
-        n_local_unrolled = (imap.size_local + imap.num_ghosts) * bs
-        constrained = np.zeros(n_local_unrolled, dtype=np.int8)
-        for bc in bcs:
-            idx, _ = bc.dof_indices()
-            constrained[idx] = 1
-        self._constrained = constrained
-        self._constrained_owned = np.flatnonzero(constrained[: imap.size_local * bs]).astype(np.int32)
+        self._v = v
+        self.a_form = fem.form(ufl.inner(sigma(du_), eps(v)) * ufl.dx)
+        self._internal_form = fem.form(ufl.inner(sigma(self._w), eps(v)) * ufl.dx)
+        self._ds = ufl.Measure("ds", domain=mesh, subdomain_data=self.dmesh.boundaries)
+        self._normal = ufl.FacetNormal(mesh)
+        mesh.topology.create_connectivity(tdim - 1, tdim)
 
         # Joints and the sparsity pattern with the cross-joint couplings (docs/fem.md, pitfall 4).
         self.interface = JointInterface(V, self.dmesh.pairs, self.behaviours, self.quadrature)
@@ -344,23 +440,14 @@ class JointedRockModel:
                                                {_dcpp.fem.IntegralType.cell})
         self.interface.insert_sparsity(sp)
         sp.assemble()
-        K = _dcpp.la.petsc.create_matrix(self.comm, sp)
-        # Explicit zeros reserve the joint couplings: PETSc drops unset preallocated entries at the
-        # final assembly, and J is refreshed from K with SAME_NONZERO_PATTERN.
-        self.interface.add_jacobian(K, np.zeros(n_local_unrolled), constrained, scale=0.0)
-        t1 = time.perf_counter()
-        fem_petsc.assemble_matrix(K, a_form, bcs)
-        K.assemble()
-        f = fem_petsc.assemble_vector(L_form)
-        f.ghostUpdate(addv=PETSc.InsertMode.ADD, mode=PETSc.ScatterMode.REVERSE)
-        fem_petsc.set_bc(f, bcs)
-        self.timings["bulk_assembly"] = time.perf_counter() - t1
-        self.K, self.f = K, f
-        self.J = K.duplicate(copy=True)
-        self.r = f.duplicate()
-        self._r_joint = la.create_petsc_vector(imap, bs)
-        self.f_norm = f.norm()
-        self.a_form, self.L_form = a_form, L_form
+        self._sparsity = sp
+        imap, bs = V.dofmap.index_map, V.dofmap.index_map_bs
+        self._n_local = (imap.size_local + imap.num_ghosts) * bs
+        self.r = la.create_petsc_vector(imap, bs)
+        self._r_joint = self.r.duplicate()
+        self._f_lambda = self.r.duplicate()
+        self._lift = self.r.duplicate()
+        self._r_sigma0 = None  # ∫ε(v):σ0 dx with an in-situ stress
 
         num_dofs = imap.size_global * bs
         symmetric = all(b.shear_model == ShearModel.constant for b in self.behaviours.values())
@@ -373,15 +460,218 @@ class JointedRockModel:
                                           prefix=self.options_prefix)
         self.num_dofs = num_dofs
         self.load_factor = 0.0
+        self._applied = None
         self._saved = None
-        self.timings["setup"] = time.perf_counter() - t0
-        self._ready = True
+        self.K = self.J = None
+        self.timings["setup"] += time.perf_counter() - t0
+        self._space_ready = True
+
+    def _setup_supports(self) -> None:
+        """Dirichlet dofs of every support and the bulk matrix K with them (identity rows)."""
+        t0 = time.perf_counter()
+        V, fdim = self.V, self.mesh.topology.dim - 1
+        f2c = self.mesh.topology.connectivity(fdim, fdim + 1)
+        bcs, constrained = [], np.zeros(self._n_local, dtype=np.int8)
+        self._support_dofs = {}
+        for s in self._supports:
+            facets = self.dmesh.boundary(s.boundary)
+            if s.block_tag is not None:
+                facets = np.array([f for f in facets if self._cell_tag[f2c.links(f)[0]] == s.block_tag],
+                                  dtype=np.int32)
+            entries = []
+            for k, c in enumerate(s.components):
+                Vc = V.sub(c)
+                bc = fem.dirichletbc(PETSc.ScalarType(0), fem.locate_dofs_topological(Vc, fdim, facets), Vc)
+                bcs.append(bc)
+                idx, first_ghost = bc.dof_indices()
+                constrained[idx] = 1
+                entries.append((k, c, np.asarray(idx), np.asarray(idx[:first_ghost])))
+            self._support_dofs[id(s)] = entries
+        self.bcs = bcs
+        self._constrained = constrained
+        self._constrained_local = np.flatnonzero(constrained).astype(np.int32)
+        imap = self.V.dofmap.index_map
+        self._constrained_owned = np.flatnonzero(constrained[: imap.size_local * self.V.dofmap.index_map_bs]
+                                                 ).astype(np.int32)
+        for A in (self.K, self.J):
+            if A is not None:
+                A.destroy()
+        K = _dcpp.la.petsc.create_matrix(self.comm, self._sparsity)
+        # Explicit zeros reserve the joint couplings: PETSc drops unset preallocated entries at the
+        # final assembly, and J is refreshed from K with SAME_NONZERO_PATTERN.
+        self.interface.add_jacobian(K, np.zeros(self._n_local), constrained, scale=0.0)
+        fem_petsc.assemble_matrix(K, self.a_form, bcs)
+        K.assemble()
+        self.K, self.J = K, K.duplicate(copy=True)
+        self.timings["bulk_assembly"] += time.perf_counter() - t0
+        self._supports_dirty = False
+
+    def _collect_prescribed(self) -> None:
+        """Prescribed displacement per constrained local dof (the last support given wins)."""
+        g = np.zeros(self._n_local)
+        for s in self._supports:
+            for k, _, idx, _ in self._support_dofs[id(s)]:
+                g[idx] = s.value[k]
+        self._prescribed = g
+
+    def _compile_forms(self) -> None:
+        """The external load form of the active loads (+ the in-situ forms)."""
+        mesh, v, ds, n = self.mesh, self._v, self._ds, self._normal
+        L = ufl.inner(fem.Constant(mesh, np.zeros(self.gdim)), v) * ufl.dx
+        for load in self._loads:
+            if load.coefficient is None:
+                load.coefficient = make_coefficient(load, mesh, self.V)
+                set_coefficient(load)
+            where = ds(_lookup(self.dmesh, "boundaries", load.boundary)) if load.boundary else None
+            L += load_term(load, v, where, n, self._rho)
+        self._L_user = fem.form(L)
+        if self.in_situ is not None and getattr(self, "_in_situ_compiled", None) is not self.in_situ:
+            sigma0 = self.in_situ.expression(mesh, self.degree)
+            self._sigma0 = sigma0
+            if self._r_sigma0 is not None:
+                self._r_sigma0.destroy()
+            self._r_sigma0 = self._assemble(fem.form(ufl.inner(sigma0, self.eps(v)) * ufl.dx))
+            # σ0·n on every named boundary, times the fraction it still carries (excavate()).
+            Lb = ufl.inner(fem.Constant(mesh, np.zeros(self.gdim)), v) * ufl.dx
+            for name, tag in _names(self.dmesh, "boundaries").items():
+                Lb += self._multiplier(name) * ufl.inner(ufl.dot(sigma0, n), v) * ds(tag)
+            self._L_in_situ = fem.form(Lb)
+            self._in_situ_compiled = self.in_situ
+        self._forms_dirty = False
+
+    def _assemble(self, form) -> PETSc.Vec:
+        b = fem_petsc.assemble_vector(form)
+        b.ghostUpdate(addv=PETSc.InsertMode.ADD, mode=PETSc.ScatterMode.REVERSE)
+        return b
+
+    def _external(self, initial: bool = False) -> tuple:
+        """(user loads, in-situ boundary tractions) vectors of the loads set now; initial=True:
+        those of the initial state (in-situ tractions on every boundary, gravity)."""
+        if self.in_situ is None:
+            user = self._assemble(self._L_user) if not initial else self.r.duplicate()
+            if initial:
+                user.set(0.0)
+            return user, None
+        if not initial:
+            return self._assemble(self._L_user), self._assemble(self._L_in_situ)
+        saved = {b: c.value.copy() for b, c in self._multipliers.items()}
+        for c in self._multipliers.values():
+            c.value = 1.0
+        in_situ = self._assemble(self._L_in_situ)
+        for b, value in saved.items():
+            self._multipliers[b].value = value
+        if self.gravity is not None and self.gravity.active:
+            user = self._assemble(fem.form(load_term(self.gravity, self._v, None, None, self._rho)))
+        else:
+            user = self.r.duplicate()
+            user.set(0.0)
+        return user, in_situ
+
+    def _combine(self, loads: tuple) -> PETSc.Vec:
+        """f = user loads + in-situ tractions, the latter left out at supported dofs (the
+        supports carry their share of σ0·n)."""
+        user, in_situ = loads
+        f = user.copy()
+        if in_situ is not None:
+            carried = in_situ.copy()
+            carried.array_w[self._constrained_owned] = 0.0
+            f.axpy(1.0, carried)
+            carried.destroy()
+        return f
+
+    def _initial_state(self) -> None:
+        """u = 0 and the loads of the initial state; with an in-situ stress, joints pre-closed and
+        the equilibrium checked."""
+        self.u.x.array[:] = 0.0
+        self._state = self._external(initial=True)
+        self._initialised = True
+        if self.in_situ is None:
+            return
+        self._pre_close_joints()
+        self._begin_stage(next_loads=self._state)
+        rnorm = self.residual()
+        scale = self.load_norm(0.0)
+        if not rnorm <= 1e-8 * scale:
+            raise ValueError(
+                f"the in-situ stress is not in equilibrium with the model's loads: the initial residual is "
+                f"{rnorm:.3e} N, {rnorm / max(scale, 1e-300):.2e} of the in-situ forces (allowed 1e-8). A "
+                f"uniform σ0 needs no gravity (density=None); a depth-dependent one needs gravity with the "
+                f"same density; a field must satisfy div σ0 + ρ g = 0; joints need the initial jump")
+
+    def _pre_close_joints(self) -> None:
+        """Joints carry the in-situ traction at u = 0: initial jump j0 = (-Δ0, τ0/k_s) with
+        Δ0 = law.closure_at_stress(σ_n0), σ_n0 = -n·σ0·n (compression positive), τ0 = t·σ0·n."""
+        iface = self.interface
+        if not hasattr(iface, "set_initial_jump"):
+            if self.comm.allreduce(iface.num_pairs) > 0:
+                raise NotImplementedError("in-situ stress with joints needs JointInterface.set_initial_jump "
+                                          "(joint pre-closure), missing in this build")
+            return
+        from .joint_initial_state import initial_jump
+        iface.set_initial_jump(initial_jump(iface, self.in_situ, self.behaviours, self.gdim,
+                                            _names(self.dmesh, "joints")))
+
+    # ---- stages ------------------------------------------------------------------------------
+    def _begin_stage(self, next_loads: tuple | None = None) -> None:
+        """Load factor 0 of a stage: loads f_prev (the last stage's) → f_next (set now), prescribed
+        displacements from the constrained dofs' current values to the supports' values."""
+        self._next = self._external() if next_loads is None else next_loads
+        self._f_prev = self._combine(self._state)
+        self._df = self._combine(self._next)
+        self._df.axpy(-1.0, self._f_prev)
+        cidx = self._constrained_local
+        self._g_prev = self.u.x.array[cidx].copy()
+        self._g_delta = self._prescribed[cidx] - self._g_prev
+        moved = bool(np.any(self._g_prev != 0.0) or np.any(self._g_delta != 0.0))
+        self._any_prescribed = self.comm.allreduce(moved, op=_max_op())
+        self.load_factor = 0.0
+        self._applied = None
+        self._step_iterations = 0
+
+    def _end_stage(self, reached: float) -> None:
+        """The external loads of load factor `reached` become the state the next stage starts from."""
+        new = []
+        for prev, nxt in zip(self._state, self._next):
+            if prev is None:
+                new.append(None)
+                continue
+            v = prev.copy()
+            v.scale(1.0 - reached)
+            v.axpy(reached, nxt)
+            new.append(v)
+        self._state = tuple(new)
+
+    def _apply_load_factor(self) -> None:
+        """Loads and prescribed displacements of the current load factor (once per factor)."""
+        lam = self.load_factor
+        if self._applied == lam:
+            return
+        self._f_prev.copy(self._f_lambda)
+        self._f_lambda.axpy(lam, self._df)
+        cidx = self._constrained_local
+        self.u.x.array[cidx] = self._g_prev + lam * self._g_delta
+        if self._any_prescribed:
+            # K has zero columns at supported dofs: their prescribed values act through K_fc u_c.
+            w = self._w.x.array
+            w[:] = 0.0
+            w[cidx] = self.u.x.array[cidx]
+            with self._lift.localForm() as loc:
+                loc.set(0.0)
+            fem_petsc.assemble_vector(self._lift, self._internal_form)
+            self._lift.ghostUpdate(addv=PETSc.InsertMode.ADD, mode=PETSc.ScatterMode.REVERSE)
+        self._applied = lam
 
     # ---- the problem interface used by newton.py ------------------------------------------
     def load_norm(self, load_factor: float) -> float:
-        return abs(load_factor) * self.f_norm
+        """Scale of the forces at `load_factor`: ||f(λ)|| (+ ||∫ε(v):σ0||)."""
+        f = self._f_prev.copy()
+        f.axpy(load_factor, self._df)
+        out = f.norm()
+        f.destroy()
+        return out + (self._r_sigma0.norm() if self._r_sigma0 is not None else 0.0)
 
-    def residual(self) -> float:
+    def _joint_forces(self) -> bool:
+        """r_joint(u) into self._r_joint (owned entries complete); False if not finite."""
         t0 = time.perf_counter()
         rj = self._r_joint
         with rj.localForm() as loc:
@@ -391,34 +681,49 @@ class JointedRockModel:
         rj.ghostUpdate(addv=PETSc.InsertMode.ADD, mode=PETSc.ScatterMode.REVERSE)
         self.timings["interface_residual"] += time.perf_counter() - t0
         self.counts["interface_residual"] += 1
-        finite = self.comm.allreduce(bool(finite), op=_min_op())
-        if not finite:
+        return self.comm.allreduce(bool(finite), op=_min_op())
+
+    def residual(self) -> float:
+        self._apply_load_factor()
+        if not self._joint_forces():
             return np.inf
         r = self.r
         self.K.mult(self.u.vector, r)
-        r.axpy(-self.load_factor, self.f)
-        r.axpy(1.0, rj)
+        if self._any_prescribed:
+            r.axpy(1.0, self._lift)
+        if self._r_sigma0 is not None:
+            r.axpy(1.0, self._r_sigma0)
+        r.axpy(-1.0, self._f_lambda)
+        r.axpy(1.0, self._r_joint)
         with r.localForm() as loc:  # owned entries come first in the local form
             loc.array[self._constrained_owned] = 0.0
         nrm = r.norm()
         return nrm if np.isfinite(nrm) else np.inf
 
     def jacobian(self) -> None:
+        self.jacobian_into(self.J)
+
+    def jacobian_into(self, A) -> None:
+        """A = K + joint tangent at u (A has K's nonzero pattern, e.g. JointedProblem.matrix())."""
         t0 = time.perf_counter()
-        self.K.copy(self.J, structure=PETSc.Mat.Structure.SAME_NONZERO_PATTERN)  # J = K (bulk, constant)
+        self.K.copy(A, structure=PETSc.Mat.Structure.SAME_NONZERO_PATTERN)  # bulk, constant
         t1 = time.perf_counter()
         self.timings["matrix_copy"] += t1 - t0
-        t0 = t1
-        self.interface.add_jacobian(self.J, self.u.x.array, self._constrained)
-        self.J.assemble()
-        self.timings["interface_jacobian"] += time.perf_counter() - t0
+        self.interface.add_jacobian(A, self.u.x.array, self._constrained)
+        A.assemble()
+        self.timings["interface_jacobian"] += time.perf_counter() - t1
         self.counts["interface_jacobian"] += 1
+        self._step_iterations += 1
 
-    def solve_increment(self) -> None:
+    def solve_increment(self, rtol: float | None = None) -> None:
+        """du = -J⁻¹ r; rtol: the linear tolerance Newton asks for (None: the solver's default)."""
         t0 = time.perf_counter()
         self.r.scale(-1.0)
         try:
-            self.linear_solver.solve(self.J, self.r, self.du.vector)
+            if rtol is None:
+                self.linear_solver.solve(self.J, self.r, self.du.vector)
+            else:
+                self.linear_solver.solve(self.J, self.r, self.du.vector, rtol=rtol)
         finally:
             self.r.scale(-1.0)
             self.timings["linear_solve"] += time.perf_counter() - t0
@@ -441,30 +746,132 @@ class JointedRockModel:
         self._saved = (self.u.x.array.copy(), self.load_factor)
 
     def restore_state(self) -> None:
+        """Back to the last saved (converged) step: u, load factor and the joints' trial state."""
         arr, self.load_factor = self._saved
         self.u.x.array[:] = arr
+        self._applied = None
+        if hasattr(self.interface, "revert_state"):
+            self.interface.revert_state()
+
+    def commit_state(self) -> None:
+        """A load step converged: the joints' trial state becomes their converged state."""
+        if hasattr(self.interface, "commit_state"):
+            self.interface.commit_state()
+        clock = getattr(self, "_clock", None)
+        if clock is not None:
+            clock.step(self.load_factor, self._step_iterations)
+        self._step_iterations = 0
+
+    def problem(self) -> JointedProblem:
+        """The model as a problem object (F, J) for PETSc SNES or a user's Newton, at the current
+        stage's load factor (`model.load_factor`)."""
+        self._prepare()
+        if not hasattr(self, "_f_prev"):
+            self._begin_stage()
+        return JointedProblem(self)
 
     # ---- solve and output -----------------------------------------------------------------
-    def solve(self, load_steps: int = 1, restart: bool = True) -> JointedSolution:
-        """Apply the loads in (adaptive) load steps from zero (restart=True) or from the last
-        solution, and return the JointedSolution. Raises ConvergenceError / LinearSolveError."""
-        if not self._ready:
-            self._setup()
-        if restart:
-            self.u.x.array[:] = 0.0
-            self.load_factor = 0.0
+    def solve(self, load_steps: int = 1, name: str | None = None, solver: str = "newton",
+              restart: bool = False) -> StageResult:
+        """Solve one stage: the loads go from the previous stage's values to the ones set now in
+        (adaptive) load steps, from the converged state (restart=True: from the initial state).
+        solver: "newton" (the project's, with the closure-limiting step) or "snes" (PETSc SNES,
+        options through petsc_options/options_prefix). Returns the StageResult (also appended to
+        model.stages). Raises ConvergenceError / LinearSolveError; the model then stays at the
+        last converged load step."""
+        if solver not in ("newton", "snes"):
+            raise ValueError(f"solver must be 'newton' or 'snes', got {solver!r}")
+        if restart and self._space_ready:
+            self.interface = JointInterface(self.V, self.dmesh.pairs, self.behaviours, self.quadrature)
+            self._initialised = False
+        self._prepare()
+        k = len(self.stages) + 1
+        name = name or f"stage_{k}"
+        label = getattr(self, "_stage_label", None) or str(k)
+        self._clock = StageClock(self.comm, f"{label} ({name})")
+        self._begin_stage()
         t0 = time.perf_counter()
-        reports = solve_load_path(self, load_steps, self.newton_options)
-        self.timings["newton"] += time.perf_counter() - t0
+        try:
+            if solver == "newton":
+                reports = solve_load_path(self, load_steps, self.newton_options)
+            else:
+                reports = snes_load_path(self, load_steps, self.newton_options)
+        except Exception:
+            self._end_stage(self.load_factor)
+            raise
+        finally:
+            self.timings["newton"] += time.perf_counter() - t0
+            self._clock = None
+        self._end_stage(1.0)
+        return self._stage_result(name, reports, time.perf_counter() - t0)
+
+    def run(self, stages: list) -> list:
+        """Solve a sequence of Stage(name, load_steps, actions, solver) in order (actions(model)
+        changes the loads first); progress as 'stage k/n'. Returns their StageResults."""
+        out = []
+        for k, stage in enumerate(stages, start=1):
+            if not isinstance(stage, Stage):
+                raise ValueError(f"run: stage {k} is a {type(stage).__name__}, not a Stage")
+            if stage.actions is not None:
+                stage.actions(self)
+            self._stage_label = f"{k}/{len(stages)}"
+            try:
+                out.append(self.solve(stage.load_steps, stage.name, stage.solver))
+            finally:
+                self._stage_label = None
+        return out
+
+    def _stage_result(self, name: str, reports: list, elapsed: float) -> StageResult:
         self.interface.update_state(self.u.x.array)
-        self.solution = JointedSolution(self.u, self.interface.state(), reports, self)
-        beyond = self.solution.beyond_law_range()
+        disp = fem.Function(self.V, name="displacement")
+        disp.x.array[:] = self.u.x.array
+        result = StageResult(disp, self.interface.state(), reports, self, name, self._reactions(), elapsed)
+        self.stages.append(result)
+        self.solution = result
+        beyond = result.beyond_law_range()
         if beyond and self.comm.rank == 0:
             # Never silent: the answer there is the table's linear continuation, not the law.
             log.warning("joint law driven past its range (status validity_limit) at %s; the "
                         "response there is the table's linear continuation: tabulate to a higher "
                         "maximum stress", ", ".join(f"{n} ({c} points)" for n, c in beyond.items()))
-        return self.solution
+        return result
+
+    def _reactions(self) -> dict:
+        """{(boundary, component): force the support exerts on the rock}: internal force minus
+        external load at the support's constrained dofs, summed over its owned dofs and ranks."""
+        self._apply_load_factor()
+        self._w.x.array[:] = self.u.x.array
+        force = self._assemble(self._internal_form)
+        if self._r_sigma0 is not None:
+            force.axpy(1.0, self._r_sigma0)
+        self._joint_forces()
+        force.axpy(1.0, self._r_joint)
+        force.axpy(-1.0, self._f_lambda)
+        values = force.array_r
+        out = {}
+        for s in self._supports:
+            for _, c, _, owned in self._support_dofs[id(s)]:
+                key = (s.boundary, "xyz"[c])
+                out[key] = out.get(key, 0.0) + float(values[owned].sum())
+        force.destroy()
+        keys = sorted(out)
+        totals = self.comm.allreduce(np.array([out[k] for k in keys]))
+        return dict(zip(keys, (float(t) for t in totals)))
+
+    def total_stress(self, degree: int | None = None) -> fem.Function:
+        """Total stress σ0 + σ(u) [Pa, tension positive] interpolated in a discontinuous tensor
+        space of `degree` (default: element degree - 1, exact for σ(u))."""
+        self._prepare()
+        degree = self.degree - 1 if degree is None else degree
+        T = fem.TensorFunctionSpace(self.mesh, ("DG", degree))
+        stress = self.sigma(self.u)
+        if self.in_situ is not None:
+            stress = stress + self._sigma0
+        points = T.element.interpolation_points
+        points = points() if callable(points) else points
+        out = fem.Function(T, name="total_stress")
+        out.interpolate(fem.Expression(stress, points))
+        return out
 
     def boundary_mean_displacement(self, boundary: str) -> np.ndarray:
         """Mean displacement vector [m] over a named boundary (∫u ds / ∫ds, all ranks)."""
@@ -486,3 +893,8 @@ class JointedRockModel:
 def _min_op():
     from mpi4py import MPI
     return MPI.MIN
+
+
+def _max_op():
+    from mpi4py import MPI
+    return MPI.MAX
