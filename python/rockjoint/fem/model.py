@@ -531,10 +531,16 @@ class JointedRockModel:
             if self._r_sigma0 is not None:
                 self._r_sigma0.destroy()
             self._r_sigma0 = self._assemble(fem.form(ufl.inner(sigma0, self.eps(v)) * ufl.dx))
-            # σ0·n on every named boundary, times the fraction it still carries (excavate()).
+            # σ0·n on every named boundary, times the fraction it still carries (excavate()), left
+            # out on the components a support holds on the whole boundary (the support carries
+            # them: its reaction is then the whole force on the boundary).
             Lb = ufl.inner(fem.Constant(mesh, np.zeros(self.gdim)), v) * ufl.dx
+            self._applied_components = {}
             for name, tag in _names(self.dmesh, "boundaries").items():
-                Lb += self._multiplier(name) * ufl.inner(ufl.dot(sigma0, n), v) * ds(tag)
+                mask = fem.Constant(mesh, np.ones(self.gdim))
+                self._applied_components[name] = mask
+                t0 = ufl.elem_mult(mask, ufl.dot(sigma0, n))
+                Lb += self._multiplier(name) * ufl.inner(t0, v) * ds(tag)
             self._L_in_situ = fem.form(Lb)
             self._in_situ_compiled = self.in_situ
         self._forms_dirty = False
@@ -544,39 +550,39 @@ class JointedRockModel:
         b.ghostUpdate(addv=PETSc.InsertMode.ADD, mode=PETSc.ScatterMode.REVERSE)
         return b
 
-    def _external(self, initial: bool = False) -> tuple:
-        """(user loads, in-situ boundary tractions) vectors of the loads set now; initial=True:
-        those of the initial state (in-situ tractions on every boundary, gravity)."""
+    def _external(self, initial: bool = False) -> PETSc.Vec:
+        """The external load vector of the loads set now; initial=True: that of the initial state
+        (with an in-situ stress: σ0·n on every boundary and gravity; else zero)."""
+        if initial and self.in_situ is None:
+            f = self.r.duplicate()
+            f.set(0.0)
+            return f
         if self.in_situ is None:
-            user = self._assemble(self._L_user) if not initial else self.r.duplicate()
-            if initial:
-                user.set(0.0)
-            return user, None
-        if not initial:
-            return self._assemble(self._L_user), self._assemble(self._L_in_situ)
-        saved = {b: c.value.copy() for b, c in self._multipliers.items()}
-        for c in self._multipliers.values():
-            c.value = 1.0
-        in_situ = self._assemble(self._L_in_situ)
-        for b, value in saved.items():
-            self._multipliers[b].value = value
-        if self.gravity is not None and self.gravity.active:
-            user = self._assemble(fem.form(load_term(self.gravity, self._v, None, None, self._rho)))
+            return self._assemble(self._L_user)
+        for name, mask in self._applied_components.items():
+            mask.value = 1.0
+        for s in self._supports:
+            if s.block_tag is None:
+                mask = self._applied_components[s.boundary]
+                values = np.array(mask.value, dtype=float)
+                values[s.components] = 0.0
+                mask.value = values
+        fractions = {b: c.value.copy() for b, c in self._multipliers.items()}
+        if initial:
+            for c in self._multipliers.values():
+                c.value = 1.0
+            gravity = self.gravity is not None and self.gravity.active
+            f = self._assemble(fem.form(load_term(self.gravity, self._v, None, None, self._rho))) \
+                if gravity else None
         else:
-            user = self.r.duplicate()
-            user.set(0.0)
-        return user, in_situ
-
-    def _combine(self, loads: tuple) -> PETSc.Vec:
-        """f = user loads + in-situ tractions, the latter left out at supported dofs (the
-        supports carry their share of σ0·n)."""
-        user, in_situ = loads
-        f = user.copy()
-        if in_situ is not None:
-            carried = in_situ.copy()
-            carried.array_w[self._constrained_owned] = 0.0
-            f.axpy(1.0, carried)
-            carried.destroy()
+            f = self._assemble(self._L_user)
+        in_situ = self._assemble(self._L_in_situ)
+        for b, value in fractions.items():
+            self._multipliers[b].value = value
+        if f is None:
+            return in_situ
+        f.axpy(1.0, in_situ)
+        in_situ.destroy()
         return f
 
     def _initial_state(self) -> None:
@@ -612,12 +618,12 @@ class JointedRockModel:
                                             _names(self.dmesh, "joints")))
 
     # ---- stages ------------------------------------------------------------------------------
-    def _begin_stage(self, next_loads: tuple | None = None) -> None:
+    def _begin_stage(self, next_loads: PETSc.Vec | None = None) -> None:
         """Load factor 0 of a stage: loads f_prev (the last stage's) → f_next (set now), prescribed
         displacements from the constrained dofs' current values to the supports' values."""
         self._next = self._external() if next_loads is None else next_loads
-        self._f_prev = self._combine(self._state)
-        self._df = self._combine(self._next)
+        self._f_prev = self._state.copy()
+        self._df = self._next.copy()
         self._df.axpy(-1.0, self._f_prev)
         cidx = self._constrained_local
         self._g_prev = self.u.x.array[cidx].copy()
@@ -630,16 +636,10 @@ class JointedRockModel:
 
     def _end_stage(self, reached: float) -> None:
         """The external loads of load factor `reached` become the state the next stage starts from."""
-        new = []
-        for prev, nxt in zip(self._state, self._next):
-            if prev is None:
-                new.append(None)
-                continue
-            v = prev.copy()
-            v.scale(1.0 - reached)
-            v.axpy(reached, nxt)
-            new.append(v)
-        self._state = tuple(new)
+        state = self._state.copy()
+        state.scale(1.0 - reached)
+        state.axpy(reached, self._next)
+        self._state = state
 
     def _apply_load_factor(self) -> None:
         """Loads and prescribed displacements of the current load factor (once per factor)."""
