@@ -1,0 +1,136 @@
+"""In-situ stress: the initial state is an equilibrium (u = 0, zero residual), releasing in-situ
+tractions gives the closed-form relative displacement, an excavated hole converges like Lamé.
+
+References: uniform stress release in plane strain, ε = [(1-ν²) Δσ_a - ν(1+ν) Δσ_b] / E; a hole of
+radius a in a thick cylinder b under isotropic p0 whose wall traction is released moves like the
+Lamé cylinder under an internal pressure -p0 (superposition).
+"""
+import numpy as np
+import pytest
+
+pytest.importorskip("dolfinx")
+pytest.importorskip("rockjoint._rockjoint_fem")
+
+from mpi4py import MPI  # noqa: E402
+
+from rockjoint import meshes  # noqa: E402
+from rockjoint.fem import InSituStress, JointedRockModel, distribute  # noqa: E402
+from staged_cases import (E, NU, QUIET, lame_radial_displacement, quarter_annulus,  # noqa: E402
+                          radial_displacement_at)
+
+RHO, G = 2700.0, 9.81
+WIDTH, HEIGHT = 2.0, 3.0
+
+
+@pytest.fixture(scope="module")
+def block():
+    jm = meshes.jointed_block((WIDTH, HEIGHT), [], dim=2, mesh_size=0.5, comm=MPI.COMM_WORLD)
+    return distribute(jm, MPI.COMM_WORLD)
+
+
+def intact(dmesh, **kw):
+    model = JointedRockModel(dmesh, rock=(E, NU), newton=QUIET, **kw)
+    model.fix("bottom", "y")
+    model.fix("left", "x")
+    return model
+
+
+def test_depth_dependent_initial_state_is_in_equilibrium(block):
+    """σ_v = ρ g (z_s - y), σ_h = K0 σ_v with gravity ρ g: nothing moves, the residual is zero, and
+    the supports carry the in-situ stress: bottom ρ g z_s × width, left ∫ K0 σ_v dy."""
+    surface, k0 = 100.0, 0.5
+    model = intact(block, density=RHO)
+    model.set_in_situ_stress(InSituStress.depth_dependent(surface, RHO, k0))
+    res = model.solve(name="in-situ")
+    assert np.abs(model.u.x.array).max() == 0.0
+    model.load_factor = 1.0
+    assert model.residual() < 1e-12 * RHO * G * surface * WIDTH
+    assert res.reactions[("bottom", "y")] == pytest.approx(RHO * G * surface * WIDTH, rel=1e-12)
+    left = k0 * RHO * G * (surface * HEIGHT - HEIGHT**2 / 2)
+    assert res.reactions[("left", "x")] == pytest.approx(left, rel=1e-12)
+    # total stress = σ0 + σ(0): the depth profile, at the cell midpoints (DG0)
+    stress = model.total_stress().x.array.reshape(-1, 2, 2)
+    x = model.total_stress().function_space.tabulate_dof_coordinates()
+    np.testing.assert_allclose(stress[:, 1, 1], -RHO * G * (surface - x[:, 1]), rtol=1e-12)
+    np.testing.assert_allclose(stress[:, 0, 0], -k0 * RHO * G * (surface - x[:, 1]), rtol=1e-12)
+
+
+def test_gravity_and_in_situ_gradient_must_agree(block):
+    model = intact(block, density=RHO)
+    with pytest.raises(ValueError, match="density 2600 kg/m³ but block 'block_1' has density 2700"):
+        model.set_in_situ_stress(InSituStress.depth_dependent(100.0, 2600.0, 0.5))
+    no_gravity = intact(block)
+    with pytest.raises(ValueError, match="needs gravity in the model"):
+        no_gravity.set_in_situ_stress(InSituStress.depth_dependent(100.0, RHO, 0.5))
+    model.set_in_situ_stress(InSituStress.uniform(np.diag([-1e6, -2e6])))  # no gradient, gravity on
+    with pytest.raises(ValueError, match="not in equilibrium"):
+        model.solve()
+    with pytest.raises(ValueError, match="symmetric"):
+        InSituStress.uniform([[0.0, 1.0], [2.0, 0.0]])
+    with pytest.raises(ValueError, match="k0"):
+        InSituStress.depth_dependent(100.0, RHO, -0.5)
+    with pytest.raises(ValueError, match="2x2 or 3x3"):
+        InSituStress.uniform([1.0, 2.0])
+    with pytest.raises(ValueError, match="model is 2D"):
+        no_gravity.set_in_situ_stress(InSituStress.uniform(-np.eye(3)))
+
+
+@pytest.mark.parametrize("field", ["uniform", "function"])
+def test_releasing_uniform_in_situ_tractions_matches_the_closed_form(block, field):
+    """σ0 = diag(-1, -2) MPa; the right and top tractions released (excavate): the block expands by
+    the plane-strain strains of Δσ = (+1, +2) MPa and the total stress vanishes."""
+    sx, sy = -1e6, -2e6
+    model = intact(block)
+    if field == "uniform":
+        model.set_in_situ_stress(InSituStress.uniform(np.diag([sx, sy])))
+    else:
+        model.set_in_situ_stress(InSituStress.from_function(
+            lambda x: np.array([[sx + 0 * x[0], 0 * x[0]], [0 * x[0], sy + 0 * x[0]]])))
+    initial = model.solve()
+    assert np.abs(initial.displacement.x.array).max() == 0.0
+    model.excavate("top")
+    model.excavate("right")
+    released = model.solve(load_steps=2)
+    exx = ((1 - NU**2) * -sx - NU * (1 + NU) * -sy) / E
+    eyy = ((1 - NU**2) * -sy - NU * (1 + NU) * -sx) / E
+    assert model.boundary_mean_displacement("top")[1] == pytest.approx(eyy * HEIGHT, rel=1e-10)
+    assert model.boundary_mean_displacement("right")[0] == pytest.approx(exx * WIDTH, rel=1e-10)
+    assert np.abs(model.total_stress().x.array).max() < 1e-8 * abs(sy)
+    assert max(abs(r) for r in released.reactions.values()) < 1e-8 * abs(sy)
+    model.excavate("top").remove()  # the top traction comes back: only Δσ_x = -sx is left
+    model.solve()
+    assert model.boundary_mean_displacement("top")[1] == pytest.approx(-NU * (1 + NU) * -sx / E * HEIGHT,
+                                                                        rel=1e-10)
+
+
+def test_excavating_a_hole_matches_lame_and_a_negative_pressure():
+    """Isotropic p0 = 10 MPa; excavating the hole (its wall traction ramped to zero) equals an
+    internal pressure -p0 on the unstressed cylinder to round-off, and Lamé within 3e-4 (P2)."""
+    a, b, p0 = 1.0, 3.0, 10e6
+    dmesh = quarter_annulus(a, b, 16, 48)
+
+    def model_of():
+        m = JointedRockModel(dmesh, element_degree=2, rock=(E, NU), newton=QUIET)
+        m.fix("left", "x")
+        m.fix("bottom", "y")
+        return m
+
+    excavated = model_of()
+    excavated.set_in_situ_stress(InSituStress.uniform(-p0 * np.eye(2)))
+    initial = excavated.solve(name="in-situ")
+    # the symmetry supports carry σ0 over their length b - a
+    assert initial.reactions[("bottom", "y")] == pytest.approx(p0 * (b - a), rel=1e-12)
+    excavated.excavate("inner")
+    excavated.solve(load_steps=3, name="excavation")
+    pressure = model_of()
+    pressure.add_pressure("inner", -p0)
+    pressure.solve()
+    assert np.abs(excavated.u.x.array - pressure.u.x.array).max() < 1e-10 * np.abs(pressure.u.x.array).max()
+    _, ur = radial_displacement_at(excavated, a)
+    ref = lame_radial_displacement(a, a, b, -p0)
+    assert ref < 0  # the wall converges into the opening
+    assert np.abs(ur / ref - 1).max() < 3e-4
+    # a lining pressure p0 in a later stage brings the wall back (superposition)
+    excavated.add_pressure("inner", p0)
+    excavated.solve(name="lining")
+    assert np.abs(excavated.u.x.array).max() < 1e-9 * abs(ref)
