@@ -6,7 +6,7 @@ the joint alone and may slide on it: the exact solution is the uniform uniaxial 
 both blocks plus a rigid relative translation (the joint jump). With n = (sin θ, [0,] cos θ) the
 joint's upward normal, the traction the joint carries is σ·n:
     normal stress (compression +)  σ_n = p cos²θ,
-    shear traction magnitude        |τ| = p sin θ cos θ   (2D: τ·t1 = -p n_v t1_v, t1 = (-n_y, n_x)),
+    shear traction magnitude        |τ| = p sin θ cos θ   (2D: t1 = (n_y, -n_x); 3D: t1 = strike e_y),
 whatever the joint stiffnesses. The P1 solution reproduces a uniform stress state exactly.
 """
 import math
