@@ -13,10 +13,13 @@ pytest.importorskip("rockjoint._rockjoint_fem")
 
 from mpi4py import MPI  # noqa: E402
 
+import rockjoint  # noqa: E402
 from rockjoint import meshes  # noqa: E402
 from rockjoint.fem import InSituStress, JointedRockModel, distribute  # noqa: E402
-from staged_cases import (E, NU, QUIET, lame_radial_displacement, quarter_annulus,  # noqa: E402
-                          radial_displacement_at)
+from staged_cases import (E, E_PLANE, KNI, NU, QUIET, VM, bb_closure, column,  # noqa: E402
+                          lame_radial_displacement, quarter_annulus, radial_displacement_at)
+
+H = 2.0  # height of staged_cases.column [m]
 
 RHO, G = 2700.0, 9.81
 WIDTH, HEIGHT = 2.0, 3.0
@@ -134,3 +137,73 @@ def test_excavating_a_hole_matches_lame_and_a_negative_pressure():
     excavated.add_pressure("inner", p0)
     excavated.solve(name="lining")
     assert np.abs(excavated.u.x.array).max() < 1e-9 * abs(ref)
+
+
+def test_a_joint_follows_its_law_through_in_situ_unloading_and_reloading():
+    """Column, horizontal Barton-Bandis joint at mid-height, σ0 = diag(-σh, -σv). At every stage
+    the joint's closure is the law's closed-form Δ(σ_n) at the normal stress the applied load
+    gives (top traction fraction f of σv, plus added load), and the top moves by the rock's
+    plane-strain strain plus the change of closure:
+        in-situ σ_n = σv (u = 0) → excavation-like unloading to σv/4 → reloading to 1.25 σv →
+        complete unloading (σ_n = 0, the joint at its zero-stress closure 0)."""
+    sh, sv = 2e6, 5e6
+    model = column()
+    model.set_in_situ_stress(InSituStress.uniform(np.diag([-sh, -sv])))
+    stages = []
+
+    def check(normal_stress):
+        res = model.solve(load_steps=2)
+        joints = res.gather_joints()
+        np.testing.assert_allclose(joints["normal_stress"], normal_stress, rtol=1e-8, atol=1e-6)
+        np.testing.assert_allclose(joints["closure"], bb_closure(normal_stress), rtol=1e-8, atol=1e-15)
+        expected_top = (sv - normal_stress) * H / E_PLANE + bb_closure(sv) - bb_closure(normal_stress)
+        assert model.boundary_mean_displacement("top")[1] == pytest.approx(expected_top, rel=1e-8, abs=1e-15)
+        assert res.reactions[("bottom", "y")] == pytest.approx(normal_stress * 1.0, rel=1e-8, abs=1e-3)
+        stages.append(res)
+
+    check(sv)                                # in-situ: nothing moves
+    assert np.abs(model.u.x.array).max() == 0.0
+    release = model.excavate("top", fraction_left=0.25)
+    check(0.25 * sv)                         # unloading
+    reload = model.add_traction("top", (0.0, -sv))
+    check(1.25 * sv)                         # reloading past the in-situ stress
+    release.value = 0.0
+    reload.remove()
+    check(0.0)                               # unloaded: the joint back at zero closure
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_an_inclined_joint_carries_the_in_situ_shear_at_u_zero(dim):
+    """Joint dipping 30° under σ0 = -diag(σh[, σh], σv): at u = 0 the joint carries σ_n0 =
+    σh sin²θ + σv cos²θ and |τ0| = (σv - σh) sin θ cos θ (σ0 n with n = (sin θ, [0,] cos θ)) and the
+    residual is zero: the pre-closure Δ0 = Δ(σ_n0) and the shear offset τ0/k_s balance the bulk."""
+    comm = MPI.COMM_WORLD
+    jm = meshes.jointed_block((1.0,) * dim, [meshes.Joint((0.5,) * dim, 30.0, 90.0, "inclined")], dim=dim,
+                              mesh_size=0.25 if dim == 2 else 0.4, comm=comm)
+    law = rockjoint.BartonBandis(KNI, VM)
+    model = JointedRockModel(distribute(jm, comm), rock=(E, NU), joints={"inclined": law},
+                             shear_stiffness=2e9, plane="strain" if dim == 2 else None, newton=QUIET)
+    model.fix("bottom", "y" if dim == 2 else "z")
+    model.fix("left", "x")
+    if dim == 3:
+        model.fix("front", "y")
+    sh, sv = 2e6, 6e6
+    model.set_in_situ_stress(InSituStress.uniform(-np.diag([sh] * (dim - 1) + [sv])))
+    res = model.solve()
+    theta = np.radians(30.0)
+    sn = sh * np.sin(theta) ** 2 + sv * np.cos(theta) ** 2
+    tau = (sv - sh) * np.sin(theta) * np.cos(theta)
+    assert np.abs(model.u.x.array).max() == 0.0
+    model.load_factor = 1.0
+    assert model.residual() < 1e-9 * sv
+    joints = res.gather_joints()
+    np.testing.assert_allclose(joints["normal_stress"], sn, rtol=1e-10)
+    np.testing.assert_allclose(joints["closure"], bb_closure(sn), rtol=1e-10)
+    np.testing.assert_allclose(np.linalg.norm(joints["shear_traction"], axis=1), tau, rtol=1e-10)
+
+
+def test_in_situ_tension_across_a_joint_is_refused():
+    model = column()
+    model.set_in_situ_stress(InSituStress.uniform(np.diag([-1e6, 1e6])))
+    with pytest.raises(ValueError, match="pulls joint 'joint_1' apart"):
+        model.solve()

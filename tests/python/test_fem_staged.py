@@ -85,6 +85,21 @@ def test_reactions_per_support_balance_the_applied_load():
     assert abs(res.reactions[("left", "x")]) < 1e-6 * 5e6
 
 
+def test_a_support_added_later_holds_the_current_position():
+    """fix(value=None) after a first stage: the top stays where it is and carries all of the added
+    load (reaction +added × width, upward)."""
+    model = column()
+    model.add_traction("top", (0.0, -2.5e6))
+    model.solve()
+    before = model.u.x.array.copy()
+    model.fix("top", "y", value=None)
+    model.add_traction("top", (0.0, -1e6))
+    res = model.solve()
+    assert np.abs(model.u.x.array - before).max() < 1e-12 * np.abs(before).max()
+    assert res.reactions[("top", "y")] == pytest.approx(1e6, rel=1e-9)
+    assert res.reactions[("bottom", "y")] == pytest.approx(2.5e6, rel=1e-9)
+
+
 def test_traction_given_as_a_function_of_x():
     """t_y = -(a + b x) on the top: the bottom reaction equals its resultant a + b/2 (width 1)."""
     a, b = 2e6, 1e6

@@ -60,7 +60,8 @@ class Load:
 class Support:
     """Prescribed displacement [m] of some components on a boundary (0: a fixed support).
 
-    value: one value for every component, or one per component (in the order given to fix)."""
+    value: one value for every component, or one per component (in the order given to fix), or
+    None: hold the dofs where they are when the support is added."""
 
     def __init__(self, model, boundary: str, components: list, block_tag, value):
         self._model = model
@@ -79,6 +80,9 @@ class Support:
     def value(self, value) -> None:
         if not self.active:
             raise RuntimeError(f"the support on {self.boundary!r} was removed; fix the boundary again instead")
+        if value is None:
+            self._value = None
+            return
         v = np.asarray(value, dtype=float)
         if v.ndim == 0:
             v = np.full(len(self.components), float(v))
@@ -94,7 +98,8 @@ class Support:
             self.active = False
 
     def __repr__(self) -> str:
-        return (f"Support({self.boundary!r}, components={self.components}, value={self._value.tolist()}"
+        value = None if self._value is None else self._value.tolist()
+        return (f"Support({self.boundary!r}, components={self.components}, value={value}"
                 f"{'' if self.active else ', removed'})")
 
 

@@ -33,6 +33,7 @@ from petsc4py import PETSc
 from .. import _rockjoint
 from .in_situ import STANDARD_GRAVITY, InSituStress
 from .interface import JointBehaviour, JointInterface, ShearModel
+from .joint_initial_state import initial_jump
 from .linear_solver import LinearSolver, LinearSolveError, rigid_body_modes  # noqa: F401
 from .loads import Load, Support, load_term, make_coefficient, set_coefficient
 from .newton import ConvergenceError, NewtonOptions, solve_load_path  # noqa: F401
@@ -54,6 +55,19 @@ def _lookup(dmesh, kind: str, name: str) -> int:
         singular = {"blocks": "block", "joints": "joint", "boundaries": "boundary"}[kind]
         raise ValueError(f"unknown {singular} {name!r}; available {kind}: {sorted(names)}")
     return names[name]
+
+
+def _per_block(blocks: dict, value, what: str, missing_message: str) -> dict:
+    """{block name: value} from one value for every block or a dict that names them all."""
+    if not isinstance(value, dict):
+        return {b: value for b in blocks}
+    unknown = set(value) - set(blocks)
+    if unknown:
+        raise ValueError(f"{what}: unknown block(s) {sorted(unknown)}; available blocks: {sorted(blocks)}")
+    missing = set(blocks) - set(value)
+    if missing:
+        raise ValueError(f"{what}: " + missing_message.format(sorted(missing)))
+    return value
 
 
 def _per_joint(value, joint_names, what: str) -> dict:
@@ -159,14 +173,7 @@ class JointedRockModel:
         blocks = _names(self.dmesh, "blocks")
         if rock is None:
             raise ValueError(f"rock properties are missing; give rock={{block: (E, nu)}} for blocks {sorted(blocks)}")
-        if not isinstance(rock, dict):
-            rock = {b: rock for b in blocks}
-        unknown = set(rock) - set(blocks)
-        if unknown:
-            raise ValueError(f"rock: unknown block(s) {sorted(unknown)}; available blocks: {sorted(blocks)}")
-        missing = set(blocks) - set(rock)
-        if missing:
-            raise ValueError(f"rock: no (E, nu) for block(s) {sorted(missing)}")
+        rock = _per_block(blocks, rock, "rock", "no (E, nu) for block(s) {}")
         out = {}
         for name, value in rock.items():
             try:
@@ -227,15 +234,8 @@ class JointedRockModel:
     def _check_density(self, density) -> dict:
         if density is None:
             return {}
-        blocks = _names(self.dmesh, "blocks")
-        if not isinstance(density, dict):
-            density = {b: density for b in blocks}
-        unknown = set(density) - set(blocks)
-        if unknown:
-            raise ValueError(f"density: unknown block(s) {sorted(unknown)}; available blocks: {sorted(blocks)}")
-        missing = set(blocks) - set(density)
-        if missing:
-            raise ValueError(f"density: no value for block(s) {sorted(missing)} (give one for every block)")
+        density = _per_block(_names(self.dmesh, "blocks"), density, "density",
+                             "no value for block(s) {} (give one for every block)")
         out = {}
         for name, rho in density.items():
             try:
@@ -279,7 +279,8 @@ class JointedRockModel:
         "z", indices or "all") on a named boundary; one value or one per component. With `block`,
         only on the part of the boundary that belongs to that block (e.g. a roller under one block
         while the block above it, held by a joint, may slide). A non-zero or changed value is
-        ramped over the next stage from the displacement the dofs have then."""
+        ramped over the next stage from the displacement the dofs have then; value=None holds
+        the dofs where they are (a support installed in a later stage)."""
         _lookup(self.dmesh, "boundaries", boundary)
         block_tag = None if block is None else _lookup(self.dmesh, "blocks", block)
         support = Support(self, boundary, self._component_indices(components), block_tag, value)
@@ -507,11 +508,12 @@ class JointedRockModel:
         self._supports_dirty = False
 
     def _collect_prescribed(self) -> None:
-        """Prescribed displacement per constrained local dof (the last support given wins)."""
+        """Prescribed displacement per constrained local dof (the last support given wins; a
+        support without a value holds the current displacement)."""
         g = np.zeros(self._n_local)
         for s in self._supports:
             for k, _, idx, _ in self._support_dofs[id(s)]:
-                g[idx] = s.value[k]
+                g[idx] = self.u.x.array[idx] if s.value is None else s.value[k]
         self._prescribed = g
 
     def _compile_forms(self) -> None:
@@ -613,7 +615,6 @@ class JointedRockModel:
                 raise NotImplementedError("in-situ stress with joints needs JointInterface.set_initial_jump "
                                           "(joint pre-closure), missing in this build")
             return
-        from .joint_initial_state import initial_jump
         iface.set_initial_jump(initial_jump(iface, self.in_situ, self.behaviours, self.gdim,
                                             _names(self.dmesh, "joints")))
 
