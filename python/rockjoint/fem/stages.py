@@ -29,6 +29,25 @@ def names_of(dmesh, kind: str) -> dict:
     return {str(n): int(t) for t, n in dmesh.names[kind].items()}
 
 
+def lookup(dmesh, kind: str, name: str) -> int:
+    """The tag of a named group, or ValueError listing the available names."""
+    names = names_of(dmesh, kind)
+    if name not in names:
+        singular = {"blocks": "block", "joints": "joint", "boundaries": "boundary"}[kind]
+        raise ValueError(f"unknown {singular} {name!r}; available {kind}: {sorted(names)}")
+    return names[name]
+
+
+def min_op():
+    from mpi4py import MPI
+    return MPI.MIN
+
+
+def max_op():
+    from mpi4py import MPI
+    return MPI.MAX
+
+
 @dataclass
 class StageResult:
     """Result of one stage (JointedRockModel.solve): displacement (a copy, relative to the initial
