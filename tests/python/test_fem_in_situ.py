@@ -58,6 +58,23 @@ def test_depth_dependent_initial_state_is_in_equilibrium(block):
     np.testing.assert_allclose(stress[:, 0, 0], -k0 * RHO * G * (surface - x[:, 1]), rtol=1e-12)
 
 
+def test_depth_dependent_in_3d_with_two_horizontal_ratios():
+    """3D box 1 × 1 × 2 m, z vertical, K0 = (0.5, 0.8): u = 0 and the rollers carry ρ g z_s (bottom)
+    and K0_i ρ g (z_s H - H²/2) (sides), per metre of width."""
+    surface, k0, h = 50.0, (0.5, 0.8), 2.0
+    jm = meshes.jointed_block((1.0, 1.0, h), [], dim=3, mesh_size=0.5, comm=MPI.COMM_WORLD)
+    model = JointedRockModel(distribute(jm, MPI.COMM_WORLD), rock=(E, NU), density=RHO, newton=QUIET)
+    for side, comp in (("bottom", "z"), ("left", "x"), ("front", "y")):
+        model.fix(side, comp)
+    model.set_in_situ_stress(InSituStress.depth_dependent(surface, RHO, k0))
+    res = model.solve()
+    assert np.abs(model.u.x.array).max() == 0.0
+    assert res.reactions[("bottom", "z")] == pytest.approx(RHO * G * surface, rel=1e-12)
+    side = RHO * G * (surface * h - h**2 / 2)
+    assert res.reactions[("left", "x")] == pytest.approx(k0[0] * side, rel=1e-12)
+    assert res.reactions[("front", "y")] == pytest.approx(k0[1] * side, rel=1e-12)
+
+
 def test_gravity_and_in_situ_gradient_must_agree(block):
     model = intact(block, density=RHO)
     with pytest.raises(ValueError, match="density 2600 kg/m³ but block 'block_1' has density 2700"):

@@ -58,6 +58,19 @@ def test_restarting_equals_one_shot_when_loads_are_proportional():
     assert np.abs(declarative.u.x.array - one_shot.u.x.array).max() < 1e-9 * scale
 
 
+def test_restart_goes_back_to_the_initial_state():
+    """solve(restart=True) after an unloading path applies the current loads from zero again."""
+    model = column()
+    top = model.add_traction("top", (0.0, -5e6))
+    model.solve()
+    top.value = (0.0, -1e6)
+    model.solve()
+    top.value = (0.0, -3e6)
+    res = model.solve(restart=True)
+    assert model.boundary_mean_displacement("top")[1] == pytest.approx(top_settlement(3e6), rel=1e-8)
+    assert len(model.stages) == 3 and res is model.stages[-1]
+
+
 def test_loads_changed_and_removed_between_stages():
     """Unloading to zero gives back u = 0 (Barton-Bandis closes reversibly from Δ = 0), zero
     reactions; a load added in a later stage is ramped in from zero."""
