@@ -144,8 +144,6 @@ class StagedLoading:
 
     def _multiplier(self, boundary: str):
         """The fraction of σ0·n carried by `boundary` (a Constant, 1 until excavated)."""
-        if not hasattr(self, "_multipliers"):
-            self._multipliers = {}
         if boundary not in self._multipliers:
             self._multipliers[boundary] = fem.Constant(self.mesh, 1.0)
         return self._multipliers[boundary]
@@ -170,7 +168,7 @@ class StagedLoading:
             where = ds(lookup(self.dmesh, "boundaries", load.boundary)) if load.boundary else None
             L += load_term(load, v, where, n, self._rho)
         self._L_user = fem.form(L)
-        if self.in_situ is not None and getattr(self, "_in_situ_compiled", None) is not self.in_situ:
+        if self.in_situ is not None and self._in_situ_compiled is not self.in_situ:
             sigma0 = self.in_situ.expression(mesh, self.degree)
             self._sigma0 = sigma0
             if self._r_sigma0 is not None:

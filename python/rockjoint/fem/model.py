@@ -142,6 +142,8 @@ class JointedRockModel(StagedLoading):
         self._supports: list[Support] = []
         self._loads: list[Load] = []
         self._release: dict = {}   #: {boundary: excavation Load} of released in-situ tractions
+        self._multipliers: dict = {}  #: {boundary: Constant fraction of σ0·n it carries}
+        self._in_situ_compiled = None  # the InSituStress the in-situ forms were compiled for
         self.in_situ: InSituStress | None = None
         self.stages: list[StageResult] = []  #: the result of every stage, in order
         self.gravity: Load | None = None     #: gravity load handle (None without a density)
