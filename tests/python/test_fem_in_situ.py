@@ -190,33 +190,52 @@ def test_a_joint_follows_its_law_through_in_situ_unloading_and_reloading():
 
 
 @pytest.mark.parametrize("dim", [2, 3])
-def test_an_inclined_joint_carries_the_in_situ_shear_at_u_zero(dim):
-    """Joint dipping 30° under σ0 = -diag(σh[, σh], σv): at u = 0 the joint carries σ_n0 =
-    σh sin²θ + σv cos²θ and |τ0| = (σv - σh) sin θ cos θ (σ0 n with n = (sin θ, [0,] cos θ)) and the
-    residual is zero: the pre-closure Δ0 = Δ(σ_n0) and the shear offset τ0/k_s balance the bulk."""
+@pytest.mark.parametrize("field", ["uniform", "depth"])
+def test_an_inclined_joint_carries_the_in_situ_shear_at_u_zero(dim, field):
+    """Joint dipping θ = 30° through the centre of the unit block under σ0 = -s diag(K0[, K0], 1):
+    at u = 0 the residual is zero (the pre-closure Δ0 = Δ(σ_n0) and the shear offset τ0/k_s balance
+    the bulk), and the joint carries σ_n0 = s (K0 sin²θ + cos²θ), |τ0| = s (1 - K0) sin θ cos θ
+    (σ0 n with n = (sin θ, [0,] cos θ)): pointwise for a uniform σ0 (s = 6 MPa, K0 = 1/3); as the
+    resultant over the joint (area 1/cos θ, centroid at the centre) for the lithostatic state
+    (s = ρ g (z_s - z), K0 = 0.6), whose gradient along the joint the vertex rule lumps per facet."""
     comm = MPI.COMM_WORLD
     jm = meshes.jointed_block((1.0,) * dim, [meshes.Joint((0.5,) * dim, 30.0, 90.0, "inclined")], dim=dim,
                               mesh_size=0.25 if dim == 2 else 0.4, comm=comm)
     law = rockjoint.BartonBandis(KNI, VM)
-    model = JointedRockModel(distribute(jm, comm), rock=(E, NU), joints={"inclined": law},
+    density = RHO if field == "depth" else None
+    model = JointedRockModel(distribute(jm, comm), rock=(E, NU), joints={"inclined": law}, density=density,
                              shear_stiffness=2e9, plane="strain" if dim == 2 else None, newton=QUIET)
     model.fix("bottom", "y" if dim == 2 else "z")
     model.fix("left", "x")
     if dim == 3:
         model.fix("front", "y")
-    sh, sv = 2e6, 6e6
-    model.set_in_situ_stress(InSituStress.uniform(-np.diag([sh] * (dim - 1) + [sv])))
+    if field == "uniform":
+        s, k0 = 6e6, 1.0 / 3.0
+        model.set_in_situ_stress(InSituStress.uniform(-s * np.diag([k0] * (dim - 1) + [1.0])))
+    else:
+        surface, k0 = 200.0, 0.6
+        s = RHO * G * (surface - 0.5)
+        model.set_in_situ_stress(InSituStress.depth_dependent(surface, RHO, k0))
     res = model.solve()
     theta = np.radians(30.0)
-    sn = sh * np.sin(theta) ** 2 + sv * np.cos(theta) ** 2
-    tau = (sv - sh) * np.sin(theta) * np.cos(theta)
+    sn = s * (k0 * np.sin(theta) ** 2 + np.cos(theta) ** 2)
+    tau = s * (1 - k0) * np.sin(theta) * np.cos(theta)
     assert np.abs(model.u.x.array).max() == 0.0
     model.load_factor = 1.0
-    assert model.residual() < 1e-9 * sv
+    assert model.residual() < 1e-9 * s
     joints = res.gather_joints()
-    np.testing.assert_allclose(joints["normal_stress"], sn, rtol=1e-10)
-    np.testing.assert_allclose(joints["closure"], bb_closure(sn), rtol=1e-10)
-    np.testing.assert_allclose(np.linalg.norm(joints["shear_traction"], axis=1), tau, rtol=1e-10)
+    np.testing.assert_allclose(joints["closure"], [bb_closure(x) for x in joints["normal_stress"]], rtol=1e-10)
+    if field == "uniform":
+        np.testing.assert_allclose(joints["normal_stress"], sn, rtol=1e-10)
+        np.testing.assert_allclose(np.linalg.norm(joints["shear_traction"], axis=1), tau, rtol=1e-10)
+    else:
+        weights = np.repeat(model.interface._cpp.measures / dim, dim)  # vertex rule: |f| / gdim
+        state = model.interface.state()
+        normal_force = comm.allreduce(np.sum(weights * state["normal_stress"]))
+        shear_force = comm.allreduce(np.sum(weights[:, None] * state["shear_traction"], axis=0))
+        area = 1.0 / np.cos(theta)
+        assert normal_force == pytest.approx(sn * area, rel=1e-10)
+        assert np.linalg.norm(shear_force) == pytest.approx(tau * area, rel=1e-10)
 
 
 def test_in_situ_tension_across_a_joint_is_refused():

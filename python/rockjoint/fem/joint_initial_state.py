@@ -6,6 +6,13 @@ in-situ traction in local components is t = F σ0 n. The joint element's local t
 u = 0 when its initial jump j0 (CONTRACTS A.3) is
     j0_n = -Δ0,  σ_n(Δ0) = σ_n0 = -t_n  (compression positive; σ_n = law + k_r Δ),
     j0_s = t_s / k_s,  k_s constant or ratio × (k_n(Δ0) + k_r).
+With the nodal (vertex) rule on P1 facets, the joint's force at vertex a of a facet is
+w_a t_a = |f|/gdim · t_a, while the bulk's in-situ stress pulls on that vertex with the consistent
+∫_f σ0 n N_a = |f| (t_a + Σ_b t_b) / (gdim (gdim + 1)) (t linear on the facet, e.g. a depth gradient
+along an inclined joint): the point traction is taken as t'_a = (t_a + Σ_b t_b) / (gdim + 1), the
+same for a uniform σ0 and exact equilibrium for a linear one. Gauss points (P1) and the P2 nodal
+rule in 2D integrate t N_a exactly with t'_a = t(x_a); the P2 nodal rule in 3D does not (a residual
+imbalance of order h² ∇σ0, reported by the model's equilibrium check).
 """
 from __future__ import annotations
 
@@ -30,10 +37,12 @@ def closure_at_total_stress(behaviour, stress: np.ndarray) -> np.ndarray:
     return closure
 
 
-def initial_jump(interface, in_situ, behaviours: dict, gdim: int, joint_names: dict) -> np.ndarray:
+def initial_jump(interface, in_situ, behaviours: dict, gdim: int, joint_names: dict,
+                 vertex_rule: bool = True) -> np.ndarray:
     """(num_points, gdim) initial local jumps of this rank's joint points for the in-situ stress.
 
-    behaviours: {joint tag: JointBehaviour}; joint_names: {name: tag} (for messages). Raises
+    behaviours: {joint tag: JointBehaviour}; joint_names: {name: tag} (for messages); vertex_rule:
+    the points are the vertices of P1 facets (nodal rule): consistent point tractions. Raises
     ValueError where σ0 pulls a joint apart (a joint carries no tension) or shears a joint that has
     no shear stiffness."""
     frames = interface.point_frames()
@@ -44,6 +53,9 @@ def initial_jump(interface, in_situ, behaviours: dict, gdim: int, joint_names: d
     points, tags = np.asarray(state["coordinates"]), np.asarray(state["tag"])
     sigma0 = in_situ.at(points.reshape(frames.shape[0], -1), gdim)
     traction = np.einsum("pij,pj->pi", sigma0, frames[:, 0])   # σ0 n, global components
+    if vertex_rule:
+        per_pair = traction.reshape(-1, gdim, gdim)  # (pairs, vertices, components)
+        traction = ((per_pair + per_pair.sum(axis=1, keepdims=True)) / (gdim + 1)).reshape(-1, gdim)
     local = np.einsum("pij,pj->pi", frames, traction)          # F σ0 n
     scale = max(np.abs(sigma0).max(), 1e-300)
     name_of = {t: n for n, t in joint_names.items()}

@@ -96,11 +96,16 @@ class StagedLoading:
         self._release[boundary] = load
         return load
 
-    def set_in_situ_stress(self, in_situ: InSituStress) -> None:
+    def set_in_situ_stress(self, in_situ: InSituStress, equilibrium_tolerance: float = 1e-8) -> None:
         """The initial stress σ0 (before the first stage): the bulk stress, the tractions σ0·n on
         every named boundary (carried by the supports on supported components), gravity, and
         joints pre-closed to their law's closure at the initial normal stress make an equilibrium
-        state with u = 0; ValueError if σ0 and the model's gravity disagree."""
+        state with u = 0; ValueError if σ0 and the model's gravity disagree, or (at the first
+        solve) if the initial residual exceeds equilibrium_tolerance × the in-situ forces. A field
+        that P1/P2 cannot balance exactly (a non-linear from_function field, a gradient along joints
+        with P2 in 3D) needs a larger tolerance; the first stage then moves u by the imbalance."""
+        if not (np.isfinite(equilibrium_tolerance) and equilibrium_tolerance > 0):
+            raise ValueError(f"equilibrium_tolerance = {equilibrium_tolerance!r} is invalid; it must be > 0")
         if self.stages:
             raise RuntimeError("set_in_situ_stress: the in-situ stress is the initial state; set it before "
                                "the first solve()")
@@ -111,6 +116,7 @@ class StagedLoading:
         gravity = self.gravity.value if self.gravity is not None and self.gravity.active else None
         in_situ.check_gravity(self.densities if gravity is not None else {}, gravity)
         self.in_situ = in_situ
+        self._equilibrium_tolerance = float(equilibrium_tolerance)
         self._initialised = False
         self._forms_dirty = True
 
@@ -240,12 +246,14 @@ class StagedLoading:
         self._begin_stage(next_loads=self._state)
         rnorm = self.residual()
         scale = self.load_norm(0.0)
-        if not rnorm <= 1e-8 * scale:
+        tolerance = self._equilibrium_tolerance
+        if not rnorm <= tolerance * scale:
             raise ValueError(
                 f"the in-situ stress is not in equilibrium with the model's loads: the initial residual is "
-                f"{rnorm:.3e} N, {rnorm / max(scale, 1e-300):.2e} of the in-situ forces (allowed 1e-8). A "
-                f"uniform σ0 needs no gravity (density=None); a depth-dependent one needs gravity with the "
-                f"same density; a field must satisfy div σ0 + ρ g = 0; joints need the initial jump")
+                f"{rnorm:.3e} N, {rnorm / max(scale, 1e-300):.2e} of the in-situ forces (allowed "
+                f"{tolerance:g}). A uniform σ0 needs no gravity (density=None); a depth-dependent one needs "
+                f"gravity with the same density; a field must satisfy div σ0 + ρ g = 0 (a discretisation "
+                f"imbalance of a non-linear field: raise set_in_situ_stress(..., equilibrium_tolerance=))")
 
     def _pre_close_joints(self) -> None:
         """Joints carry the in-situ traction at u = 0: initial jump j0 = (-Δ0, τ0/k_s) with
@@ -256,8 +264,9 @@ class StagedLoading:
                 raise NotImplementedError("in-situ stress with joints needs JointInterface.set_initial_jump "
                                           "(joint pre-closure), missing in this build")
             return
+        vertex_rule = self.quadrature == "nodal" and self.degree == 1
         iface.set_initial_jump(initial_jump(iface, self.in_situ, self.behaviours, self.gdim,
-                                            names_of(self.dmesh, "joints")))
+                                            names_of(self.dmesh, "joints"), vertex_rule))
 
     # ---- stages ------------------------------------------------------------------------------
     def _begin_stage(self, next_loads: PETSc.Vec | None = None) -> None:
