@@ -95,6 +95,25 @@ def test_gravity_and_in_situ_gradient_must_agree(block):
         no_gravity.set_in_situ_stress(InSituStress.uniform(-np.eye(3)))
 
 
+def test_an_unbalanced_field_is_refused_unless_a_tolerance_is_given(block):
+    """σ0_xx = -(1 + x²) MPa has div σ0 ≠ 0 with no body force: refused by default; with a
+    tolerance the first stage moves u to restore equilibrium."""
+    def field(x):
+        zero = 0.0 * x[0]
+        return np.array([[-1e6 * (1 + x[0] ** 2), zero], [zero, -1e6 + zero]])
+
+    model = intact(block)
+    model.set_in_situ_stress(InSituStress.from_function(field))
+    with pytest.raises(ValueError, match=r"not in equilibrium.*equilibrium_tolerance"):
+        model.solve()
+    with pytest.raises(ValueError, match="equilibrium_tolerance"):
+        model.set_in_situ_stress(InSituStress.from_function(field), equilibrium_tolerance=-1.0)
+    relaxed = intact(block)
+    relaxed.set_in_situ_stress(InSituStress.from_function(field), equilibrium_tolerance=1.0)
+    relaxed.solve()
+    assert np.abs(relaxed.u.x.array).max() > 0.0
+
+
 @pytest.mark.parametrize("field", ["uniform", "function"])
 def test_releasing_uniform_in_situ_tractions_matches_the_closed_form(block, field):
     """σ0 = diag(-1, -2) MPa; the right and top tractions released (excavate): the block expands by
