@@ -71,6 +71,24 @@ def test_restart_goes_back_to_the_initial_state():
     assert len(model.stages) == 3 and res is model.stages[-1]
 
 
+def test_advance_continues_the_stage_to_any_load_factor():
+    """advance(λ): the loads set now scaled along the stage: 0.5 and 1 give the law's closure at
+    half and full stress, 1.5 overloads, 0 unloads (Barton-Bandis is reversible: u = 0); a solve()
+    afterwards starts from the factor reached."""
+    model = column()
+    model.add_traction("top", (0.0, -4e6))
+    for factor in (0.5, 1.0, 1.5):
+        res = model.advance(factor, load_steps=2)
+        np.testing.assert_allclose(res.gather_joints()["closure"], bb_closure(factor * 4e6), rtol=1e-8)
+    model.advance(0.0, load_steps=3)
+    assert np.abs(model.u.x.array).max() < 1e-12
+    model.advance(0.25)
+    model.solve()  # from 1 MPa (λ = 0.25) to the loads set now: 4 MPa
+    assert model.boundary_mean_displacement("top")[1] == pytest.approx(top_settlement(4e6), rel=1e-8)
+    with pytest.raises(ValueError, match="load_steps"):
+        model.advance(1.0, load_steps=0)
+
+
 def test_loads_changed_and_removed_between_stages():
     """Unloading to zero gives back u = 0 (Barton-Bandis closes reversibly from Δ = 0), zero
     reactions; a load added in a later stage is ramped in from zero."""

@@ -36,7 +36,7 @@ from .interface import JointBehaviour, JointInterface, ShearModel
 from .linear_solver import LinearSolver, LinearSolveError, rigid_body_modes  # noqa: F401
 from .load_path import StagedLoading
 from .loads import Load, Support
-from .newton import ConvergenceError, NewtonOptions, solve_load_path  # noqa: F401
+from .newton import ConvergenceError, NewtonOptions, newton, solve_load_path  # noqa: F401
 from .stages import (JointedProblem, JointedSolution, Stage, StageClock, StageResult,  # noqa: F401
                      lookup, min_op, names_of, snes_load_path)
 
@@ -159,6 +159,7 @@ class JointedRockModel(StagedLoading):
         self._supports_dirty = True  # bulk matrix K (depends on the supports)
         self._forms_dirty = True     # load forms (depend on the set of loads)
         self._initialised = False    # initial state (in-situ loads, joint pre-closure) set
+        self._advancing = False      # a stage opened by advance() is in progress
         self.solution = None
 
     # ---- input checks --------------------------------------------------------------------
@@ -442,6 +443,10 @@ class JointedRockModel(StagedLoading):
             self.r.scale(-1.0)
             self.timings["linear_solve"] += time.perf_counter() - t0
             self.counts["linear_solve"] += 1
+        # Supported rows are identity rows with a zero right-hand side: du = 0 there exactly even
+        # after a loose (inexact) solve, so the prescribed values never drift.
+        with self.du.vector.localForm() as loc:
+            loc.array[self._constrained_owned] = 0.0
         self.du.x.scatter_forward()
 
     def increment_norms(self) -> tuple:
@@ -496,9 +501,15 @@ class JointedRockModel(StagedLoading):
         if solver not in ("newton", "snes"):
             raise ValueError(f"solver must be 'newton' or 'snes', got {solver!r}")
         if restart and self._space_ready:
-            self.interface = JointInterface(self.V, self.dmesh.pairs, self.behaviours, self.quadrature)
+            reset = getattr(self.interface, "reset_state", None)  # path-dependent point state
+            if reset is not None:
+                reset()
+            else:
+                self.interface = JointInterface(self.V, self.dmesh.pairs, self.behaviours, self.quadrature)
             self._initialised = False
+            self._advancing = False
         self._prepare()
+        self._close_advanced_stage()
         k = len(self.stages) + 1
         name = name or f"stage_{k}"
         label = getattr(self, "_stage_label", None) or str(k)
@@ -518,6 +529,41 @@ class JointedRockModel(StagedLoading):
             self._clock = None
         self._end_stage(1.0)
         return self._stage_result(name, reports, time.perf_counter() - t0)
+
+    def advance(self, load_factor: float, load_steps: int = 1) -> StageResult:
+        """Continue the current stage's load path to `load_factor` in `load_steps` equal Newton
+        steps, committing the joint state after each: below the current factor unloads along the
+        path, above 1 overloads (f(λ) = f_prev + λ (f_next - f_prev) extrapolated). Starts a stage
+        (from the loads set now) if none is open; changes to the loads take effect at the next
+        solve(). Raises ConvergenceError naming the failed step (the last converged one is kept)."""
+        if int(load_steps) != load_steps or load_steps < 1:
+            raise ValueError(f"load_steps must be an integer >= 1, got {load_steps!r}")
+        target = float(load_factor)
+        if not np.isfinite(target):
+            raise ValueError(f"load_factor must be finite, got {load_factor!r}")
+        if not self._advancing:
+            self._prepare()
+            self._begin_stage()
+            self._advancing = True
+        t0 = time.perf_counter()
+        start, reports = self.load_factor, []
+        for k in range(1, int(load_steps) + 1):
+            step = start + (target - start) * k / load_steps
+            self.save_state()
+            report = newton(self, step, self.newton_options)
+            reports.append(report)
+            if not report.converged:
+                self.restore_state()
+                raise ConvergenceError(f"advance: the step to load factor {step:.6g} failed "
+                                       f"({report.reason}); kept the state at {self.load_factor:.6g}")
+            self.commit_state()
+        return self._stage_result(f"advance to {target:g}", reports, time.perf_counter() - t0)
+
+    def _close_advanced_stage(self) -> None:
+        """After advance(): the loads of the factor reached become the next stage's start."""
+        if self._advancing:
+            self._end_stage(self.load_factor)
+            self._advancing = False
 
     def run(self, stages: list) -> list:
         """Solve a sequence of Stage(name, load_steps, actions, solver) in order (actions(model)
