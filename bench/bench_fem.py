@@ -114,7 +114,7 @@ def build_model(case, dmesh, corner, variant):
             t = np.zeros(3)
             t[axis] = -BLOCKY_STRESS[axis] * outward   # σ m with σ = -diag(stress)
             model.add_traction(name, t)
-    model._setup()
+    model._prepare()   # function space, K, f, linear solver (fresh KSP)
     if variant == "no_reuse":
         model.linear_solver.reuse_preconditioner = False
     return model, law

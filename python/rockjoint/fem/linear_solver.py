@@ -137,6 +137,11 @@ class LinearSolver:
             # The lagged preconditioner no longer suits the Jacobian: rebuild it and retry once.
             self._fresh_rate = None
             return self._solve(A, b, x, False)
+        finally:
+            # Others may drive this KSP (SNES): leave it at its own tolerance, rebuilding its PC.
+            if self.kind == "iterative":
+                self.ksp.setTolerances(rtol=self.rtol)
+            self.ksp.getPC().setReusePreconditioner(False)
 
     def _solve(self, A, b, x, reuse: bool) -> int:
         if self.near_nullspace is not None and self.kind == "iterative":
