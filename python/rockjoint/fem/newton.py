@@ -125,10 +125,6 @@ def solve_load_path(problem, load_steps: int, options: NewtonOptions) -> list:
             lam = target
             if commit is not None:
                 commit()
-            if options.verbose and _rank(problem) == 0:
-                log.info("load step %d: λ = %.6g converged in %d iterations (%d Krylov), %.1f s",
-                         len(reports), target, report.iterations, sum(i or 0 for i in report.linear_iterations),
-                         time.perf_counter() - start)
             if report.iterations <= options.easy_iterations:
                 increment *= options.growth
         else:
