@@ -1,6 +1,7 @@
 """Linear solves of the Newton steps, with failures detected instead of accepted.
 
-"direct": MUMPS LU with null-pivot detection (ICNTL(24) = 1) — for small problems.
+"direct": MUMPS Cholesky (symmetric Jacobian) or LU with null-pivot detection (ICNTL(24) = 1)
+— for small problems.
 "iterative": CG + GAMG with a rigid-body near-nullspace (per block through the aggregates,
 see rigid_body_modes) — for large ones (SPD
 Jacobians: constant shear stiffness). "auto" picks direct below `direct_dof_limit` dofs.
@@ -12,7 +13,7 @@ lagged preconditioner fails. solve(..., rtol=η) sets the relative tolerance of 
 forcing term of an inexact Newton method); it is never tighter than the solver's own rtol.
 A solve is rejected (LinearSolveError) if PETSc reports divergence, MUMPS reports an error or a
 null pivot (a singular matrix: e.g. a block held only by an open joint), or the true residual
-||J dx - b|| exceeds `check_tolerance` ||b||. docs/fem.md, pitfall 9: MUMPS silently returned |u| ≈ 1e11 on
+||J dx - b|| exceeds `check_tolerance` ||b|| (a loose solve: 10 times its own tolerance). docs/fem.md, pitfall 9: MUMPS silently returned |u| ≈ 1e11 on
 a singular system; the residual check catches that class of garbage whatever the cause.
 """
 from __future__ import annotations
