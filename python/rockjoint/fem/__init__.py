@@ -10,6 +10,8 @@ try:  # the joint elements need the compiled _rockjoint_fem (built with -DROCKJO
     from .linear_solver import LinearSolveError  # noqa: F401
     from .model import JointedRockModel, JointedSolution  # noqa: F401
     from .newton import ConvergenceError, NewtonOptions  # noqa: F401
+    from .strength import (JointPointState, JointStrength, ShearState, StrengthModel,  # noqa: F401
+                           joint_response, make_strength)
 except ImportError as _error:  # pragma: no cover
     if "_rockjoint_fem" not in str(_error):
         raise

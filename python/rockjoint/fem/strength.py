@@ -1,0 +1,57 @@
+"""Joint shear strength (docs/joint-strength.md): Coulomb or Barton slip, dilation, tension
+cut-off. The law and its return mapping are C++ (fem_coupling/joint_slip.hpp); this module
+turns the user's description of a strength into a validated `JointStrength`.
+
+    from math import radians
+    from rockjoint.fem import make_strength
+    s = make_strength({"friction_angle": radians(30), "cohesion": 0.1e6})
+"""
+from __future__ import annotations
+
+from .. import _rockjoint_fem as _cpp
+
+JointStrength = _cpp.JointStrength
+StrengthModel = _cpp.StrengthModel
+ShearState = _cpp.ShearState
+JointPointState = _cpp.JointPointState
+joint_response = _cpp.joint_response
+
+#: keywords of a strength description besides "model" (SI units, angles in radians)
+STRENGTH_PARAMETERS = ("friction_angle", "cohesion", "tensile_strength", "dilation_angle",
+                       "dilation_limit", "jrc", "jcs", "maximum_friction_angle")
+
+
+def make_strength(spec, joint: str = "") -> JointStrength:
+    """A validated JointStrength from None (no strength), a JointStrength, or a dict
+    {"model": "coulomb" | "barton" (default "coulomb"), friction_angle [rad], cohesion [Pa],
+    tensile_strength [Pa], dilation_angle [rad], dilation_limit [m], jrc, jcs [Pa],
+    maximum_friction_angle [rad]}. Raises ValueError naming the joint, key, value and range."""
+    where = f"strength of joint {joint!r}" if joint else "strength"
+    if spec is None:
+        return JointStrength(StrengthModel.none)
+    if isinstance(spec, JointStrength):
+        return spec
+    if not isinstance(spec, dict):
+        raise ValueError(f"{where}: give a dict of {('model',) + STRENGTH_PARAMETERS} or a "
+                         f"JointStrength, got {type(spec).__name__}")
+    spec = dict(spec)
+    model = spec.pop("model", "coulomb")
+    if isinstance(model, str):
+        names = {"none": StrengthModel.none, "coulomb": StrengthModel.coulomb,
+                 "barton": StrengthModel.barton}
+        if model not in names:
+            raise ValueError(f"{where}: model {model!r} is unknown; use one of {sorted(names)}")
+        model = names[model]
+    unknown = set(spec) - set(STRENGTH_PARAMETERS)
+    if unknown:
+        raise ValueError(f"{where}: unknown parameter(s) {sorted(unknown)}; valid: "
+                         f"{list(STRENGTH_PARAMETERS)} (angles in radians)")
+    for key, value in spec.items():
+        try:
+            spec[key] = float(value)
+        except (TypeError, ValueError):
+            raise ValueError(f"{where}: {key} = {value!r} is not a number") from None
+    try:
+        return JointStrength(model, **spec)
+    except ValueError as error:
+        raise ValueError(f"{where}: {error}") from None
