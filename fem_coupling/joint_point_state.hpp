@@ -1,16 +1,20 @@
 #pragma once
 /// @file joint_point_state.hpp
-/// Path-dependent state of one joint integration point (MGIS style: the assembler keeps a
-/// converged and a trial copy per point; every evaluation starts from the converged one).
+/// Path-dependent state of one joint quadrature point (MGIS style: the assembler keeps a
+/// converged and a trial copy per point; every evaluation computes the trial state from the
+/// converged one, commit_state() accepts it after a converged load step).
 
 #include <array>
 
 namespace rockjoint::fem
 {
-struct JointPointState {
-  std::array<double, 2> slip{};   ///< irreversible shear displacement along t1, t2 [m]
-  double dilation = 0.0;          ///< normal opening produced by slip (dilatancy) [m]
-  double accumulated_slip = 0.0;  ///< path length of the slip, ∫|d slip| [m]
-  bool bond_broken = false;       ///< tensile strength exceeded once: bond (c, T) lost for good
+
+struct JointPointState
+{
+  std::array<double, 2> slip{};  ///< irreversible shear displacement along t1, t2 [m]
+  double dilation = 0.0;         ///< normal opening produced by slip (dilatancy) [m]
+  double accumulated_slip = 0.0; ///< path length of the slip, ∫|d slip| [m]
+  bool bond_broken = false;      ///< tensile strength exceeded once: bond (c, T) lost for good
 };
-}
+
+} // namespace rockjoint::fem

@@ -30,7 +30,8 @@ from petsc4py import PETSc
 from .. import _rockjoint
 from .interface import JointBehaviour, JointInterface, ShearModel
 from .linear_solver import LinearSolver, LinearSolveError, rigid_body_modes  # noqa: F401
-from .newton import ConvergenceError, NewtonOptions, solve_load_path  # noqa: F401
+from .newton import ConvergenceError, NewtonOptions, newton, solve_load_path  # noqa: F401
+from .strength import StrengthModel, make_strength
 
 log = logging.getLogger(__name__)
 
@@ -117,6 +118,11 @@ class JointedRockModel:
     residual_stiffness: k_r [Pa/m] spring in parallel with every law, in tension and compression
         (float or dict; default 0: a block held only by an open joint is then a singular system and
         solve() raises LinearSolveError instead of returning garbage).
+    strength: joint shear strength (docs/joint-strength.md): None (elastic joints), one description
+        for every joint, or {joint name: description}; a description is a JointStrength or a dict
+        {"model": "coulomb" | "barton", "friction_angle": rad, "cohesion": Pa, ...} (see
+        rockjoint.fem.make_strength). With a strength the Jacobian is non-symmetric (LU / GMRES)
+        and the slip is committed only when a load step converges.
     plane: "strain" (default) or "stress" in 2D; None (or "3D") in 3D.
     quadrature: "nodal" (default; smooth tractions for stiff joints) or "gauss".
     linear_solver: "auto" (MUMPS up to 60k dofs, else CG+GAMG), "direct" or "iterative".
@@ -129,7 +135,8 @@ class JointedRockModel:
     """
 
     def __init__(self, dmesh, element_degree: int = 1, rock=None, joints=None, shear_stiffness=0.0,
-                 shear_stiffness_ratio=None, residual_stiffness=0.0, plane: str | None = None,
+                 shear_stiffness_ratio=None, residual_stiffness=0.0, strength=None,
+                 plane: str | None = None,
                  quadrature: str = "nodal", linear_solver: str = "auto",
                  newton: NewtonOptions | None = None, petsc_options: dict | None = None,
                  options_prefix: str | None = None):
@@ -165,7 +172,8 @@ class JointedRockModel:
         self.options_prefix = options_prefix
         self.newton_options = newton or NewtonOptions()
         self.rock = self._check_rock(rock)
-        self.behaviours = self._check_joints(joints, shear_stiffness, shear_stiffness_ratio, residual_stiffness)
+        self.behaviours = self._check_joints(joints, shear_stiffness, shear_stiffness_ratio, residual_stiffness,
+                                             strength)
         self.loads = Loads()
         #: wall-clock seconds on this rank: bulk_assembly (K and f, once), interface_residual and
         #: interface_jacobian (all calls), linear_solve (all solves), newton (solve() total), setup
@@ -202,7 +210,7 @@ class JointedRockModel:
             out[blocks[name]] = (E, nu)
         return out
 
-    def _check_joints(self, joints, ks, ratio, kr) -> dict:
+    def _check_joints(self, joints, ks, ratio, kr, strength=None) -> dict:
         names = _names(self.dmesh, "joints")
         joints = joints or {}
         unknown = set(joints) - set(names)
@@ -214,15 +222,17 @@ class JointedRockModel:
         ks = _per_joint(ks, names, "shear_stiffness")
         kr = _per_joint(kr, names, "residual_stiffness")
         ratio = None if ratio is None else _per_joint(ratio, names, "shear_stiffness_ratio")
+        strengths = _per_joint_strength(strength, names)
         out = {}
         for name, law in joints.items():
             if not isinstance(law, _rockjoint.constitutive.ClosureLaw):
                 raise ValueError(f"joints[{name!r}] must be a rockjoint closure law or table, got {type(law).__name__}")
             if ratio is None:
-                b = JointBehaviour(law, ShearModel.constant, shear_stiffness=ks[name], residual_stiffness=kr[name])
+                b = JointBehaviour(law, ShearModel.constant, shear_stiffness=ks[name], residual_stiffness=kr[name],
+                                   strength=strengths[name])
             else:
                 b = JointBehaviour(law, ShearModel.proportional, shear_stiffness_ratio=ratio[name],
-                                   residual_stiffness=kr[name])
+                                   residual_stiffness=kr[name], strength=strengths[name])
             out[names[name]] = b
         return out
 
@@ -363,7 +373,9 @@ class JointedRockModel:
         self.a_form, self.L_form = a_form, L_form
 
         num_dofs = imap.size_global * bs
-        symmetric = all(b.shear_model == ShearModel.constant for b in self.behaviours.values())
+        # Friction couples the shear strength to the normal stress: an unsymmetric tangent.
+        symmetric = all(b.shear_model == ShearModel.constant and b.strength.model == StrengthModel.none
+                        for b in self.behaviours.values())
         nullspace = None
         kind = self.linear_solver_kind
         if kind == "iterative" or (kind == "auto" and num_dofs > 60_000):
@@ -443,6 +455,11 @@ class JointedRockModel:
     def restore_state(self) -> None:
         arr, self.load_factor = self._saved
         self.u.x.array[:] = arr
+        self.interface.revert_state()
+
+    def commit_state(self) -> None:
+        """Accept the joint point state (slip, dilation) after a converged load step."""
+        self.interface.commit_state()
 
     # ---- solve and output -----------------------------------------------------------------
     def solve(self, load_steps: int = 1, restart: bool = True) -> JointedSolution:
@@ -453,6 +470,7 @@ class JointedRockModel:
         if restart:
             self.u.x.array[:] = 0.0
             self.load_factor = 0.0
+            self.interface.reset_state()
         t0 = time.perf_counter()
         reports = solve_load_path(self, load_steps, self.newton_options)
         self.timings["newton"] += time.perf_counter() - t0
@@ -464,6 +482,27 @@ class JointedRockModel:
             log.warning("joint law driven past its range (status validity_limit) at %s; the "
                         "response there is the table's linear continuation: tabulate to a higher "
                         "maximum stress", ", ".join(f"{n} ({c} points)" for n, c in beyond.items()))
+        return self.solution
+
+    def advance(self, load_factor: float, load_steps: int = 1) -> JointedSolution:
+        """Continue the load path from the current load factor to `load_factor` (lower = unloading,
+        higher than 1 = overloading) in `load_steps` equal Newton steps, committing the joint state
+        (slip, dilation) after each; starts from zero on first use. Raises ConvergenceError naming
+        the failed step (the state of the last converged step is kept)."""
+        if not self._ready:
+            self._setup()
+        start = self.load_factor
+        for k in range(1, int(load_steps) + 1):
+            target = start + (float(load_factor) - start) * k / load_steps
+            self.save_state()
+            report = newton(self, target, self.newton_options)
+            if not report.converged:
+                self.restore_state()
+                raise ConvergenceError(f"advance: the step to load factor {target:.6g} failed "
+                                       f"({report.reason}); kept the state at {self.load_factor:.6g}")
+            self.commit_state()
+        self.interface.update_state(self.u.x.array)
+        self.solution = JointedSolution(self.u, self.interface.state(), [], self)
         return self.solution
 
     def boundary_mean_displacement(self, boundary: str) -> np.ndarray:
@@ -481,6 +520,17 @@ class JointedRockModel:
         if self.solution is None:
             raise RuntimeError("write_xdmf: call solve() first")
         return write_xdmf(self, path)
+
+
+def _per_joint_strength(value, joint_names) -> dict:
+    """{joint name: JointStrength} from None, one description for all joints, or a dict keyed by
+    joint names (a dict whose keys are all joint names is per joint; otherwise one description)."""
+    if isinstance(value, dict) and value and set(value) <= set(joint_names):
+        return {n: make_strength(value.get(n), n) for n in joint_names}
+    if isinstance(value, dict) and value and set(value) & set(joint_names):
+        raise ValueError(f"strength: mixes joint names {sorted(set(value) & set(joint_names))} with "
+                         f"other keys {sorted(set(value) - set(joint_names))}")
+    return {n: make_strength(value, n) for n in joint_names}
 
 
 def _min_op():
