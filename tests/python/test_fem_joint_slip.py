@@ -35,8 +35,7 @@ E_RIGID = 1e14        # nearly rigid blocks
 RTOL_RIGID = 2e-3     # a few × the compliance ratio k L / E plus the spread it causes
 
 
-def _block(dim=2, angle=0.0, mesh_size=0.25):
-    comm = MPI.COMM_WORLD
+def _block(dim=2, mesh_size=0.25, comm=MPI.COMM_WORLD):
     jm = meshes.jointed_block((1.0,) * dim, [meshes.Joint((0.5,) * dim, 30.0, 90.0, "j")], dim=dim,
                               mesh_size=mesh_size, comm=comm)
     return distribute(jm, comm)
@@ -129,11 +128,11 @@ def test_elastic_joint_without_strength_never_slips():
     assert model.boundary_mean_displacement("top")[0] == pytest.approx(elastic, rel=RTOL_RIGID)
 
 
-def _friction_block(phi, angle_deg=0.0, shear=0.0, p=4e6, mesh_size=0.25):
+def _friction_block(phi, angle_deg=0.0, shear=0.0, p=4e6, mesh_size=0.25, comm=MPI.COMM_WORLD):
     """Unit square with the 30° joint, rotated by `angle_deg` about the origin: lower block fixed
     on the bottom, upper block held by the joint alone under the top traction p (-shear, -1)
     (rotated with the model)."""
-    dmesh = _block(mesh_size=mesh_size)
+    dmesh = _block(mesh_size=mesh_size, comm=comm)
     a = math.radians(angle_deg)
     R = np.array([[math.cos(a), -math.sin(a)], [math.sin(a), math.cos(a)]])
     x = dmesh.mesh.geometry.x
@@ -223,3 +222,81 @@ def test_direct_shear_reaches_the_coulomb_peak(sigma_n):
         else:
             with pytest.raises((ConvergenceError, LinearSolveError)):
                 model.solve(load_steps=2)
+
+
+def _translate_block(model, block: str, vector) -> np.ndarray:
+    """A displacement field that translates one block by `vector` [m] (local array, ghosts too)."""
+    V = model.V
+    tag = model.dmesh.block_tag(block)
+    tags = model.dmesh.cell_blocks
+    bs = V.dofmap.index_map_bs
+    w = np.zeros_like(model.u.x.array)
+    for cell in tags.indices[tags.values == tag]:
+        for node in V.dofmap.cell_dofs(cell):
+            w[node * bs: node * bs + bs] = vector
+    return w
+
+
+def jacobian_against_finite_differences(dim, case, comm=MPI.COMM_WORLD):
+    """The assembled Jacobian (bulk + joints) against central differences of the assembled
+    residual at a displacement whose joint points are in the state `case` relative to the
+    committed (converged) state u1: "stick" (0.95 u1: elastic unloading), "slip" (u1 plus a
+    translation of the upper block by 3 mm along the joint's t1) or "open" (-u1). Friction with
+    dilation: an unsymmetric tangent."""
+    from petsc4py import PETSc
+
+    jm = meshes.jointed_block((1.0,) * dim, [meshes.Joint((0.5,) * dim, 25.0, 90.0, "j")], dim=dim,
+                              mesh_size=0.35 if dim == 2 else 0.5, comm=comm)
+    model = JointedRockModel(distribute(jm, comm), rock=(10e9, 0.3), joints={"j": rockjoint.BartonBandis(2e10, 1e-3)},
+                             shear_stiffness=5e9, plane="strain" if dim == 2 else None,
+                             strength={"friction_angle": math.radians(40.0), "cohesion": 0.3e6,
+                                       "dilation_angle": math.radians(8.0)},
+                             newton=NewtonOptions(verbose=False))
+    model.fix("bottom", "all")
+    top = [0.0] * dim
+    top[0], top[-1] = 1e6, -8e6
+    model.add_traction("top", top)
+    model.solve(load_steps=2)
+    u1 = model.u.x.array.copy()
+    if case == "stick":
+        u0 = 0.95 * u1
+    elif case == "open":
+        u0 = -u1
+    else:
+        frames = model.interface.point_frames()
+        t1 = next(f for f in comm.allgather(frames[0, 1] if len(frames) else None) if f is not None)
+        u0 = u1 + _translate_block(model, "block_2", 3e-3 * t1)
+    model.u.x.array[:] = u0
+    model.residual()
+    states = np.concatenate(comm.allgather(model.interface.state()["shear_state"]))
+    assert np.all(states == int(getattr(ShearState, case))), f"set-up: states {np.bincount(states)}"
+    model.jacobian()
+    J = model.J
+    free = model._constrained == 0
+    rng = np.random.default_rng(1)
+    for _ in range(3):
+        v = model.u.vector.duplicate()
+        with v.localForm() as loc:
+            loc.array[:] = rng.uniform(-1, 1, loc.array.size) * free
+        v.ghostUpdate(addv=PETSc.InsertMode.INSERT, mode=PETSc.ScatterMode.FORWARD)
+        Jv = v.duplicate()
+        J.mult(v, Jv)
+        u_max = comm.allreduce(np.abs(u0).max(), op=MPI.MAX)
+        h = 1e-6 * u_max / max(v.norm(PETSc.NormType.INFINITY), 1e-300)
+        res = []
+        for sign in (1.0, -1.0):
+            with v.localForm() as vl:
+                model.u.x.array[:] = u0 + sign * h * vl.array
+            model.residual()
+            res.append(model.r.copy())
+        fd = res[0] - res[1]
+        fd.scale(1.0 / (2 * h))
+        fd.axpy(-1.0, Jv)
+        assert fd.norm() < 1e-6 * Jv.norm(), f"{case}: |FD - J v| / |J v| = {fd.norm() / Jv.norm():.2e}"
+    model.u.x.array[:] = u1
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+@pytest.mark.parametrize("case", ["stick", "slip", "open"])
+def test_jacobian_matches_finite_differences_in_stick_slip_and_open_states(dim, case):
+    jacobian_against_finite_differences(dim, case)
