@@ -123,7 +123,7 @@ def main(out):
               "c + σ tan φ [MPa], Coulomb curve at 5 mm [MPa], Barton peak [MPa], Barton curve at 5 mm "
               "[MPa], Coulomb dilation at 5 mm [mm], FE box holds 98 % of the peak (1/0), "
               "FE box fails at 102 % (1/0)")
-    np.savetxt(os.path.join(out, "direct_shear_table.txt"), np.array(table), header=header, fmt="%.6g")
+    np.savetxt(os.path.join(out, "direct_shear_table.txt"), np.array(table), header=header, fmt="%.10g")
 
     import matplotlib
     matplotlib.use("Agg")
