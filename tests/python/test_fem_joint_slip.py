@@ -79,7 +79,7 @@ class RigidBlock:
         return brentq(lambda u: self.state(u, slip)["load"] - load, lo, 0.0, xtol=1e-16, rtol=1e-14)
 
 
-def test_block_on_inclined_joint_slips_at_the_threshold_and_keeps_the_permanent_slip():
+def test_block_on_inclined_joint_slips_at_the_threshold_and_keeps_the_permanent_slip(tmp_path):
     ref = RigidBlock()
     # Threshold: k_s |j_s| = c + σ_n tan φ on the elastic branch.
     u_star = brentq(lambda u: KS * abs(u * ref.t1[0]) - C - _sigma(-u * ref.n[0]) * math.tan(PHI), -5e-4, -1e-9)
@@ -116,6 +116,12 @@ def test_block_on_inclined_joint_slips_at_the_threshold_and_keeps_the_permanent_
     assert np.all(joints["shear_state"] != int(ShearState.slip))
     assert model.boundary_mean_displacement("top")[0] == pytest.approx(unloaded, rel=RTOL_RIGID)
     assert abs(unloaded) > 0.5 * abs(expected["slip"])  # the permanent displacement is the slip's
+
+    # The permanent slip goes to the joint point cloud for ParaView (slip_m along t1[, t2]).
+    import meshio
+    model.write_xdmf(str(tmp_path / "block.xdmf"))
+    cloud = meshio.read(str(tmp_path / "block_joints.xdmf"))
+    np.testing.assert_allclose(np.sort(cloud.point_data["slip_m"][:, 0]), np.sort(slip), rtol=1e-12)
 
 
 def test_elastic_joint_without_strength_never_slips():
