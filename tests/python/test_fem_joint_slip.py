@@ -283,3 +283,26 @@ def jacobian_against_finite_differences(dim, case, comm=MPI.COMM_WORLD):
 @pytest.mark.parametrize("case", ["stick", "slip", "open"])
 def test_jacobian_matches_finite_differences_in_stick_slip_and_open_states(dim, case):
     jacobian_against_finite_differences(dim, case)
+
+
+def test_bad_strength_input_is_refused_with_named_errors():
+    from rockjoint.fem import make_strength
+    with pytest.raises(ValueError, match=r"friction_angle.*\[0, pi/2\)"):
+        make_strength({"friction_angle": math.radians(95.0)})
+    with pytest.raises(ValueError, match=r"joint 'j'.*unknown parameter.*frction_angle"):
+        make_strength({"frction_angle": 0.5}, "j")
+    with pytest.raises(ValueError, match="model 'mohr' is unknown"):
+        make_strength({"model": "mohr"})
+    with pytest.raises(ValueError, match="dilation_angle"):
+        make_strength({"friction_angle": 0.3, "dilation_angle": 0.4})
+    with pytest.raises(ValueError, match="cohesion.*is not a number"):
+        make_strength({"cohesion": "high"})
+    with pytest.raises(ValueError, match="tensile_strength.*apex"):
+        make_strength({"friction_angle": 0.5, "cohesion": 1e5, "tensile_strength": 1e6})
+    dmesh = _block()
+    with pytest.raises(ValueError, match="mixes joint names"):
+        JointedRockModel(dmesh, rock=(30e9, 0.2), joints={"j": rockjoint.BartonBandis(KNI, VM)},
+                         shear_stiffness=KS, strength={"j": {"friction_angle": 0.5}, "cohesion": 1.0})
+    with pytest.raises(ValueError, match="strength of joint 'j'.*cohesion"):
+        JointedRockModel(dmesh, rock=(30e9, 0.2), joints={"j": rockjoint.BartonBandis(KNI, VM)},
+                         shear_stiffness=KS, strength={"j": {"friction_angle": 0.5, "cohesion": -1.0}})
