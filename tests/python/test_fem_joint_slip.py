@@ -196,39 +196,43 @@ def test_rotating_the_model_leaves_the_answer_unchanged(angle):
     assert np.allclose(model.boundary_mean_displacement("top"), R @ u_ref, atol=1e-7 * np.abs(u_ref).max())
 
 
-def _direct_shear(phi, c, mesh_size=0.1):
-    """Direct shear box: 1 m wide lower block (fixed bottom) and a 0.1 m thin upper block on a
-    horizontal joint, loaded on its top."""
-    comm = MPI.COMM_WORLD
-    dmesh = distribute(meshes.column(1.0, 1.1, (1.0,), dim=2, mesh_size=mesh_size, comm=comm), comm)
-    model = JointedRockModel(dmesh, rock=(30e9, 0.2), joints={"joint_1": rockjoint.BartonBandis(KNI, VM)},
-                             shear_stiffness=KS, strength={"friction_angle": phi, "cohesion": c},
-                             newton=NewtonOptions(verbose=False))
+def _direct_shear_box(phi, c, psi=0.0, comm=MPI.COMM_WORLD):
+    """Direct shear box: 100 mm wide lower block (fixed bottom) and a 20 mm upper block on a
+    horizontal joint."""
+    dmesh = distribute(meshes.column(0.1, 0.12, (0.1,), dim=2, mesh_size=0.01, comm=comm), comm)
+    model = JointedRockModel(dmesh, rock=(50e9, 0.25), joints={"joint_1": rockjoint.BartonBandis(2e10, 0.5e-3)},
+                             shear_stiffness=2e9, newton=NewtonOptions(verbose=False),
+                             strength={"friction_angle": phi, "cohesion": c, "dilation_angle": psi,
+                                       "dilation_limit": 2e-3})
     model.fix("bottom", "all")
     return model
 
 
-@pytest.mark.parametrize("sigma_n", [1e6, 3e6, 6e6])
-def test_direct_shear_reaches_the_coulomb_peak(sigma_n):
-    """Shear load τ and normal load σ_n on the upper block: the joint's limit load is
-    τ = c + σ_n tan φ. With c = 0 this is exact whatever the distribution of σ_n along the joint
-    (∫τ = tan φ ∫σ_n = tan φ σ_n L by vertical balance): just below the peak the model converges
-    with slipping points, just above it there is no equilibrium."""
-    phi = math.radians(30.0)
-    peak = sigma_n * math.tan(phi)
-    for ratio, holds in ((0.98, True), (1.02, False)):
-        model = _direct_shear(phi, 0.0)
-        model.add_traction("top", (ratio * peak, -sigma_n))
-        if holds:
-            joints = model.solve(load_steps=2).gather_joints()
-            assert np.all(joints["closure"] > 0.0)
-            assert np.count_nonzero(joints["shear_state"] == int(ShearState.slip)) > 0 or \
-                np.count_nonzero(joints["slip"][:, 0]) > 0, "no slip at 98 % of the peak"
-            shear = np.abs(joints["shear_traction"][:, 0])
-            assert np.all(shear <= joints["normal_stress"] * math.tan(phi) * (1 + 1e-9))
-        else:
-            with pytest.raises((ConvergenceError, LinearSolveError)):
-                model.solve(load_steps=2)
+@pytest.mark.parametrize("sigma_n,c", [(1e6, 0.0), (3e6, 0.0), (6e6, 0.0), (6e6, 0.5e6)])
+def test_direct_shear_under_constant_normal_load_reaches_the_coulomb_peak(sigma_n, c):
+    """Stage 1: normal load σ_n on the top. Then the top is displaced horizontally (prescribed,
+    displacement control) while σ_n stays: the mean shear stress (top reaction / width) rises and
+    levels off at c + σ_n tan φ, with every joint point slipping. Exact once the whole joint
+    slips: ∫τ = c L + tan φ ∫σ_n and ∫σ_n = σ_n L by vertical balance (with c > 0 the whole joint
+    must stay closed: at σ_n = 3 MPa, c = 0.5 MPa the trailing edge point opens)."""
+    phi, width = math.radians(30.0), 0.1
+    peak = c + sigma_n * math.tan(phi)
+    model = _direct_shear_box(phi, c, psi=math.radians(5.0))
+    model.add_traction("top", (0.0, -sigma_n))
+    model.solve()
+    shear_box = model.fix("top", "x", value=0.0)
+    curve = []
+    for displacement in (0.1e-3, 8e-3):
+        shear_box.value = displacement
+        result = model.solve(load_steps=4)
+        curve.append(result.reactions[("top", "x")] / width)
+    joints = result.gather_joints()
+    assert curve[0] < 0.9 * peak, "the first shear step must still be on the elastic rise"
+    assert curve[1] == pytest.approx(peak, rel=1e-9)
+    assert np.all(joints["normal_stress"] > 0.0)  # closed everywhere (needed for c > 0)
+    assert np.all(np.abs(joints["slip"][:, 0]) > 1e-3)
+    # Constant normal load with dilation: the top rises by tan ψ per unit slip, dilation stops at 2 mm.
+    np.testing.assert_allclose(joints["dilation"], math.tan(math.radians(5.0)) * 2e-3, rtol=1e-12)
 
 
 def _translate_block(model, block: str, vector) -> np.ndarray:
