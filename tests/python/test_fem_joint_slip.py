@@ -310,3 +310,19 @@ def test_bad_strength_input_is_refused_with_named_errors():
     with pytest.raises(ValueError, match="strength of joint 'j'.*cohesion"):
         JointedRockModel(dmesh, rock=(30e9, 0.2), joints={"j": rockjoint.BartonBandis(KNI, VM)},
                          shear_stiffness=KS, strength={"j": {"friction_angle": 0.5, "cohesion": -1.0}})
+
+
+def test_barton_bandis_shear_stiffness_is_the_secant_to_the_peak_at_one_percent_of_the_block():
+    """K_s = 100/L σ_n tan(φ_r + JRC log10(JCS/σ_n)) (Barton & Choubey 1977): JRC 10, JCS 100 MPa,
+    φ_r = 28°, σ_n = 2 MPa, L = 1 m: angle 28 + 10 log10(50) = 44.99°, K_s ≈ 199.9 MPa/m."""
+    from rockjoint.fem import barton_bandis_shear_stiffness
+    angle = math.radians(28.0 + 10.0 * math.log10(50.0))
+    expected = 100.0 * 2e6 * math.tan(angle) / 1.0
+    assert barton_bandis_shear_stiffness(10.0, 100e6, math.radians(28.0), 2e6, 1.0) == pytest.approx(expected, rel=1e-12)
+    assert 1.99e8 < expected < 2.0e8
+    # K_s ∝ 1/L: a 0.1 m laboratory specimen gives ten times the stiffness.
+    assert barton_bandis_shear_stiffness(10.0, 100e6, math.radians(28.0), 2e6, 0.1) == pytest.approx(10 * expected)
+    with pytest.raises(ValueError, match="block_length"):
+        barton_bandis_shear_stiffness(10.0, 100e6, math.radians(28.0), 2e6, 0.0)
+    with pytest.raises(ValueError, match="jrc"):
+        barton_bandis_shear_stiffness(25.0, 100e6, math.radians(28.0), 2e6, 1.0)

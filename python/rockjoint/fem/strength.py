@@ -55,3 +55,20 @@ def make_strength(spec, joint: str = "") -> JointStrength:
         return JointStrength(model, **spec)
     except ValueError as error:
         raise ValueError(f"{where}: {error}") from None
+
+
+def barton_bandis_shear_stiffness(jrc: float, jcs: float, residual_friction_angle: float,
+                                  normal_stress: float, block_length: float) -> float:
+    """Peak shear stiffness K_s [Pa/m] of Barton & Choubey (1977) / Barton (1982) at the normal
+    stress the joint will carry: the secant to Barton's peak strength reached after a shear
+    displacement of 1 % of the block length, K_s = 100 τ_peak(σ_n) / L with
+    τ_peak = σ_n tan(φ_r + JRC log10(JCS/σ_n)) (angle capped at 70°). A constant k_s for
+    JointedRockModel(shear_stiffness=...); jcs, normal_stress in Pa, block_length in m, angle in
+    radians."""
+    for name, value in (("normal_stress", normal_stress), ("block_length", block_length)):
+        if not (isinstance(value, (int, float)) and value > 0 and value < float("inf")):
+            raise ValueError(f"barton_bandis_shear_stiffness: {name} = {value!r} is invalid; it must be "
+                             f"finite and > 0")
+    strength = make_strength({"model": "barton", "friction_angle": residual_friction_angle, "jrc": jrc,
+                              "jcs": jcs}, "barton_bandis_shear_stiffness")
+    return 100.0 * strength.shear_strength(normal_stress) / block_length
