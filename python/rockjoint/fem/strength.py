@@ -66,7 +66,11 @@ def barton_bandis_shear_stiffness(jrc: float, jcs: float, residual_friction_angl
     JointedRockModel(shear_stiffness=...); jcs, normal_stress in Pa, block_length in m, angle in
     radians."""
     for name, value in (("normal_stress", normal_stress), ("block_length", block_length)):
-        if not (isinstance(value, (int, float)) and value > 0 and value < float("inf")):
+        try:
+            valid = 0.0 < float(value) < float("inf")
+        except (TypeError, ValueError):
+            valid = False
+        if not valid:
             raise ValueError(f"barton_bandis_shear_stiffness: {name} = {value!r} is invalid; it must be "
                              f"finite and > 0")
     strength = make_strength({"model": "barton", "friction_angle": residual_friction_angle, "jrc": jrc,
