@@ -376,6 +376,22 @@ class JointedNonlinearProblem:
         """A residual vector (ghosted, layout of V)."""
         return fem_petsc.create_vector(self._L)
 
+    def load_norm(self) -> float:
+        """‖F(0)‖, the residual norm at u = 0 (the load, supports applied; u is left unchanged).
+        An absolute Newton tolerance from it (solver.atol = 1e-10 × load_norm()) is the robust
+        choice: DOLFINx 0.5's NewtonSolver measures its relative residual against a value that
+        is not the first residual."""
+        saved = self.u.x.array.copy()
+        self.u.x.array[:] = 0.0
+        b = self.vector()
+        try:
+            self.form(self.u.vector)
+            self.F(self.u.vector, b)
+            return b.norm()
+        finally:
+            self.u.x.array[:] = saved
+            b.destroy()
+
     # ---- NonlinearProblem interface ------------------------------------------------------
     def form(self, x: PETSc.Vec) -> None:
         """Called before F and J: refresh the ghosts of x."""
