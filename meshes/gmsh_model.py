@@ -86,7 +86,7 @@ def _groups(gmsh, dim: int) -> dict:
     return out
 
 
-def _pick(names, available: dict, other: dict, kind: str, dim: int) -> dict:
+def _pick(names, available: dict, other: dict, kind: str, dim: int, other_dim: int) -> dict:
     """{name: tag} of the requested groups, with an error for each unknown name."""
     if isinstance(names, str):
         raise ValueError(f"{kind}: give a list of group names, got the string {names!r}")
@@ -95,8 +95,7 @@ def _pick(names, available: dict, other: dict, kind: str, dim: int) -> dict:
         if name in available:
             out[name] = available[name]
             continue
-        hint = (f"; {name!r} is a dimension-{dim + 1 if kind == 'blocks' else dim - 1} group"
-                if name in other else "")
+        hint = f"; {name!r} is a dimension-{other_dim} group" if name in other else ""
         raise ValueError(f"{kind}: no dimension-{dim} physical group named {name!r}{hint}; "
                          f"available: {sorted(available)}")
     return out
@@ -117,11 +116,11 @@ def _read(gmsh, joints, blocks, boundaries) -> JointedMesh:
     if not len(blocks):
         raise ValueError(f"from_gmsh_model: no block: add dimension-{dim} physical groups for the blocks "
                          f"(gmsh.model.addPhysicalGroup({dim}, [entities]) and setPhysicalName)")
-    block_tags = _pick(blocks, cell_groups, facet_groups, "blocks", dim)
-    joint_tags = _pick(joints, facet_groups, cell_groups, "joints", fd)
+    block_tags = _pick(blocks, cell_groups, facet_groups, "blocks", dim, fd)
+    joint_tags = _pick(joints, facet_groups, cell_groups, "joints", fd, dim)
     if boundaries is None:
         boundaries = [n for n in facet_groups if n not in joint_tags]
-    boundary_tags = _pick(boundaries, facet_groups, cell_groups, "boundaries", fd)
+    boundary_tags = _pick(boundaries, facet_groups, cell_groups, "boundaries", fd, dim)
     both = set(joint_tags) & set(boundary_tags)
     if both:
         raise ValueError(f"groups {sorted(both)} are listed as joints and as boundaries; a group is one or the other")
