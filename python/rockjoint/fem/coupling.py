@@ -281,6 +281,28 @@ class JointCoupling:
         return update
 
     # ---- joint state ---------------------------------------------------------------------
+    @property
+    def num_points(self) -> int:
+        """Joint quadrature points on this rank (pair-major)."""
+        return self.interface.num_points
+
+    def point_frames(self) -> np.ndarray:
+        """(num_points, gdim, gdim) local frame of every point, rows n, t1[, t2] (global components)."""
+        return self.interface.point_frames()
+
+    def set_initial_jump(self, initial_jump) -> None:
+        """Initial local jump j0 (num_points, gdim) [m], components (normal, t1[, t2]): the law sees
+        j0 + Q [[u]]; a joint pre-closed to Δ0 has j0[:, 0] = -Δ0 (in-situ state)."""
+        self.interface.set_initial_jump(initial_jump)
+
+    def commit_state(self) -> None:
+        """Accept the joints' trial state (slip history) after a converged solve or load step."""
+        self.interface.commit_state()
+
+    def revert_state(self) -> None:
+        """Discard the joints' trial state after a failed solve."""
+        self.interface.revert_state()
+
     def state(self, u) -> dict:
         """Joint point state at u on this rank: coordinates, tag, closure [m], normal_stress [Pa,
         compression +], shear_traction [Pa], status, normal (see JointInterface.state)."""
