@@ -36,6 +36,7 @@ from petsc4py import PETSc
 from .. import _rockjoint
 from .distributed_mesh import DistributedJointMesh, JointPairs
 from .interface import JointBehaviour, JointInterface, ShearModel
+from .model import _per_joint  # a float or {joint name: float} per joint, names checked
 
 __all__ = ["JointCoupling", "JointedNonlinearProblem", "joint_behaviours", "supported_dofs"]
 
@@ -68,16 +69,6 @@ def supported_dofs(V: fem.FunctionSpace, bcs: Iterable[fem.DirichletBCMetaClass]
 def _same_space(W, V) -> bool:
     """W (Python or C++ function space) is V or a component V.sub(i) of it."""
     return V._cpp_object.contains(getattr(W, "_cpp_object", W))
-
-
-def _per_joint(value, names: Sequence[str], what: str) -> dict:
-    """A float for every joint, or a {joint name: float} dict (joints not listed get 0)."""
-    if isinstance(value, Mapping):
-        unknown = set(value) - set(names)
-        if unknown:
-            raise ValueError(f"{what}: unknown joint(s) {sorted(unknown)}; available joints: {sorted(names)}")
-        return {n: float(value.get(n, 0.0)) for n in names}
-    return {n: float(value) for n in names}
 
 
 def joint_behaviours(joint_tags: Mapping[str, int], laws: Mapping[str, object], *,
