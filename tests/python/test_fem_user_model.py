@@ -225,3 +225,43 @@ def test_the_demo_docstring_promise_joint_faces_are_exterior_facets(dmesh2):
     everything = fem.assemble_scalar(fem.form(one * ufl.ds(domain=dmesh2.mesh)))
     joint_length = case.SIZE / math.cos(case.DIP)
     assert everything == pytest.approx(4 * case.SIZE + 2 * joint_length, rel=1e-12)
+
+
+def test_closure_limiter_lets_newton_and_snes_pass_a_stiffening_law():
+    """A column under σ = 5 K_ni V_m: plain Newton from zero overshoots the maximum closure of a
+    Barton-Bandis law (docs/fem.md, pitfall 7); with the limiter both solvers converge to the
+    closed form Δ = σ V_m / (K_ni V_m + σ) (uniform uniaxial stress: rollers, free sides)."""
+    kni, vm = 1e10, 1e-3
+    law = rockjoint.BartonBandis(kni, vm)
+    stress = 5 * kni * vm
+    dmesh = distribute(meshes.column(1.0, 2.0, (1.0,), dim=2, mesh_size=0.5, comm=COMM), COMM)
+    closure = stress * vm / (kni * vm + stress)
+
+    def problem():
+        V = fem.VectorFunctionSpace(dmesh.mesh, ("Lagrange", 1))
+        u, v = fem.Function(V), ufl.TestFunction(V)
+        eps = ufl.sym(ufl.grad(u))
+        mu, lam = 20e9 / 2.5, 20e9 * 0.25 / (1.25 * 0.5)
+        ds = ufl.Measure("ds", domain=dmesh.mesh, subdomain_data=dmesh.boundaries)
+        top = {n: t for t, n in dmesh.names["boundaries"].items()}["top"]
+        F = (ufl.inner(2 * mu * eps + lam * ufl.tr(eps) * ufl.Identity(2), ufl.sym(ufl.grad(v))) * ufl.dx
+             - ufl.inner(fem.Constant(dmesh.mesh, (0.0, -stress)), v) * ds(top))
+        bcs = [fem.dirichletbc(PETSc.ScalarType(0.0), fem.locate_dofs_topological(V.sub(i), 1, dmesh.boundary(b)),
+                               V.sub(i)) for i, b in ((1, "bottom"), (0, "left"))]
+        return JointedNonlinearProblem(F, u, bcs, JointCoupling(V, dmesh, {"joint_1": law}, shear_stiffness=1e9,
+                                                                bcs=bcs))
+
+    plain = problem()
+    solver = plain.newton_solver()
+    solver.set_update(lambda s, dx, x: x.axpy(-1.0, dx))  # NewtonSolver's own full step
+    solver.rtol, solver.atol, solver.max_it = 0.0, 1e-10 * plain.load_norm(), 15
+    with pytest.raises(RuntimeError):  # infinite joint tractions past V_m: the LU or Newton fails
+        solver.solve(plain.u)
+    assert plain.nonfinite
+
+    limited = problem()
+    case.solve_newton(limited)
+    np.testing.assert_allclose(limited.coupling.state(limited.u)["closure"], closure, rtol=1e-8)
+    snes = problem()
+    case.solve_snes(snes)
+    np.testing.assert_allclose(snes.coupling.state(snes.u)["closure"], closure, rtol=1e-8)

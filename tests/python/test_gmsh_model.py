@@ -14,7 +14,7 @@ import pytest
 from rockjoint import meshes
 from rockjoint.meshes.builders import _ensure_gmsh
 
-import user_model_case as case
+import user_model_geometry as case
 
 
 @pytest.fixture(autouse=True)

@@ -23,6 +23,7 @@ of its remaining room to a law's maximum closure.
 """
 from __future__ import annotations
 
+import logging
 import os
 from typing import Callable, Iterable, Mapping, Sequence
 
@@ -38,12 +39,9 @@ from .distributed_mesh import DistributedJointMesh, JointPairs
 from .interface import JointBehaviour, JointInterface, ShearModel
 from .model import _per_joint  # a float or {joint name: float} per joint, names checked
 
+log = logging.getLogger(__name__)
+
 __all__ = ["JointCoupling", "JointedNonlinearProblem", "joint_behaviours", "supported_dofs"]
-
-#: a law per joint: any rockjoint closure law or table, the path of a saved .rjt table, or a
-#: ready JointBehaviour (law + shear and residual stiffness)
-LawLike = "rockjoint.ClosureLaw | str | os.PathLike | JointBehaviour"
-
 
 def supported_dofs(V: fem.FunctionSpace, bcs: Iterable[fem.DirichletBCMetaClass]) -> np.ndarray:
     """Mask (int8, 1 = supported) over the local unrolled dofs of V, ghosts included, of every dof
@@ -423,6 +421,9 @@ class JointedNonlinearProblem:
         fem_petsc.set_bc(b, self.bcs, x, -1.0)
         self.nonfinite = not finite
         if not finite:
+            if self.u.function_space.mesh.comm.rank == 0:
+                log.warning("joint traction not finite: a closure reached a law's maximum closure; "
+                            "limit the Newton step (problem.newton_solver() / snes_solver() do)")
             b.set(np.inf)
 
     def J(self, x: PETSc.Vec, A: PETSc.Mat) -> None:
