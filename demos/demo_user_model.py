@@ -124,7 +124,7 @@ def joint_tables(out) -> dict:
 
 
 # %% The user's own DOLFINx model ----------------------------------------------------------------
-def youngs_modulus(dmesh, V, graded: bool):
+def youngs_modulus(dmesh, graded: bool):
     """E per block (DG0) and, if graded, softened near the crest level: E · (0.4 + 0.6 min(1, depth/20 m))."""
     Q = fem.FunctionSpace(dmesh.mesh, ("DG", 0))
     E_block = fem.Function(Q, name="E_block")
@@ -138,12 +138,12 @@ def youngs_modulus(dmesh, V, graded: bool):
     return E_block * (0.4 + 0.6 * ufl.min_value(1.0, depth / 20.0))
 
 
-def user_problem(dmesh, tables, graded: bool, u_name="displacement"):
+def user_problem(dmesh, tables, graded: bool):
     """Plane-strain elasticity with E(x), gravity and the crest surcharge, plus the joints."""
     mesh = dmesh.mesh
     V = fem.VectorFunctionSpace(mesh, ("Lagrange", 1))
-    u, v = fem.Function(V, name=u_name), ufl.TestFunction(V)
-    E = youngs_modulus(dmesh, V, graded)
+    u, v = fem.Function(V, name="displacement"), ufl.TestFunction(V)
+    E = youngs_modulus(dmesh, graded)
     mu, lam = E / (2 * (1 + POISSON)), E * POISSON / ((1 + POISSON) * (1 - 2 * POISSON))
 
     def sigma(w):

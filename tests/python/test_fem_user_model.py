@@ -58,7 +58,8 @@ def test_user_forms_with_joints_equal_jointed_rock_model(dim, degree, mesh_size,
     assert max_abs(problem.u.x.array - reference.x.array) <= 1e-8 * scale
     # The joint state seen by the user equals the model's.
     state = problem.coupling.state(problem.u)
-    np.testing.assert_allclose(state["closure"], model.solution.joints["closure"], rtol=0, atol=1e-9 * case.LAW.maximum_closure)
+    np.testing.assert_allclose(state["closure"], model.solution.joints["closure"], rtol=0,
+                               atol=1e-9 * case.LAW.maximum_closure)
     assert state["closure"].max() > 0.1 * case.LAW.maximum_closure  # the joint really closes
 
 
@@ -151,7 +152,8 @@ def test_wrong_array_sizes_name_the_sizes(dmesh2):
     problem = case.user_problem(dmesh2)
     c, u = problem.coupling, problem.u
     n = c.num_local_dofs
-    with pytest.raises(ValueError, match=rf"b: expected a float64 array of the {n} local dofs of V .*got shape \({n - 1},\)"):
+    with pytest.raises(ValueError,
+                       match=rf"b: expected a float64 array of the {n} local dofs of V .*got shape \({n - 1},\)"):
         c.add_residual(u, np.zeros(n - 1))
     with pytest.raises(ValueError, match=rf"u: expected a float64 array of the {n} local dofs.*shape \({n + 2},\)"):
         c.add_residual(np.zeros(n + 2), np.zeros(n))

@@ -82,7 +82,8 @@ def test_a_msh_file_reads_like_the_model(tmp_path):
 def test_missing_groups_are_named_with_the_available_ones():
     case.build_gmsh_model(gmsh, 2, 0.5)
     with pytest.raises(ValueError, match=r"joints: no dimension-1 physical group named 'upper'; 'upper' is a "
-                                         r"dimension-2 group; available: \['bottom', 'fault', 'left', 'right', 'top'\]"):
+                                         r"dimension-2 group; available: "
+                                         r"\['bottom', 'fault', 'left', 'right', 'top'\]"):
         meshes.from_gmsh_model(joints=["upper"])
     with pytest.raises(ValueError, match=r"blocks: no dimension-2 physical group named 'granite'; available: "
                                          r"\['lower', 'upper'\]"):

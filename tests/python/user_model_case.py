@@ -81,7 +81,8 @@ def solve_newton(problem):
 
 def solve_snes(problem):
     snes = problem.snes_solver(petsc_options={
-        "snes_rtol": 0.0, "snes_atol": 1e-10 * problem.load_norm(), "snes_stol": 0.0, "snes_max_it": 30, "snes_linesearch_type": "basic",
+        "snes_rtol": 0.0, "snes_atol": 1e-10 * problem.load_norm(), "snes_stol": 0.0, "snes_max_it": 30,
+        "snes_linesearch_type": "basic",
         "ksp_type": "preonly", "pc_type": "lu", "pc_factor_mat_solver_type": "mumps"})
     x = problem.u.vector.copy()
     snes.solve(None, x)

@@ -43,6 +43,7 @@ log = logging.getLogger(__name__)
 
 __all__ = ["JointCoupling", "JointedNonlinearProblem", "joint_behaviours", "supported_dofs"]
 
+
 def supported_dofs(V: fem.FunctionSpace, bcs: Iterable[fem.DirichletBCMetaClass]) -> np.ndarray:
     """Mask (int8, 1 = supported) over the local unrolled dofs of V, ghosts included, of every dof
     a DirichletBC in `bcs` prescribes (whole-space or component bcs, V.sub(i))."""
