@@ -267,3 +267,17 @@ def test_closure_limiter_lets_newton_and_snes_pass_a_stiffening_law():
     snes = problem()
     case.solve_snes(snes)
     np.testing.assert_allclose(snes.coupling.state(snes.u)["closure"], closure, rtol=1e-8)
+
+
+def test_snes_options_stay_with_their_problem(dmesh2):
+    """petsc_options reach the SNES they were given to, not the next one (own default prefixes)."""
+    first = case.user_problem(dmesh2).snes_solver(petsc_options={"snes_max_it": 3, "snes_type": "newtontr"})
+    second = case.user_problem(dmesh2).snes_solver()
+    assert first.getType() == "newtontr" and first.getTolerances()[3] == 3
+    assert second.getType() == "newtonls" and second.getTolerances()[3] != 3
+    named = case.user_problem(dmesh2).snes_solver(options_prefix="mine_", petsc_options={"snes_max_it": 7})
+    assert named.getOptionsPrefix() == "mine_" and named.getTolerances()[3] == 7
+    with pytest.raises(ValueError, match="give option names without the leading dash"):
+        case.user_problem(dmesh2).snes_solver(petsc_options={"-snes_max_it": 3})
+    with pytest.raises(ValueError, match="options_prefix '-x_': a string without a leading dash"):
+        case.user_problem(dmesh2).snes_solver(options_prefix="-x_")

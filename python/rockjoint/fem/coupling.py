@@ -325,6 +325,9 @@ class JointCoupling:
         return self._check_size(v, what)
 
 
+_SNES_COUNT = [0]  # default SNES options prefixes, numbered per process (the same on every rank)
+
+
 def _mpi_min():
     from mpi4py import MPI
     return MPI.MIN
@@ -472,11 +475,17 @@ class JointedNonlinearProblem:
                     options_prefix: str | None = None) -> PETSc.SNES:
         """A PETSc SNES on this problem: residual, joint-aware Jacobian, and the closure limiter as
         a line-search pre-check. petsc_options: {option: value} without the leading dash, set under
-        `options_prefix` (default "rockjoint_snes_") and read by setFromOptions, e.g.
+        `options_prefix` (default: a prefix of its own, "rockjoint_snes_<n>_", so options never leak
+        between problems; pass one to reach it from the command line) and read by setFromOptions, e.g.
         {"snes_rtol": 1e-10, "ksp_type": "preonly", "pc_type": "lu"}. Solve with
         snes.solve(None, x), x = u.vector.copy(); then x.copy(u.vector) and u.x.scatter_forward()."""
         comm = comm or self.u.function_space.mesh.comm
-        prefix = "rockjoint_snes_" if options_prefix is None else options_prefix
+        if options_prefix is not None and (not isinstance(options_prefix, str) or options_prefix.startswith("-")):
+            raise ValueError(f"options_prefix {options_prefix!r}: a string without a leading dash")
+        if options_prefix is None:
+            _SNES_COUNT[0] += 1
+            options_prefix = f"rockjoint_snes_{_SNES_COUNT[0]}_"
+        prefix = options_prefix
         snes = PETSc.SNES().create(comm)
         snes.setOptionsPrefix(prefix)
         opts = PETSc.Options()
