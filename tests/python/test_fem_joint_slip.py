@@ -326,3 +326,19 @@ def test_barton_bandis_shear_stiffness_is_the_secant_to_the_peak_at_one_percent_
         barton_bandis_shear_stiffness(10.0, 100e6, math.radians(28.0), 2e6, 0.0)
     with pytest.raises(ValueError, match="jrc"):
         barton_bandis_shear_stiffness(25.0, 100e6, math.radians(28.0), 2e6, 1.0)
+
+
+def test_public_coupling_takes_the_strength_and_reports_an_unsymmetric_tangent():
+    from dolfinx import fem
+
+    from rockjoint.fem import StrengthModel
+    from rockjoint.fem.coupling import JointCoupling
+    dmesh = _block()
+    V = fem.VectorFunctionSpace(dmesh.mesh, ("Lagrange", 1))
+    law = {"j": rockjoint.BartonBandis(KNI, VM)}
+    assert JointCoupling(V, dmesh, law, shear_stiffness=KS).symmetric
+    coupling = JointCoupling(V, dmesh, law, shear_stiffness=KS, strength={"friction_angle": PHI})
+    assert not coupling.symmetric
+    (behaviour,) = coupling.behaviours.values()
+    assert behaviour.strength.model == StrengthModel.coulomb
+    assert behaviour.strength.friction_angle == PHI

@@ -39,7 +39,7 @@ from .loads import Load, Support
 from .newton import ConvergenceError, NewtonOptions, newton, solve_load_path  # noqa: F401
 from .stages import (JointedProblem, JointedSolution, Stage, StageClock, StageResult,  # noqa: F401
                      lookup, min_op, names_of, snes_load_path)
-from .strength import StrengthModel, make_strength
+from .strength import StrengthModel, strength_per_joint
 
 log = logging.getLogger(__name__)
 
@@ -201,7 +201,7 @@ class JointedRockModel(StagedLoading):
         ks = _per_joint(ks, names, "shear_stiffness")
         kr = _per_joint(kr, names, "residual_stiffness")
         ratio = None if ratio is None else _per_joint(ratio, names, "shear_stiffness_ratio")
-        strengths = _per_joint_strength(strength, names)
+        strengths = strength_per_joint(strength, names)
         out = {}
         for name, law in joints.items():
             if not isinstance(law, _rockjoint.constitutive.ClosureLaw):
@@ -638,14 +638,3 @@ class JointedRockModel(StagedLoading):
         if self.solution is None:
             raise RuntimeError("write_xdmf: call solve() first")
         return write_xdmf(self, path)
-
-
-def _per_joint_strength(value, joint_names) -> dict:
-    """{joint name: JointStrength} from None, one description for all joints, or a dict keyed by
-    joint names (a dict whose keys are all joint names is per joint; otherwise one description)."""
-    if isinstance(value, dict) and value and set(value) <= set(joint_names):
-        return {n: make_strength(value.get(n), n) for n in joint_names}
-    if isinstance(value, dict) and value and set(value) & set(joint_names):
-        raise ValueError(f"strength: mixes joint names {sorted(set(value) & set(joint_names))} with "
-                         f"other keys {sorted(set(value) - set(joint_names))}")
-    return {n: make_strength(value, n) for n in joint_names}

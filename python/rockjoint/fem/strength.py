@@ -76,3 +76,14 @@ def barton_bandis_shear_stiffness(jrc: float, jcs: float, residual_friction_angl
     strength = make_strength({"model": "barton", "friction_angle": residual_friction_angle, "jrc": jrc,
                               "jcs": jcs}, "barton_bandis_shear_stiffness")
     return 100.0 * strength.shear_strength(normal_stress) / block_length
+
+
+def strength_per_joint(value, joint_names) -> dict:
+    """{joint name: JointStrength} from None, one description for all joints, or a dict keyed by
+    joint names (a dict whose keys are all joint names is per joint; otherwise one description)."""
+    if isinstance(value, dict) and value and set(value) <= set(joint_names):
+        return {n: make_strength(value.get(n), n) for n in joint_names}
+    if isinstance(value, dict) and value and set(value) & set(joint_names):
+        raise ValueError(f"strength: mixes joint names {sorted(set(value) & set(joint_names))} with "
+                         f"other keys {sorted(set(value) - set(joint_names))}")
+    return {n: make_strength(value, n) for n in joint_names}
