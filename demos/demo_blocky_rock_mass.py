@@ -324,26 +324,28 @@ def plot_joints(models, results, jointed, path):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     from matplotlib.collections import LineCollection
-    from matplotlib.colors import BoundaryNorm, ListedColormap
+    from matplotlib.colors import BoundaryNorm, ListedColormap, TwoSlopeNorm
     fig, axes = plt.subplots(1, 3, figsize=(17, 4.6))
 
     seg, _ = joint_segments(elastic, pairs, tri_x, tri_u)
     sn = np.asarray(elastic["normal_stress"])
     tau = np.abs(np.asarray(elastic["shear_traction"])).reshape(-1)
     angle = np.degrees(np.arctan2(tau, np.maximum(sn, 1e-30)))
-    lines = LineCollection(seg, array=angle, cmap="coolwarm", linewidths=2.0)
-    lines.set_clim(0.0, 2 * math.degrees(FRICTION_ANGLE))
+    phi = math.degrees(FRICTION_ANGLE)
+    lines = LineCollection(seg, array=angle, cmap="coolwarm", linewidths=2.0,
+                           norm=TwoSlopeNorm(vcenter=phi, vmin=0.0, vmax=max(angle.max(), phi + 1.0)))
     axes[0].add_collection(lines)
-    fig.colorbar(lines, ax=axes[0], label="atan(|τ|/σ_n) [°] (white: φ of the slipping model)")
+    fig.colorbar(lines, ax=axes[0], label=f"atan(|τ|/σ_n) [°] (white: φ = {phi:g}°; red: beyond it)")
     style(axes[0], "elastic joints: friction they mobilise")
 
     seg, disp = joint_segments(slipping, pairs, tri_x, tri_u)
     scale = 0.4 / max(np.linalg.norm(tri_u, axis=2).max(), 1e-300)          # largest |u| drawn 0.4 m
     deformed = tri_x + scale * tri_u
     pts = deformed.reshape(-1, 2)
-    for ax in axes[1:]:
-        ax.tripcolor(pts[:, 0], pts[:, 1], np.arange(pts.shape[0]).reshape(-1, 3),
-                     np.zeros(pts.shape[0]), cmap="Greys", vmin=0.0, vmax=5.0, shading="flat")
+    magnitude = np.linalg.norm(tri_u, axis=2).ravel()
+    for ax in axes[1:]:                                 # the deformed section, |u| in light grey
+        ax.tripcolor(pts[:, 0], pts[:, 1], np.arange(pts.shape[0]).reshape(-1, 3), magnitude,
+                     cmap="Greys", vmin=0.0, vmax=4.0 * magnitude.max(), shading="gouraud")
     states = ListedColormap(["tab:blue", "tab:red", "gold"])
     lines = LineCollection(seg + scale * disp, array=np.asarray(slipping["shear_state"], dtype=float),
                            cmap=states, norm=BoundaryNorm([-0.5, 0.5, 1.5, 2.5], 3), linewidths=2.2)
