@@ -24,7 +24,6 @@ of its remaining room to a law's maximum closure.
 from __future__ import annotations
 
 import logging
-import os
 from typing import Callable, Iterable, Mapping, Sequence
 
 import numpy as np
@@ -34,11 +33,10 @@ from dolfinx import fem, la
 from dolfinx.fem import petsc as fem_petsc
 from petsc4py import PETSc
 
-from .. import _rockjoint
+from .behaviours import joint_behaviours, symmetric_tangent
 from .distributed_mesh import DistributedJointMesh, JointPairs
-from .interface import JointBehaviour, JointInterface, ShearModel
-from .model import _per_joint  # a float or {joint name: float} per joint, names checked
-from .strength import StrengthModel, strength_per_joint
+from .interface import JointInterface
+from .stages import names_of
 
 log = logging.getLogger(__name__)
 
@@ -71,62 +69,13 @@ def _same_space(W, V) -> bool:
     return V._cpp_object.contains(getattr(W, "_cpp_object", W))
 
 
-def joint_behaviours(joint_tags: Mapping[str, int], laws: Mapping[str, object], *,
-                     shear_stiffness=0.0, shear_stiffness_ratio=None,
-                     residual_stiffness=0.0, strength=None) -> dict:
-    """{joint tag: JointBehaviour} from a law per joint name.
-
-    joint_tags: {joint name: tag} of every joint of the mesh. laws: {joint name: law} for every
-    joint; a law is a rockjoint closure law or table, the path of a .rjt table, or a JointBehaviour
-    (then used as it is). shear_stiffness k_s [Pa/m], shear_stiffness_ratio (k_s = ratio × k_n(Δ)
-    instead) and residual_stiffness k_r [Pa/m]: a float or {joint name: float}. strength: joint
-    shear strength, None, one description or {joint name: description} (docs/joint-strength.md).
-    """
-    if not isinstance(laws, Mapping):
-        raise TypeError(f"laws must be a dict {{joint name: law}}, got {type(laws).__name__}")
-    names = list(joint_tags)
-    unknown = set(laws) - set(names)
-    if unknown:
-        raise ValueError(f"laws: unknown joint(s) {sorted(unknown)}; available joints: {sorted(names)}")
-    missing = set(names) - set(laws)
-    if missing:
-        raise ValueError(f"laws: no law for joint(s) {sorted(missing)}; give {{joint name: law}} for "
-                         f"every joint of the mesh: {sorted(names)}")
-    ks = _per_joint(shear_stiffness, names, "shear_stiffness")
-    kr = _per_joint(residual_stiffness, names, "residual_stiffness")
-    ratio = None if shear_stiffness_ratio is None else _per_joint(shear_stiffness_ratio, names,
-                                                                   "shear_stiffness_ratio")
-    strengths = strength_per_joint(strength, names)
-    out = {}
-    for name, law in laws.items():
-        if isinstance(law, JointBehaviour):
-            out[int(joint_tags[name])] = law
-            continue
-        if isinstance(law, (str, os.PathLike)):
-            if not os.path.isfile(law):
-                raise ValueError(f"laws[{name!r}]: no table file {os.fspath(law)!r}")
-            law = _rockjoint.constitutive.TabulatedLaw.load(os.fspath(law))
-        if not isinstance(law, _rockjoint.constitutive.ClosureLaw):
-            raise TypeError(f"laws[{name!r}] must be a rockjoint closure law or table, a .rjt path or a "
-                            f"JointBehaviour, got {type(law).__name__}")
-        # JointBehaviour validates the stiffnesses (finite, >= 0) and names the bad one.
-        if ratio is None:
-            b = JointBehaviour(law, ShearModel.constant, shear_stiffness=ks[name], residual_stiffness=kr[name],
-                               strength=strengths[name])
-        else:
-            b = JointBehaviour(law, ShearModel.proportional, shear_stiffness_ratio=ratio[name],
-                               residual_stiffness=kr[name], strength=strengths[name])
-        out[int(joint_tags[name])] = b
-    return out
-
-
 class JointCoupling:
     """The joints of a mesh bound to the user's displacement space V.
 
     V: vector Lagrange space of degree 1 or 2 on the split mesh (block size = gdim).
     joints: the DistributedJointMesh (pairs and joint names from it), or its JointPairs with
         `joint_tags` = {joint name: tag}.
-    laws: {joint name: law} for every joint (see joint_behaviours); shear_stiffness,
+    laws: {joint name: law} for every joint (see behaviours.joint_behaviours); shear_stiffness,
         shear_stiffness_ratio, residual_stiffness, strength: as in joint_behaviours.
     quadrature: "nodal" (default; smooth tractions for stiff joints) or "gauss" (P1 only).
     bcs: the Dirichlet conditions of the problem; their dofs' rows and columns are left out of the
@@ -149,7 +98,7 @@ class JointCoupling:
             if joints.mesh is not V.mesh:
                 raise ValueError("V is not built on the mesh of the DistributedJointMesh `joints`")
             pairs = joints.pairs
-            names = {str(n): int(t) for t, n in joints.names["joints"].items()}
+            names = names_of(joints, "joints")
             if joint_tags is not None:
                 raise ValueError("joint_tags: the joint names come from the DistributedJointMesh; give "
                                  "joint_tags only with JointPairs")
@@ -194,8 +143,7 @@ class JointCoupling:
     def symmetric(self) -> bool:
         """True if the joint tangent is symmetric (constant shear stiffness and no strength on every
         joint: friction couples the shear strength to the normal stress)."""
-        return all(b.shear_model == ShearModel.constant and b.strength.model == StrengthModel.none
-                   for b in self.behaviours.values())
+        return symmetric_tangent(self.behaviours)
 
     # ---- matrix --------------------------------------------------------------------------
     def insert_sparsity(self, pattern: _dcpp.la.SparsityPattern) -> None:

@@ -30,16 +30,15 @@ from dolfinx import fem, la
 from dolfinx.fem import petsc as fem_petsc
 from petsc4py import PETSc
 
-from .. import _rockjoint
 from .in_situ import STANDARD_GRAVITY, InSituStress
-from .interface import JointBehaviour, JointInterface, ShearModel
+from .behaviours import joint_behaviours, symmetric_tangent
+from .interface import JointInterface
 from .linear_solver import LinearSolver, LinearSolveError, rigid_body_modes  # noqa: F401
 from .load_path import StagedLoading
 from .loads import Load, Support
 from .newton import ConvergenceError, NewtonOptions, newton, solve_load_path  # noqa: F401
 from .stages import (JointedProblem, JointedSolution, Stage, StageClock, StageResult,  # noqa: F401
                      lookup, min_op, names_of, snes_load_path)
-from .strength import StrengthModel, strength_per_joint
 
 log = logging.getLogger(__name__)
 
@@ -60,16 +59,6 @@ def _per_block(blocks: dict, value, what: str, missing_message: str) -> dict:
     if missing:
         raise ValueError(f"{what}: " + missing_message.format(sorted(missing)))
     return value
-
-
-def _per_joint(value, joint_names, what: str) -> dict:
-    """A float for every joint, or a {joint name: float} dict (missing joints get 0)."""
-    if isinstance(value, dict):
-        unknown = set(value) - set(joint_names)
-        if unknown:
-            raise ValueError(f"{what}: unknown joint(s) {sorted(unknown)}; available joints: {sorted(joint_names)}")
-        return {n: float(value.get(n, 0.0)) for n in joint_names}
-    return {n: float(value) for n in joint_names}
 
 
 class JointedRockModel(StagedLoading):
@@ -190,30 +179,9 @@ class JointedRockModel(StagedLoading):
         return out
 
     def _check_joints(self, joints, ks, ratio, kr, strength=None) -> dict:
-        names = _names(self.dmesh, "joints")
-        joints = joints or {}
-        unknown = set(joints) - set(names)
-        if unknown:
-            raise ValueError(f"joints: unknown joint(s) {sorted(unknown)}; available joints: {sorted(names)}")
-        missing = set(names) - set(joints)
-        if missing:
-            raise ValueError(f"joints: no closure law for joint(s) {sorted(missing)}; give joints={{name: law}}")
-        ks = _per_joint(ks, names, "shear_stiffness")
-        kr = _per_joint(kr, names, "residual_stiffness")
-        ratio = None if ratio is None else _per_joint(ratio, names, "shear_stiffness_ratio")
-        strengths = strength_per_joint(strength, names)
-        out = {}
-        for name, law in joints.items():
-            if not isinstance(law, _rockjoint.constitutive.ClosureLaw):
-                raise ValueError(f"joints[{name!r}] must be a rockjoint closure law or table, got {type(law).__name__}")
-            if ratio is None:
-                b = JointBehaviour(law, ShearModel.constant, shear_stiffness=ks[name], residual_stiffness=kr[name],
-                                   strength=strengths[name])
-            else:
-                b = JointBehaviour(law, ShearModel.proportional, shear_stiffness_ratio=ratio[name],
-                                   residual_stiffness=kr[name], strength=strengths[name])
-            out[names[name]] = b
-        return out
+        return joint_behaviours(_names(self.dmesh, "joints"), joints or {}, shear_stiffness=ks,
+                                shear_stiffness_ratio=ratio, residual_stiffness=kr, strength=strength,
+                                argument="joints", closure_laws_only=True)
 
     def _component_indices(self, components) -> list:
         if components in ("all", None):
@@ -330,9 +298,7 @@ class JointedRockModel(StagedLoading):
         self._r_sigma0 = None  # ∫ε(v):σ0 dx with an in-situ stress
 
         num_dofs = imap.size_global * bs
-        # Friction couples the shear strength to the normal stress: an unsymmetric tangent.
-        symmetric = all(b.shear_model == ShearModel.constant and b.strength.model == StrengthModel.none
-                        for b in self.behaviours.values())
+        symmetric = symmetric_tangent(self.behaviours)
         nullspace = None
         kind = self.linear_solver_kind
         if kind == "iterative" or (kind == "auto" and num_dofs > 60_000):
