@@ -36,7 +36,8 @@ from petsc4py import PETSc
 from .behaviours import joint_behaviours, symmetric_tangent
 from .distributed_mesh import DistributedJointMesh, JointPairs
 from .interface import JointInterface
-from .stages import names_of
+from .petsc_options import check_options_prefix, check_petsc_options
+from .stages import min_op, names_of
 
 log = logging.getLogger(__name__)
 
@@ -189,7 +190,7 @@ class JointCoupling:
         else:
             arr = self._check_size(b, "b")
             arr += r
-        return bool(self.V.mesh.comm.allreduce(finite, op=_mpi_min()))
+        return bool(self.V.mesh.comm.allreduce(finite, op=min_op()))
 
     def add_jacobian(self, u, A: PETSc.Mat, scale: float = 1.0) -> None:
         """Add `scale` × the joint tangent at u into A (MatSetValuesLocal, ADD_VALUES, no flush),
@@ -211,7 +212,7 @@ class JointCoupling:
             raise ValueError(f"fraction = {fraction} must be in (0, 1)")
         u_local = np.array(self._local(u, "u"))  # a copy: _local(du) may reuse the work vector
         alpha = self.interface._cpp.admissible_step_length(u_local, self._local(du, "du"), fraction)
-        return float(self.V.mesh.comm.allreduce(alpha, op=_mpi_min()))
+        return float(self.V.mesh.comm.allreduce(alpha, op=min_op()))
 
     def newton_update(self, fraction: float = 0.95) -> Callable:
         """An update for dolfinx.nls.petsc.NewtonSolver.set_update: x ← x - α dx with the
@@ -280,11 +281,6 @@ class JointCoupling:
 
 
 _SNES_COUNT = [0]  # default SNES options prefixes, numbered per process (the same on every rank)
-
-
-def _mpi_min():
-    from mpi4py import MPI
-    return MPI.MIN
 
 
 class JointedNonlinearProblem:
@@ -434,8 +430,8 @@ class JointedNonlinearProblem:
         {"snes_rtol": 1e-10, "ksp_type": "preonly", "pc_type": "lu"}. Solve with
         snes.solve(None, x), x = u.vector.copy(); then x.copy(u.vector) and u.x.scatter_forward()."""
         comm = comm or self.u.function_space.mesh.comm
-        if options_prefix is not None and (not isinstance(options_prefix, str) or options_prefix.startswith("-")):
-            raise ValueError(f"options_prefix {options_prefix!r}: a string without a leading dash")
+        options_prefix = check_options_prefix(options_prefix)
+        petsc_options = check_petsc_options(petsc_options)
         if options_prefix is None:
             _SNES_COUNT[0] += 1
             options_prefix = f"rockjoint_snes_{_SNES_COUNT[0]}_"
@@ -443,9 +439,7 @@ class JointedNonlinearProblem:
         snes = PETSc.SNES().create(comm)
         snes.setOptionsPrefix(prefix)
         opts = PETSc.Options()
-        for key, value in (petsc_options or {}).items():
-            if not isinstance(key, str) or not key or key.startswith("-"):
-                raise ValueError(f"petsc_options key {key!r}: give option names without the leading dash")
+        for key, value in petsc_options.items():
             opts[prefix + key] = value
         snes.setFunction(self._snes_F, self.vector())
         snes.setJacobian(self._snes_J, self.matrix())

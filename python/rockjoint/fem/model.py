@@ -30,13 +30,14 @@ from dolfinx import fem, la
 from dolfinx.fem import petsc as fem_petsc
 from petsc4py import PETSc
 
-from .in_situ import STANDARD_GRAVITY, InSituStress
 from .behaviours import joint_behaviours, symmetric_tangent
+from .in_situ import STANDARD_GRAVITY, InSituStress
 from .interface import JointInterface
 from .linear_solver import LinearSolver, LinearSolveError, rigid_body_modes  # noqa: F401
 from .load_path import StagedLoading
 from .loads import Load, Support
 from .newton import ConvergenceError, NewtonOptions, newton, solve_load_path  # noqa: F401
+from .petsc_options import check_options_prefix, check_petsc_options
 from .stages import (JointedProblem, JointedSolution, Stage, StageClock, StageResult,  # noqa: F401
                      lookup, min_op, names_of, snes_load_path)
 
@@ -119,18 +120,8 @@ class JointedRockModel(StagedLoading):
         self.plane = plane if self.gdim == 2 else None
         self.quadrature = quadrature
         self.linear_solver_kind = linear_solver
-        if petsc_options is not None and not isinstance(petsc_options, dict):
-            raise ValueError(f"petsc_options must be a dict {{option: value}}, got "
-                             f"{type(petsc_options).__name__}")
-        for key in petsc_options or {}:
-            if not isinstance(key, str) or key.startswith("-") or not key:
-                raise ValueError(f"petsc_options key {key!r}: give option names without the "
-                                 f"leading dash, e.g. 'ksp_type'")
-        self.petsc_options = dict(petsc_options or {})
-        if options_prefix is not None and (not isinstance(options_prefix, str)
-                                           or options_prefix.startswith("-")):
-            raise ValueError(f"options_prefix {options_prefix!r}: a string without a leading dash")
-        self.options_prefix = options_prefix
+        self.petsc_options = check_petsc_options(petsc_options)
+        self.options_prefix = check_options_prefix(options_prefix)
         self.newton_options = newton or NewtonOptions()
         self.rock = self._check_rock(rock)
         self.behaviours = self._check_joints(joints, shear_stiffness, shear_stiffness_ratio, residual_stiffness,
