@@ -40,6 +40,7 @@ from .newton import ConvergenceError, NewtonOptions, newton, solve_load_path  # 
 from .petsc_options import check_options_prefix, check_petsc_options
 from .stages import (JointedProblem, JointedSolution, Stage, StageClock, StageResult,  # noqa: F401
                      lookup, min_op, names_of, snes_load_path)
+from .validation import positive_number
 
 log = logging.getLogger(__name__)
 
@@ -199,16 +200,7 @@ class JointedRockModel(StagedLoading):
             return {}
         density = _per_block(_names(self.dmesh, "blocks"), density, "density",
                              "no value for block(s) {} (give one for every block)")
-        out = {}
-        for name, rho in density.items():
-            try:
-                rho = float(rho)
-            except (TypeError, ValueError):
-                raise ValueError(f"density[{name!r}] must be a number [kg/m³], got {rho!r}") from None
-            if not (np.isfinite(rho) and rho > 0):
-                raise ValueError(f"density[{name!r}] = {rho} kg/m³ is invalid; it must be finite and > 0")
-            out[name] = rho
-        return out
+        return {name: positive_number(f"density[{name!r}]", rho, unit="kg/m³") for name, rho in density.items()}
 
     # ---- setup -----------------------------------------------------------------------------
     def _prepare(self) -> None:
