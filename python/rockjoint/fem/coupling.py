@@ -31,13 +31,13 @@ import ufl
 from dolfinx import cpp as _dcpp
 from dolfinx import fem, la
 from dolfinx.fem import petsc as fem_petsc
+from mpi4py import MPI
 from petsc4py import PETSc
 
 from .behaviours import joint_behaviours, symmetric_tangent
-from .distributed_mesh import DistributedJointMesh, JointPairs
+from .distributed_mesh import DistributedJointMesh, JointPairs, names_of
 from .interface import JointInterface
 from .petsc_options import check_options_prefix, check_petsc_options
-from .stages import min_op, names_of
 
 log = logging.getLogger(__name__)
 
@@ -190,7 +190,7 @@ class JointCoupling:
         else:
             arr = self._check_size(b, "b")
             arr += r
-        return bool(self.V.mesh.comm.allreduce(finite, op=min_op()))
+        return bool(self.V.mesh.comm.allreduce(finite, op=MPI.MIN))
 
     def add_jacobian(self, u, A: PETSc.Mat, scale: float = 1.0) -> None:
         """Add `scale` × the joint tangent at u into A (MatSetValuesLocal, ADD_VALUES, no flush),
@@ -212,7 +212,7 @@ class JointCoupling:
             raise ValueError(f"fraction = {fraction} must be in (0, 1)")
         u_local = np.array(self._local(u, "u"))  # a copy: _local(du) may reuse the work vector
         alpha = self.interface._cpp.admissible_step_length(u_local, self._local(du, "du"), fraction)
-        return float(self.V.mesh.comm.allreduce(alpha, op=min_op()))
+        return float(self.V.mesh.comm.allreduce(alpha, op=MPI.MIN))
 
     def newton_update(self, fraction: float = 0.95) -> Callable:
         """An update for dolfinx.nls.petsc.NewtonSolver.set_update: x ← x - α dx with the

@@ -28,9 +28,11 @@ import ufl
 from dolfinx import cpp as _dcpp
 from dolfinx import fem, la
 from dolfinx.fem import petsc as fem_petsc
+from mpi4py import MPI
 from petsc4py import PETSc
 
 from .behaviours import joint_behaviours, symmetric_tangent
+from .distributed_mesh import lookup, names_of
 from .in_situ import STANDARD_GRAVITY, InSituStress
 from .interface import JointInterface
 from .linear_solver import LinearSolver, LinearSolveError, rigid_body_modes  # noqa: F401
@@ -39,7 +41,7 @@ from .loads import Load, Support
 from .newton import ConvergenceError, NewtonOptions, newton, solve_load_path  # noqa: F401
 from .petsc_options import check_options_prefix, check_petsc_options
 from .stages import (JointedProblem, JointedSolution, Stage, StageClock, StageResult,  # noqa: F401
-                     lookup, min_op, names_of, snes_load_path)
+                     snes_load_path)
 from .validation import positive_number
 
 log = logging.getLogger(__name__)
@@ -357,7 +359,7 @@ class JointedRockModel(StagedLoading):
         rj.ghostUpdate(addv=PETSc.InsertMode.ADD, mode=PETSc.ScatterMode.REVERSE)
         self.timings["interface_residual"] += time.perf_counter() - t0
         self.counts["interface_residual"] += 1
-        return self.comm.allreduce(bool(finite), op=min_op())
+        return self.comm.allreduce(bool(finite), op=MPI.MIN)
 
     def residual(self) -> float:
         self._apply_load_factor()
@@ -416,7 +418,7 @@ class JointedRockModel(StagedLoading):
 
     def admissible_step(self, fraction: float) -> float:
         alpha = self.interface._cpp.admissible_step_length(self.u.x.array, self.du.x.array, fraction)
-        return self.comm.allreduce(alpha, op=min_op())
+        return self.comm.allreduce(alpha, op=MPI.MIN)
 
     def apply_increment(self, alpha: float) -> None:
         self.u.vector.axpy(alpha, self.du.vector)
