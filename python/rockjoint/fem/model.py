@@ -49,9 +49,6 @@ log = logging.getLogger(__name__)
 _COMPONENTS = {"x": 0, "y": 1, "z": 2}
 
 
-_names, _lookup = names_of, lookup
-
-
 def _per_block(blocks: dict, value, what: str, missing_message: str) -> dict:
     """{block name: value} from one value for every block or a dict that names them all."""
     if not isinstance(value, dict):
@@ -155,7 +152,7 @@ class JointedRockModel(StagedLoading):
 
     # ---- input checks --------------------------------------------------------------------
     def _check_rock(self, rock) -> dict:
-        blocks = _names(self.dmesh, "blocks")
+        blocks = names_of(self.dmesh, "blocks")
         if rock is None:
             raise ValueError(f"rock properties are missing; give rock={{block: (E, nu)}} for blocks {sorted(blocks)}")
         rock = _per_block(blocks, rock, "rock", "no (E, nu) for block(s) {}")
@@ -173,7 +170,7 @@ class JointedRockModel(StagedLoading):
         return out
 
     def _check_joints(self, joints, ks, ratio, kr, strength=None) -> dict:
-        return joint_behaviours(_names(self.dmesh, "joints"), joints or {}, shear_stiffness=ks,
+        return joint_behaviours(names_of(self.dmesh, "joints"), joints or {}, shear_stiffness=ks,
                                 shear_stiffness_ratio=ratio, residual_stiffness=kr, strength=strength,
                                 argument="joints", closure_laws_only=True)
 
@@ -200,7 +197,7 @@ class JointedRockModel(StagedLoading):
     def _check_density(self, density) -> dict:
         if density is None:
             return {}
-        density = _per_block(_names(self.dmesh, "blocks"), density, "density",
+        density = _per_block(names_of(self.dmesh, "blocks"), density, "density",
                              "no value for block(s) {} (give one for every block)")
         return {name: positive_number(f"density[{name!r}]", rho, unit="kg/m³") for name, rho in density.items()}
 
@@ -234,7 +231,7 @@ class JointedRockModel(StagedLoading):
         cell_tag[tags.indices] = tags.values
         self._cell_tag = cell_tag
         lam_a, mu_a, rho_a = np.full(ncells, np.nan), np.full(ncells, np.nan), np.zeros(ncells)
-        blocks = _names(self.dmesh, "blocks")
+        blocks = names_of(self.dmesh, "blocks")
         for tag, (E, nu) in self.rock.items():
             sel = cell_tag == tag
             mu_a[sel] = E / (2 * (1 + nu))
@@ -576,7 +573,7 @@ class JointedRockModel(StagedLoading):
 
     def boundary_mean_displacement(self, boundary: str) -> np.ndarray:
         """Mean displacement vector [m] over a named boundary (∫u ds / ∫ds, all ranks)."""
-        tag = _lookup(self.dmesh, "boundaries", boundary)
+        tag = lookup(self.dmesh, "boundaries", boundary)
         ds = ufl.Measure("ds", domain=self.mesh, subdomain_data=self.dmesh.boundaries)(tag)
         area = self.comm.allreduce(fem.assemble_scalar(fem.form(fem.Constant(self.mesh, 1.0) * ds)))
         return np.array([self.comm.allreduce(fem.assemble_scalar(fem.form(self.u[i] * ds))) / area
