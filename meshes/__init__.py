@@ -6,3 +6,5 @@ from .builders import BOUNDARY_TAGS, JOINT_TAG_OFFSET, column, jointed_block  # 
 from .joint_geometry import Joint, joint_set, unit_normal  # noqa: F401
 from .jointed_mesh import FORMAT_VERSION, JointedMesh  # noqa: F401
 from .node_splitting import build_jointed_mesh, split_nodes  # noqa: F401
+from .tunnel import (OPENING, OPENING_TAG, CircularOpening, HorseshoeOpening,  # noqa: F401
+                     tunnel_section)
