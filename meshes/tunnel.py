@@ -187,7 +187,7 @@ class HorseshoeOpening:
 def tunnel_section(width: float, height: float, opening, joints: Iterable = (), *, mesh_size: float,
                    opening_mesh_size: float | None = None, opening_refine_distance: float | None = None,
                    joint_mesh_size: float | None = None, joint_refine_distance: float | None = None,
-                   intact: bool = False, comm=None) -> JointedMesh | None:
+                   intact: bool = False, quarter: bool = False, comm=None) -> JointedMesh | None:
     """The section [0, width] x [0, height] minus ``opening``, cut by ``joints``, meshed and split.
 
     opening: CircularOpening or HorseshoeOpening, strictly inside the section (at least one element
@@ -201,6 +201,10 @@ def tunnel_section(width: float, height: float, opening, joints: Iterable = (), 
     joint_mesh_size: element size [m] on the joints (default: no joint refinement);
         joint_refine_distance: growth distance [m] (default 2 mesh_size).
     intact: the same mesh as one block without joints (see the module docstring).
+    quarter: mesh a quarter of a section symmetric about the opening's vertical and horizontal axes:
+        a CircularOpening centred at the origin (0, 0), the rock [0, width] x [0, height] around it;
+        "left" (x = 0) and "bottom" (y = 0) are then the symmetry planes (rollers there are exact for
+        a symmetric load such as Kirsch's far field).
     comm: an mpi4py communicator; ranks != 0 return None (gmsh runs on rank 0).
     """
     if comm is not None and comm.rank != 0:
@@ -212,10 +216,14 @@ def tunnel_section(width: float, height: float, opening, joints: Iterable = (), 
     if mesh_size > 0.5 * size.min():
         raise ValueError(f"mesh_size ({mesh_size:g} m) exceeds half the section size {tuple(size)}")
     x0, y0, x1, y1 = opening.bounds()
+    if quarter:
+        if not isinstance(opening, CircularOpening) or opening.centre != (0.0, 0.0):
+            raise ValueError(f"quarter=True needs a CircularOpening centred at (0, 0), got {opening!r}")
+        x0 = y0 = mesh_size  # the symmetry planes cut the opening
     if not (x0 >= mesh_size and y0 >= mesh_size and x1 <= size[0] - mesh_size and y1 <= size[1] - mesh_size):
         raise ValueError(f"the opening (extent x {x0:g}..{x1:g} m, y {y0:g}..{y1:g} m) is not inside the section "
                          f"[0, {size[0]:g}] x [0, {size[1]:g}] m with a margin of one mesh_size ({mesh_size:g} m)")
-    half = 0.5 * max(x1 - x0, y1 - y0)
+    half = 0.5 * max(np.subtract(opening.bounds()[2:], opening.bounds()[:2]))
     opening_mesh_size = mesh_size / 4.0 if opening_mesh_size is None else \
         _positive("opening_mesh_size", opening_mesh_size)
     opening_refine_distance = 4.0 * half if opening_refine_distance is None else \

@@ -38,6 +38,15 @@ def polygon_area(points, facets, centre=CENTRE):
     return 0.5 * float(np.abs(p[:, 0] * q[:, 1] - q[:, 0] * p[:, 1]).sum())
 
 
+def deficit_bound(h, radius):
+    """Upper bound of the relative area deficit of a polygon inscribed in a circle (or an arc) with
+    chords at most h: each chord of angle φ = 2 asin(h / 2a) cuts a segment a²(φ - sin φ)/2 <= a²φ³/12,
+    so the deficit relative to the sector's area is at most φ²/6. Half of that bounds the relative
+    length deficit (φ - 2 sin(φ/2) <= φ³/24 per chord)."""
+    phi = 2.0 * math.asin(h / (2.0 * radius))
+    return phi ** 2 / 6.0
+
+
 def clipped_length(point, dip_deg, opening_centre, radius):
     """Length of the 2D line (point, dip toward +x) inside [0, W] x [0, H] minus the chord in the circle."""
     d = math.radians(dip_deg)
@@ -70,9 +79,9 @@ def test_circular_section_area_and_opening_perimeter(jointed):
     h = segment_lengths(m.points, ring).max()
     assert h <= 1.3 * SIZES["opening_mesh_size"]  # refined toward the opening
     deficit = 1.0 - polygon_area(m.points, ring) / CIRCLE.area
-    assert 0.0 < deficit <= (h / A) ** 2 / 6.0
-    assert area == pytest.approx(W * H - math.pi * A ** 2, rel=(h / A) ** 2 / 6.0 * CIRCLE.area / (W * H))
-    assert segment_lengths(m.points, ring).sum() == pytest.approx(2 * math.pi * A, rel=(h / A) ** 2 / 24.0 + 1e-12)
+    assert 0.0 < deficit <= deficit_bound(h, A)
+    assert area == pytest.approx(W * H - math.pi * A ** 2, rel=deficit_bound(h, A) * CIRCLE.area / (W * H))
+    assert segment_lengths(m.points, ring).sum() == pytest.approx(2 * math.pi * A, rel=deficit_bound(h, A) / 4.0 + 1e-12)
     assert np.allclose(np.linalg.norm(m.points[ring.ravel()] - CENTRE, axis=1), A, rtol=1e-9)
     for name, length in (("left", H), ("right", H), ("bottom", W), ("top", W)):
         assert segment_lengths(m.points, boundary(m, name)).sum() == pytest.approx(length, rel=1e-12)
@@ -151,8 +160,8 @@ def test_horseshoe_area_and_perimeter(invert_depth):
     assert shoe.area == pytest.approx(area, rel=1e-14) and shoe.perimeter == pytest.approx(perimeter, rel=1e-14)
     h = segment_lengths(m.points, ring).max()
     assert m.cell_measures().sum() == pytest.approx(W * H - polygon_area(m.points, ring), rel=1e-12)
-    assert polygon_area(m.points, ring) == pytest.approx(area, rel=(h / a) ** 2 / 6.0)
-    assert segment_lengths(m.points, ring).sum() == pytest.approx(perimeter, rel=(h / a) ** 2 / 24.0)
+    assert polygon_area(m.points, ring) == pytest.approx(area, rel=deficit_bound(h, a))
+    assert segment_lengths(m.points, ring).sum() == pytest.approx(perimeter, rel=deficit_bound(h, a) / 4.0)
     # the bedding joint crosses the walls: its length is the section width minus the opening's 2a
     sel = m.joint_tags == m.tag("joints", "bed")
     assert segment_lengths(m.points, m.joint_facets_minus[sel]).sum() == pytest.approx(W - 2 * a, rel=1e-9)
@@ -208,3 +217,21 @@ def test_bad_opening_and_names_are_named():
         tunnel_section(W, H, (CENTRE, A), mesh_size=3.0)
     with pytest.raises(ValueError, match="cannot be named 'opening'"):
         tunnel_section(W, H, CIRCLE, [Joint((20.0, 5.0), 0.0, 90.0, "opening")], mesh_size=3.0)
+
+
+def test_quarter_section_of_a_symmetric_problem():
+    m = tunnel_section(10.0, 8.0, CircularOpening((0.0, 0.0), 1.0), mesh_size=1.0, opening_mesh_size=0.1,
+                       quarter=True)
+    check_split_invariants(m)
+    ring = boundary(m, "opening")
+    h = segment_lengths(m.points, ring).max()
+    # the quarter ring: the rectangle minus πa²/4 (the polygon is inscribed), arc length πa/2
+    polygon = polygon_area(m.points, ring, centre=(0.0, 0.0))
+    assert m.cell_measures().sum() == pytest.approx(80.0 - polygon, rel=1e-12)
+    assert polygon == pytest.approx(math.pi / 4, rel=deficit_bound(h, 1.0))
+    assert segment_lengths(m.points, ring).sum() == pytest.approx(math.pi / 2, rel=deficit_bound(h, 1.0) / 4.0)
+    # the symmetry planes start at the opening: x = 0 from y = a, y = 0 from x = a
+    assert segment_lengths(m.points, boundary(m, "left")).sum() == pytest.approx(7.0, rel=1e-12)
+    assert segment_lengths(m.points, boundary(m, "bottom")).sum() == pytest.approx(9.0, rel=1e-12)
+    with pytest.raises(ValueError, match="quarter=True needs a CircularOpening centred at"):
+        tunnel_section(10.0, 8.0, CircularOpening((1.0, 0.0), 1.0), mesh_size=1.0, quarter=True)
