@@ -39,14 +39,17 @@ def probe(function, points) -> np.ndarray:
     mine = np.flatnonzero(found >= 0)
     if mine.size:
         local[mine] = function.eval(x[mine], found[mine]).reshape(mine.size, size)
-    rank_of = np.where(found >= 0, comm.rank, comm.size)
-    owner = comm.allreduce(rank_of, op=_min())
+    rank_of = np.where(found >= 0, comm.rank, comm.size).astype(np.int64)
+    owner = np.empty_like(rank_of)
+    comm.Allreduce(rank_of, owner, op=_min())
     missing = np.flatnonzero(owner == comm.size)
     if missing.size:
         raise ValueError(f"probe: point {tuple(pts[missing[0]])} lies outside the mesh "
                          f"({missing.size} of {pts.shape[0]} points)")
     local[owner != comm.rank] = 0.0
-    return comm.allreduce(local, op=_sum())
+    values = np.empty_like(local)
+    comm.Allreduce(local, values, op=_sum())
+    return values
 
 
 def stress_function(model, u=None, degree: int | None = None) -> fem.Function:
