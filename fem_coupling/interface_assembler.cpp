@@ -1,5 +1,7 @@
 #include "interface_assembler.hpp"
 
+#include "joint_slip.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -10,19 +12,17 @@ namespace rockjoint::fem
 {
 
 InterfaceAssembler::InterfaceAssembler(int gdim, int degree, QuadratureRule rule,
-                                       std::span<const std::int32_t> minus_nodes,
-                                       std::span<const std::int32_t> plus_nodes,
+                                       std::span<const std::int32_t> pair_dofs,
                                        std::span<const double> vertex_coordinates,
                                        std::span<const double> minus_interior_points,
                                        std::span<const std::int32_t> joint_tags,
                                        std::map<std::int32_t, JointBehaviour> behaviours)
     : _gdim(gdim), _quadrature(make_facet_quadrature(rule, gdim, degree)),
-      _minus_nodes(minus_nodes.begin(), minus_nodes.end()),
-      _plus_nodes(plus_nodes.begin(), plus_nodes.end()), _tags(joint_tags.begin(), joint_tags.end()),
+      _pair_dofs(pair_dofs.begin(), pair_dofs.end()), _tags(joint_tags.begin(), joint_tags.end()),
       _behaviours(std::move(behaviours))
 {
   const std::size_t np = _tags.size();
-  const std::size_t nn = _quadrature.num_nodes;
+  const std::size_t half = static_cast<std::size_t>(_quadrature.num_nodes) * gdim;
   auto check_size = [&](std::size_t got, std::size_t want, const char* what)
   {
     if (got != want)
@@ -31,19 +31,21 @@ InterfaceAssembler::InterfaceAssembler(int gdim, int degree, QuadratureRule rule
                                   + std::to_string(want) + " for " + std::to_string(np)
                                   + " pairs");
   };
-  check_size(_minus_nodes.size(), np * nn, "minus_nodes");
-  check_size(_plus_nodes.size(), np * nn, "plus_nodes");
+  check_size(_pair_dofs.size(), np * 2 * half, "pair_dofs");
   check_size(vertex_coordinates.size(), np * gdim * gdim, "vertex_coordinates");
   check_size(minus_interior_points.size(), np * gdim, "minus_interior_points");
-  for (std::size_t i = 0; i < np * nn; ++i)
-  {
-    if (_minus_nodes[i] < 0 || _plus_nodes[i] < 0 || _minus_nodes[i] == _plus_nodes[i])
-      throw std::invalid_argument("InterfaceAssembler: pair " + std::to_string(i / nn)
-                                  + " has a negative node index or a node shared by both "
-                                    "sides (joint nodes must be split)");
-    const auto largest = static_cast<std::size_t>(std::max(_minus_nodes[i], _plus_nodes[i]));
-    _minimum_local_size = std::max(_minimum_local_size, (largest + 1) * std::size_t(gdim));
-  }
+  for (std::size_t p = 0; p < np; ++p)
+    for (std::size_t i = 0; i < half; ++i)
+    {
+      const std::int32_t m = _pair_dofs[2 * half * p + i], s = _pair_dofs[2 * half * p + half + i];
+      if (m < 0 || s < 0 || m == s)
+        throw std::invalid_argument("InterfaceAssembler: pair " + std::to_string(p)
+                                    + " has a negative dof index or a dof shared by both sides ("
+                                    + std::to_string(m) + ", " + std::to_string(s)
+                                    + "; joint nodes must be split)");
+      _minimum_local_size
+          = std::max(_minimum_local_size, static_cast<std::size_t>(std::max(m, s)) + 1);
+    }
 
   for (const auto& [tag, b] : _behaviours)
     validate(b, "tag " + std::to_string(tag));
@@ -76,42 +78,57 @@ InterfaceAssembler::InterfaceAssembler(int gdim, int degree, QuadratureRule rule
           _point_coordinates[(p * nq + q) * gdim + c]
               += _quadrature.barycentric[q * gdim + v] * verts[v * gdim + c];
   }
+  // One tangent frame per joint, from this process's pairs (the all-rank reference comes
+  // through set_reference_directions).
+  if (gdim == 3)
+  {
+    std::map<std::int32_t, std::array<double, 3>> directions;
+    for (const auto& [tag, moment] : normal_moments())
+      directions[tag] = joint_reference_direction(moment);
+    set_reference_directions(directions);
+  }
   _closure.assign(np * nq, 0.0);
   _normal_stress.assign(np * nq, 0.0);
   _shear_traction.assign(np * nq * (gdim - 1), 0.0);
   _status.assign(np * nq, static_cast<std::int32_t>(constitutive::Status::open));
+  _initial_jump.assign(np * nq * gdim, 0.0);
+  _converged.assign(np * nq, JointPointState{});
+  _trial = _converged;
+  _cached_response.assign(np * nq, LocalResponse{});
+  _cached_jump.assign(np * nq, std::array<double, 3>{});
 }
 
 void InterfaceAssembler::pair_dofs(std::int32_t p, std::span<std::int32_t> dofs) const
 {
-  const int nn = _quadrature.num_nodes;
-  for (int a = 0; a < nn; ++a)
-    for (int c = 0; c < _gdim; ++c)
-    {
-      dofs[a * _gdim + c] = _minus_nodes[p * nn + a] * _gdim + c;
-      dofs[(nn + a) * _gdim + c] = _plus_nodes[p * nn + a] * _gdim + c;
-    }
+  const std::size_t n = pair_size();
+  std::copy_n(_pair_dofs.begin() + p * n, n, dofs.begin());
 }
 
 std::array<double, 3> InterfaceAssembler::local_jump(std::int32_t p, int q,
-                                                     std::span<const double> u) const
+                                                     std::span<const double> u,
+                                                     bool with_initial) const
 {
   const int nn = _quadrature.num_nodes;
+  const std::int32_t* minus = _pair_dofs.data() + static_cast<std::size_t>(p) * pair_size();
+  const std::int32_t* plus = minus + nn * _gdim;
   std::array<double, 3> jump{}, local{};
   for (int a = 0; a < nn; ++a)
   {
     const double N = _quadrature.shape[q * nn + a];
     if (N == 0.0)
       continue;
-    const std::size_t m = static_cast<std::size_t>(_minus_nodes[p * nn + a]) * _gdim;
-    const std::size_t s = static_cast<std::size_t>(_plus_nodes[p * nn + a]) * _gdim;
     for (int c = 0; c < _gdim; ++c)
-      jump[c] += N * (u[s + c] - u[m + c]);
+      jump[c] += N * (u[plus[a * _gdim + c]] - u[minus[a * _gdim + c]]);
   }
   const auto& Q = _frames[p].axes;
+  const std::size_t point = point_index(p, q);
   for (int i = 0; i < _gdim; ++i)
+  {
+    if (with_initial)
+      local[i] = _initial_jump[point * _gdim + i];
     for (int c = 0; c < _gdim; ++c)
       local[i] += Q[i][c] * jump[c];
+  }
   return local;
 }
 
@@ -135,10 +152,16 @@ bool InterfaceAssembler::assemble_residual(std::span<const double> u, std::span<
   for (std::int32_t p = 0; p < num_pairs(); ++p)
   {
     const auto& Q = _frames[p].axes;
+    const std::int32_t* minus = _pair_dofs.data() + static_cast<std::size_t>(p) * pair_size();
+    const std::int32_t* plus = minus + nn * _gdim;
     for (int q = 0; q < nq; ++q)
     {
-      const LocalResponse r = local_response(behaviour(p), _gdim, local_jump(p, q, u));
-      const std::size_t point = static_cast<std::size_t>(p) * nq + q;
+      const std::size_t point = point_index(p, q);
+      const std::array<double, 3> jump = local_jump(p, q, u);
+      const LocalResponse& r = _cached_response[point]
+          = joint_response(behaviour(p), _gdim, jump, _converged[point], _trial[point]);
+      _cached_jump[point] = jump;
+      ++_num_law_evaluations;
       _closure[point] = r.closure;
       _normal_stress[point] = r.normal_stress;
       _status[point] = static_cast<std::int32_t>(r.status);
@@ -156,17 +179,16 @@ bool InterfaceAssembler::assemble_residual(std::span<const double> u, std::span<
         const double wN = w * _quadrature.shape[q * nn + a];
         if (wN == 0.0)
           continue;
-        const std::size_t m = static_cast<std::size_t>(_minus_nodes[p * nn + a]) * _gdim;
-        const std::size_t s = static_cast<std::size_t>(_plus_nodes[p * nn + a]) * _gdim;
         for (int c = 0; c < _gdim; ++c)
         {
-          residual[s + c] += wN * T[c];
-          residual[m + c] -= wN * T[c];
+          residual[plus[a * _gdim + c]] += wN * T[c];
+          residual[minus[a * _gdim + c]] -= wN * T[c];
           finite = finite && std::isfinite(T[c]);
         }
       }
     }
   }
+  _cache_valid = true;
   return finite;
 }
 
@@ -193,7 +215,19 @@ void InterfaceAssembler::pair_matrix(std::int32_t p, std::span<const double> u,
   const auto& Q = _frames[p].axes;
   for (int q = 0; q < nq; ++q)
   {
-    const LocalResponse r = local_response(behaviour(p), g, local_jump(p, q, u));
+    // Reuse the response of the last residual if this point's jump is bit-identical to the
+    // one it was evaluated at; else evaluate from the converged state (scratch trial).
+    const std::size_t point = point_index(p, q);
+    const std::array<double, 3> jump = local_jump(p, q, u);
+    const bool cached = _cache_valid && jump == _cached_jump[point];
+    LocalResponse evaluated;
+    if (!cached)
+    {
+      JointPointState trial;
+      evaluated = joint_response(behaviour(p), g, jump, _converged[point], trial);
+      ++_num_law_evaluations;
+    }
+    const LocalResponse& r = cached ? _cached_response[point] : evaluated;
     // D = Qᵀ (∂t/∂j) Q: global traction derivative w.r.t. the global jump.
     double D[3][3] = {};
     for (int c = 0; c < g; ++c)
@@ -251,11 +285,64 @@ double InterfaceAssembler::admissible_step_length(std::span<const double> u,
       [&](std::int32_t p, int q, double limit)
       {
         const double closure = -local_jump(p, q, u)[0];
-        const double rate = -local_jump(p, q, du)[0]; // dΔ/dα
+        const double rate = -local_jump(p, q, du, false)[0]; // dΔ/dα
         if (rate > 0.0)
           alpha = std::min(alpha, fraction * std::max(limit - closure, 0.0) / rate);
       });
   return alpha;
+}
+
+std::map<std::int32_t, std::array<double, 9>> InterfaceAssembler::normal_moments() const
+{
+  std::map<std::int32_t, std::array<double, 9>> moments;
+  for (std::size_t p = 0; p < _frames.size(); ++p)
+  {
+    auto& M = moments[_tags[p]];
+    const auto& n = _frames[p].axes[0];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        M[3 * i + j] += _frames[p].measure * n[i] * n[j];
+  }
+  return moments;
+}
+
+void InterfaceAssembler::set_reference_directions(
+    const std::map<std::int32_t, std::array<double, 3>>& directions)
+{
+  for (std::size_t p = 0; p < _frames.size(); ++p)
+    if (auto it = directions.find(_tags[p]); it != directions.end())
+      set_tangents(_frames[p], _gdim, it->second);
+  _cache_valid = false;
+}
+
+void InterfaceAssembler::set_initial_jump(std::span<const double> initial_jump)
+{
+  if (initial_jump.size() != _initial_jump.size())
+    throw std::invalid_argument("InterfaceAssembler::set_initial_jump: 'initial_jump' has "
+                                + std::to_string(initial_jump.size()) + " entries; expected "
+                                + std::to_string(_initial_jump.size()) + " (points × gdim = "
+                                + std::to_string(_closure.size()) + " × " + std::to_string(_gdim)
+                                + ")");
+  for (std::size_t i = 0; i < initial_jump.size(); ++i)
+    if (!std::isfinite(initial_jump[i]))
+      throw std::invalid_argument("InterfaceAssembler::set_initial_jump: entry "
+                                  + std::to_string(i) + " (point " + std::to_string(i / _gdim)
+                                  + ", component " + std::to_string(i % _gdim) + ") is "
+                                  + std::to_string(initial_jump[i]) + "; it must be finite [m]");
+  std::copy(initial_jump.begin(), initial_jump.end(), _initial_jump.begin());
+  _cache_valid = false;
+}
+
+void InterfaceAssembler::commit_state()
+{
+  _converged = _trial;
+  _cache_valid = false;
+}
+
+void InterfaceAssembler::revert_state()
+{
+  _trial = _converged;
+  _cache_valid = false;
 }
 
 std::vector<double> InterfaceAssembler::normals() const

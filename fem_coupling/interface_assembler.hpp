@@ -2,18 +2,26 @@
 /// @file interface_assembler.hpp
 /// Zero-thickness (Goodman-type) joint elements between matched facet pairs.
 ///
-/// The boundary is plain arrays: node (block) indices into a process-local, ghosted
-/// displacement array with block size gdim (DOLFINx's local vector layout, but nothing here
-/// depends on DOLFINx), the minus-facet vertex coordinates and a point inside each minus
-/// cell. Per pair and quadrature point: jump [[u]] = u_plus - u_minus → local frame →
-/// JointBehaviour → rotate back → ±N assembly (MOOSE cohesive-zone split).
+/// The boundary is plain arrays: explicit unrolled dof indices of every pair into a
+/// process-local, ghosted displacement array (the caller's dofmap decides the layout; nothing
+/// here depends on DOLFINx), the minus-facet vertex coordinates and a point inside each minus
+/// cell. Per pair and quadrature point: jump [[u]] = u_plus - u_minus → local frame Q → local
+/// jump j = j0 + Q [[u]] (j0: initial jump, the in-situ state) → joint_response (law + point
+/// state) → rotate back → ±N assembly (MOOSE cohesive-zone split).
 ///
 /// Residual convention (internal minus external force): the joint adds
 ///   R_plus,a += w N_a T,  R_minus,a -= w N_a T,  T = Qᵀ t_local,
 /// and the consistent Jacobian ∂R/∂u with D = Qᵀ (∂t/∂j) Q.
+///
+/// Frames: n per pair (minus → plus), t1 from the joint's reference direction (one per joint
+/// tag, see set_tangents / joint_reference_direction in local_frame.hpp), t2 = n × t1.
+///
+/// Point state: a converged and a trial JointPointState per point; every evaluation computes
+/// the trial state from the converged one; commit_state() / revert_state() move between them.
 
 #include "facet_quadrature.hpp"
 #include "joint_behaviour.hpp"
+#include "joint_point_state.hpp"
 #include "local_frame.hpp"
 
 #include <cmath>
@@ -31,16 +39,18 @@ public:
   /// @param gdim geometric dimension (2 or 3) = displacement block size
   /// @param degree Lagrange degree of the displacement (1, or 2 with the nodal rule)
   /// @param rule quadrature rule on the facets
-  /// @param minus_nodes (num_pairs, num_facet_nodes) local node indices of the minus facets
-  /// @param plus_nodes same for the plus facets, permuted so that node a of the plus facet
-  ///        coincides with node a of the minus facet
+  /// @param pair_dofs (num_pairs, 2 · num_facet_nodes · gdim) unrolled local dof indices:
+  ///        minus-facet nodes then plus-facet nodes, node-major, component-minor (node a,
+  ///        component c at a·gdim + c); the plus facet permuted so that its node a coincides
+  ///        with node a of the minus facet
   /// @param vertex_coordinates (num_pairs, gdim, gdim) minus-facet vertex coordinates [m]
   /// @param minus_interior_points (num_pairs, gdim) a point inside each minus cell [m]
   /// @param joint_tags (num_pairs) joint tag of every pair
   /// @param behaviours behaviour per joint tag; every tag in `joint_tags` must have one
+  /// The tangents start from each joint's reference direction computed from this process's
+  /// pairs (normal_moments()); in parallel call set_reference_directions with the all-rank one.
   InterfaceAssembler(int gdim, int degree, QuadratureRule rule,
-                     std::span<const std::int32_t> minus_nodes,
-                     std::span<const std::int32_t> plus_nodes,
+                     std::span<const std::int32_t> pair_dofs,
                      std::span<const double> vertex_coordinates,
                      std::span<const double> minus_interior_points,
                      std::span<const std::int32_t> joint_tags,
@@ -54,9 +64,10 @@ public:
   /// Rows/columns of one pair matrix: 2 × facet nodes × gdim (minus nodes first).
   int pair_size() const { return 2 * _quadrature.num_nodes * _gdim; }
 
-  /// Unrolled local dof indices of pair p (minus nodes, then plus nodes; node-major).
+  /// Unrolled local dof indices of pair p (minus nodes, then plus nodes; node-major), as given
+  /// to the constructor.
   void pair_dofs(std::int32_t p, std::span<std::int32_t> dofs) const;
-  /// Entries a local (ghosted, unrolled) array must have at least: (largest node index + 1)·gdim.
+  /// Entries a local (ghosted, unrolled) array must have at least: largest pair dof + 1.
   std::size_t minimum_local_size() const { return _minimum_local_size; }
   /// Throw std::invalid_argument naming `who`, `array` and both sizes unless `size` >=
   /// minimum_local_size(). Every public method that reads or writes a local array calls it once
@@ -85,6 +96,33 @@ public:
   /// Refresh the point state at `u` without assembling.
   void update_state(std::span<const double> u);
 
+  // ---- frames and initial jump ----------------------------------------------------------
+  /// Area-weighted normal moment Σ A n nᵀ (3×3 row major) of this process's pairs per joint
+  /// tag (3D; zero z entries in 2D). Sum over ranks, then joint_reference_direction.
+  std::map<std::int32_t, std::array<double, 9>> normal_moments() const;
+  /// Rebuild t1, t2 of every pair from its joint's reference direction (3D; 2D frames do not
+  /// depend on it). Tags not in the map keep their tangents. Invalidates the cached responses.
+  void set_reference_directions(const std::map<std::int32_t, std::array<double, 3>>& directions);
+  /// Frame rows (n, t1[, t2]) of pair p, global components.
+  const LocalFrame& frame(std::int32_t p) const { return _frames.at(p); }
+  /// Initial local jump j0 (num_points, gdim), components (n, t1[, t2]) [m]; the law sees
+  /// j = j0 + Q [[u]] (a joint pre-closed to Δ0 has j0_n = -Δ0). Throws std::invalid_argument
+  /// for a wrong size or a non-finite entry.
+  void set_initial_jump(std::span<const double> initial_jump);
+  const std::vector<double>& initial_jump() const { return _initial_jump; }
+
+  // ---- path-dependent point state ---------------------------------------------------------
+  /// Accept the trial state (after a converged load step): converged ← trial.
+  void commit_state();
+  /// Discard the trial state (after a failed step): trial ← converged.
+  void revert_state();
+  /// Point states (num_points), pair-major.
+  const std::vector<JointPointState>& converged_state() const { return _converged; }
+  const std::vector<JointPointState>& trial_state() const { return _trial; }
+  /// Law evaluations (joint_response calls) since construction: one per point per residual,
+  /// none more for the Jacobian at the u of the last residual.
+  std::size_t num_law_evaluations() const { return _num_law_evaluations; }
+
   // ---- point state (num_pairs × num_points_per_pair points, pair-major) -------------------
   const std::vector<double>& closure() const { return _closure; }             ///< Δ [m]
   const std::vector<double>& normal_stress() const { return _normal_stress; } ///< [Pa], compression +
@@ -101,8 +139,14 @@ public:
   std::vector<double> measures() const;
 
 private:
-  /// Local jump (gdim components, frame axes) at point q of pair p.
-  std::array<double, 3> local_jump(std::int32_t p, int q, std::span<const double> u) const;
+  /// Local jump Q [[u]] (gdim components, frame axes) at point q of pair p, with the initial
+  /// jump j0 added if `with_initial` (false for an increment du).
+  std::array<double, 3> local_jump(std::int32_t p, int q, std::span<const double> u,
+                                   bool with_initial = true) const;
+  std::size_t point_index(std::int32_t p, int q) const
+  {
+    return static_cast<std::size_t>(p) * _quadrature.num_points() + q;
+  }
   const JointBehaviour& behaviour(std::int32_t p) const { return *_pair_behaviour[p]; }
   /// Call f(p, q, Δ_max) at every point of the pairs whose law has a finite maximum closure
   /// Δ_max (the points the closure limit of Newton's step concerns).
@@ -122,13 +166,20 @@ private:
   int _gdim;
   std::size_t _minimum_local_size = 0;
   FacetQuadrature _quadrature;
-  std::vector<std::int32_t> _minus_nodes, _plus_nodes, _tags;
+  std::vector<std::int32_t> _pair_dofs, _tags;
   std::vector<LocalFrame> _frames;
   std::map<std::int32_t, JointBehaviour> _behaviours;
   std::vector<const JointBehaviour*> _pair_behaviour;
 
   std::vector<double> _closure, _normal_stress, _shear_traction, _point_coordinates;
   std::vector<std::int32_t> _status;
+  std::vector<double> _initial_jump;                ///< (points, gdim) j0 [m]
+  std::vector<JointPointState> _converged, _trial;  ///< per point
+  // Responses and jumps of the last residual (one law evaluation per point per iteration).
+  std::vector<LocalResponse> _cached_response;
+  std::vector<std::array<double, 3>> _cached_jump;
+  bool _cache_valid = false;
+  mutable std::size_t _num_law_evaluations = 0;
 };
 
 } // namespace rockjoint::fem

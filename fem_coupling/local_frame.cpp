@@ -1,5 +1,7 @@
 #include "local_frame.hpp"
 
+#include <Eigen/Eigenvalues>
+
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -21,7 +23,8 @@ std::array<double, 3> cross(const std::array<double, 3>& a, const std::array<dou
 } // namespace
 
 LocalFrame facet_frame(int gdim, std::span<const double> vertices,
-                       std::span<const double> minus_interior_point)
+                       std::span<const double> minus_interior_point,
+                       const std::array<double, 3>& reference)
 {
   if (gdim != 2 && gdim != 3)
     throw std::invalid_argument("facet_frame: gdim = " + std::to_string(gdim)
@@ -72,25 +75,71 @@ LocalFrame facet_frame(int gdim, std::span<const double> vertices,
       c = -c;
 
   frame.axes[0] = n;
+  set_tangents(frame, gdim, reference);
+  return frame;
+}
+
+void set_tangents(LocalFrame& frame, int gdim, const std::array<double, 3>& reference)
+{
+  const auto& n = frame.axes[0];
   if (gdim == 2)
-    frame.axes[1] = {-n[1], n[0], 0.0};
-  else
   {
-    // t1 ⟂ n built from the coordinate axis least aligned with n; t2 = n × t1.
+    frame.axes[1] = {n[1], -n[0], 0.0};
+    return;
+  }
+  // t1 = (I - n nᵀ) r / |(I - n nᵀ) r|: the joint's reference direction in the facet plane.
+  auto project = [&](const std::array<double, 3>& r)
+  {
+    const double rn = r[0] * n[0] + r[1] * n[1] + r[2] * n[2];
+    return std::array<double, 3>{r[0] - rn * n[0], r[1] - rn * n[1], r[2] - rn * n[2]};
+  };
+  const double rr = norm(reference);
+  if (!(rr > 0.0) || !std::isfinite(rr))
+    throw std::invalid_argument("set_tangents: the reference direction must be a finite non-zero "
+                                "vector (got norm " + std::to_string(rr) + ")");
+  auto t1 = project(reference);
+  if (!(norm(t1) > 1e-3 * rr))
+  {
+    // Facet normal along the reference (a strongly curved joint): fall back to the axis
+    // least aligned with n.
     int k = 0;
     for (int c = 1; c < 3; ++c)
       if (std::abs(n[c]) < std::abs(n[k]))
         k = c;
     std::array<double, 3> e{};
     e[k] = 1.0;
-    auto t1 = cross(n, e);
-    const double l = norm(t1);
-    for (auto& c : t1)
-      c /= l;
-    frame.axes[1] = t1;
-    frame.axes[2] = cross(n, t1);
+    t1 = project(e);
   }
-  return frame;
+  const double l = norm(t1);
+  for (auto& c : t1)
+    c /= l;
+  frame.axes[1] = t1;
+  frame.axes[2] = cross(n, t1);
+}
+
+std::array<double, 3> joint_reference_direction(const std::array<double, 9>& normal_moment)
+{
+  Eigen::Matrix3d M;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      M(i, j) = normal_moment[3 * i + j];
+  const double scale = M.trace();
+  if (!M.allFinite() || !(scale > 0.0))
+    throw std::invalid_argument("joint_reference_direction: the normal moment Σ A n nᵀ must be "
+                                "finite with a positive trace (the total joint area), got trace "
+                                + std::to_string(scale));
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(0.5 * (M + M.transpose()));
+  Eigen::Vector3d m = eig.eigenvectors().col(2); // largest eigenvalue: the mean normal axis
+  constexpr double tol = 1e-10;
+  const double sign = m[2] > tol ? 1.0
+                      : m[2] < -tol ? -1.0
+                      : std::abs(m[0]) > tol ? (m[0] > 0.0 ? 1.0 : -1.0)
+                                             : (m[1] > 0.0 ? 1.0 : -1.0);
+  m *= sign;
+  const double h = std::hypot(m[0], m[1]);
+  if (h < tol)
+    return {1.0, 0.0, 0.0}; // horizontal joint: the x axis
+  return {-m[1] / h, m[0] / h, 0.0}; // e_z × m
 }
 
 } // namespace rockjoint::fem

@@ -6,7 +6,7 @@ the joint alone and may slide on it: the exact solution is the uniform uniaxial 
 both blocks plus a rigid relative translation (the joint jump). With n = (sin θ, [0,] cos θ) the
 joint's upward normal, the traction the joint carries is σ·n:
     normal stress (compression +)  σ_n = p cos²θ,
-    shear traction magnitude        |τ| = p sin θ cos θ   (2D: τ·t1 = -p n_v t1_v, t1 = (-n_y, n_x)),
+    shear traction magnitude        |τ| = p sin θ cos θ   (2D: t1 = (n_y, -n_x); 3D: t1 = strike e_y),
 whatever the joint stiffnesses. The P1 solution reproduces a uniform stress state exactly.
 """
 import math
@@ -57,8 +57,12 @@ def test_inclined_joint_tractions_match_uniform_stress_state(dim, quadrature):
     np.testing.assert_allclose(joints["normal_stress"], sigma_n, rtol=1e-8)
     shear = np.linalg.norm(joints["shear_traction"], axis=1)
     np.testing.assert_allclose(shear, tau, rtol=1e-8)
-    # Direction (2D): T = σ·n = (0, -p n_y), so its component along t1 is -p n_y t1_y.
+    # Direction: T = σ·n = -p n_z e_z (e_y in 2D). 2D: t1 = (n_y, -n_x), so T·t1 = p n_y n_x.
+    # 3D: t1 = strike of the joint = e_z × n = e_y (dip towards +x), t2 = n × t1 = (-n_z, 0, n_x),
+    # so T·t1 = 0 and T·t2 = -p n_z n_x on every point (one frame per joint).
     if dim == 2:
-        t1 = np.array([-n[1], n[0]])
-        assert np.allclose(joints["shear_traction"][:, 0], -p * n[1] * t1[1], rtol=1e-8)
+        np.testing.assert_allclose(joints["shear_traction"][:, 0], p * n[1] * n[0], rtol=1e-8)
+    else:
+        np.testing.assert_allclose(joints["shear_traction"][:, 0], 0.0, atol=1e-8 * p)
+        np.testing.assert_allclose(joints["shear_traction"][:, 1], -p * n[2] * n[0], rtol=1e-8)
     np.testing.assert_allclose(joints["closure"], law.closure_at_stress(sigma_n), rtol=1e-8)

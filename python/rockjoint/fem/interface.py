@@ -2,9 +2,11 @@
 
 This is the only place where joint pairs meet DOLFINx data (dofmaps, dof coordinates, ghosts);
 the assembler itself sees plain arrays and PETSc matrices. docs/fem.md pitfalls 3-5:
-pair dofs permuted to the minus order, couplings inserted in the sparsity pattern, residual
-added to the local ghosted vector before the reverse ghost update, Jacobian blocks added with
-MatSetValuesLocal (ADD_VALUES) with the rows/columns of constrained dofs left out.
+pair dofs (unrolled, from V.dofmap) permuted to the minus order, couplings inserted in the
+sparsity pattern, residual added to the local ghosted vector before the reverse ghost update,
+Jacobian blocks added with MatSetValuesLocal (ADD_VALUES) with the rows/columns of constrained
+dofs left out. The tangent frame of each 3D joint comes from one reference direction computed
+over all ranks (docs/fem.md, "The joint element").
 """
 from __future__ import annotations
 
@@ -30,6 +32,24 @@ def _facet_nodes(V, cells: np.ndarray, local_facets: np.ndarray) -> np.ndarray:
                        dtype=np.int32)
     cell_dofs = V.dofmap.list.array.reshape(-1, layout.num_dofs)
     return cell_dofs[cells[:, None], closure[local_facets]]
+
+
+def _unrolled(blocks: np.ndarray, bs: int) -> np.ndarray:
+    """(n, k) block (node) dofs → (n, k * bs) unrolled dofs, node-major, component-minor."""
+    return (blocks[:, :, None] * bs + np.arange(bs, dtype=blocks.dtype)).reshape(
+        blocks.shape[0], blocks.shape[1] * bs)
+
+
+def _reference_directions(cpp, comm, tags) -> dict:
+    """{joint tag: reference tangent direction} from Σ A n nᵀ summed over all ranks, so that
+    every rank (and a serial run) gives a joint the same t1."""
+    tags = sorted(set().union(*comm.allgather({int(t) for t in tags})))
+    local = cpp.normal_moments()
+    moments = np.array([local.get(t, np.zeros((3, 3))) for t in tags]).reshape(len(tags), 9)
+    total = np.zeros_like(moments)
+    comm.Allreduce(np.ascontiguousarray(moments), total)
+    return {t: _cpp.joint_reference_direction(total[i].reshape(3, 3))
+            for i, t in enumerate(tags) if total[i].any()}  # tags with pairs on some rank
 
 
 def _canonical_order(nodes: np.ndarray, X: np.ndarray, gdim: int, degree: int) -> np.ndarray:
@@ -63,9 +83,11 @@ def _match_to(reference: np.ndarray, other: np.ndarray, X: np.ndarray) -> np.nda
 
 
 class JointInterface:
-    """All joint pairs of this rank, bound to the displacement space V.
+    """All joint pairs of this rank, bound to the displacement space V (collective: the joint
+    reference directions are reduced over V.mesh.comm).
 
     behaviours: {joint tag: JointBehaviour}. quadrature: "nodal" (default) or "gauss".
+    Points are pair-major: point k belongs to pair k // num_points_per_pair.
     """
 
     def __init__(self, V, pairs, behaviours: dict, quadrature: str = "nodal"):
@@ -77,6 +99,10 @@ class JointInterface:
         tdim = mesh.topology.dim
         degree = V.ufl_element().degree()
         self.gdim, self.degree = gdim, degree
+        bs = V.dofmap.index_map_bs
+        if bs != gdim:
+            raise ValueError(f"JointInterface: V must be a vector space with block size gdim = {gdim}, "
+                             f"got block size {bs}")
         X = V.tabulate_dof_coordinates()  # (num local nodes incl. ghosts, 3)
 
         minus_cells = np.asarray(pairs.minus_cells, dtype=np.int32)
@@ -85,7 +111,8 @@ class JointInterface:
         plus = _facet_nodes(V, plus_cells, np.asarray(pairs.plus_local_facets, dtype=np.int32))
         minus = _canonical_order(minus, X, gdim, degree)
         plus = _match_to(minus, plus, X)
-        self.minus_nodes, self.plus_nodes = minus, plus
+        #: (num_pairs, 2 * num_facet_nodes * gdim) unrolled local dofs given to the assembler
+        self._pair_dofs = np.hstack([_unrolled(minus, bs), _unrolled(plus, bs)]).astype(np.int32)
 
         verts = X[minus[:, :gdim], :gdim]  # (n, gdim, gdim)
         geo = mesh.geometry
@@ -93,20 +120,27 @@ class JointInterface:
         interior = geo.x[cell_geom[minus_cells]][:, :, :gdim].mean(axis=1)
         self.tags = np.asarray(pairs.joint_tags, dtype=np.int32)
         self._cpp = _cpp.InterfaceAssembler(
-            gdim, degree, QUADRATURE_RULES[quadrature], minus.ravel(), plus.ravel(),
+            gdim, degree, QUADRATURE_RULES[quadrature], self._pair_dofs.ravel(),
             np.ascontiguousarray(verts).ravel(), np.ascontiguousarray(interior).ravel(), self.tags,
             behaviours)
-        self._pair_block_dofs = np.hstack([minus, plus]).astype(np.int32)
+        if gdim == 3:
+            self._cpp.set_reference_directions(_reference_directions(self._cpp, mesh.comm, behaviours))
 
     # ---- assembly ------------------------------------------------------------------------
     @property
     def num_pairs(self) -> int:
         return self._cpp.num_pairs
 
+    @property
+    def num_points(self) -> int:
+        return self._cpp.num_pairs * self._cpp.num_points_per_pair
+
     def insert_sparsity(self, pattern) -> None:
-        """Insert the node-to-node couplings of every pair (block indices) into `pattern`."""
-        for dofs in self._pair_block_dofs:
-            pattern.insert(dofs, dofs)
+        """Insert the couplings of every pair into `pattern` (blocked: node indices = the pair
+        dofs divided by the block size)."""
+        blocks = self._pair_dofs[:, ::self.gdim] // self.gdim
+        for b in blocks:
+            pattern.insert(b, b)
 
     def add_residual(self, u_local: np.ndarray, r_local: np.ndarray) -> bool:
         """Add the joint forces at u into the local ghosted array r (before the reverse ghost
@@ -129,16 +163,48 @@ class JointInterface:
         """(num_pairs, pair_size) unrolled local dofs (minus nodes then plus nodes)."""
         return self._cpp.pair_dofs()
 
-    # ---- state ---------------------------------------------------------------------------
+    # ---- frames, initial jump, path-dependent state -----------------------------------------
+    def point_frames(self) -> np.ndarray:
+        """(num_points, gdim, gdim) local frame of every point: rows n, t1[, t2] in global
+        components (t_local = F @ (σ0 @ n) is the local traction of a stress σ0)."""
+        return np.repeat(self._cpp.frames, self._cpp.num_points_per_pair, axis=0)
+
+    def set_initial_jump(self, initial_jump) -> None:
+        """Initial local jump j0 (num_points, gdim) [m], components (normal, t1[, t2]): the law
+        sees j = j0 + Q [[u]]; a joint pre-closed to Δ0 has j0[:, 0] = -Δ0."""
+        j0 = np.asarray(initial_jump, dtype=float)
+        expected = (self.num_points, self.gdim)
+        if j0.shape != expected:
+            raise ValueError(f"set_initial_jump: initial_jump has shape {j0.shape}; expected {expected} "
+                             f"(num_points, gdim) on this rank")
+        bad = ~np.isfinite(j0)
+        if bad.any():
+            k = tuple(np.argwhere(bad)[0])
+            raise ValueError(f"set_initial_jump: initial_jump{list(k)} = {j0[k]}; entries must be finite [m]")
+        self._cpp.set_initial_jump(np.ascontiguousarray(j0).ravel())
+
+    def initial_jump(self) -> np.ndarray:
+        return self._cpp.initial_jump
+
+    def commit_state(self) -> None:
+        """Accept the trial point state (after a converged load step)."""
+        self._cpp.commit_state()
+
+    def revert_state(self) -> None:
+        """Discard the trial point state (after a failed load step)."""
+        self._cpp.revert_state()
+
     def update_state(self, u_local: np.ndarray) -> None:
         self._cpp.update_state(u_local)
 
     def state(self) -> dict:
         """Point state on this rank: coordinates, tag, closure [m], normal_stress [Pa, compression +],
-        shear_traction [Pa] (points, gdim-1), status (rockjoint.Status values), normal (of the pair)."""
+        shear_traction [Pa] (points, gdim-1) along t1[, t2], status (rockjoint.Status values),
+        normal (of the pair), and the trial path-dependent state: slip [m] (points, gdim-1),
+        dilation [m], accumulated_slip [m]."""
         c = self._cpp
         npp = c.num_points_per_pair
-        return {
+        out = {
             "coordinates": c.point_coordinates,
             "tag": c.point_tags,
             "closure": c.closure,
@@ -147,3 +213,5 @@ class JointInterface:
             "status": c.status,
             "normal": np.repeat(c.normals, npp, axis=0) if c.num_pairs else np.zeros((0, self.gdim)),
         }
+        out.update(c.point_state())
+        return out

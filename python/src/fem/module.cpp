@@ -2,6 +2,7 @@
 // from _rockjoint so that the closure-law module never needs PETSc/DOLFINx. Closure laws
 // come in as the shared_ptr<ClosureLaw> objects of rockjoint._rockjoint (import it first).
 #include <rockjoint/fem_coupling/interface_assembler.hpp>
+#include <rockjoint/fem_coupling/local_frame.hpp>
 #include <rockjoint/fem_coupling/petsc_assembly.hpp>
 
 #include <caster_petsc.h> // DOLFINx's petsc4py <-> PETSc caster
@@ -92,20 +93,37 @@ PYBIND11_MODULE(_rockjoint_fem, m)
       py::arg("behaviour"), py::arg("local_jump"),
       "(local traction [Pa], tangent ∂t/∂j [Pa/m], closure [m], normal stress [Pa], status)");
 
+  m.def(
+      "joint_reference_direction",
+      [](const Array<double>& moment)
+      {
+        if (moment.size() != 9)
+          throw py::value_error("joint_reference_direction: the normal moment must be 3 x 3");
+        std::array<double, 9> M;
+        std::copy_n(moment.data(), 9, M.begin());
+        const auto r = joint_reference_direction(M);
+        py::array_t<double> out(3);
+        std::copy(r.begin(), r.end(), out.mutable_data());
+        return out;
+      },
+      py::arg("normal_moment"),
+      "Strike of the mean plane of a 3D joint from Σ A n nᵀ (3, 3); x axis if horizontal");
+
   py::class_<InterfaceAssembler>(m, "InterfaceAssembler", "Matched joint facet pairs")
       .def(py::init(
-               [](int gdim, int degree, QuadratureRule rule, const Array<std::int32_t>& minus,
-                  const Array<std::int32_t>& plus, const Array<double>& vertices,
-                  const Array<double>& interior, const Array<std::int32_t>& tags,
-                  std::map<std::int32_t, JointBehaviour> behaviours)
+               [](int gdim, int degree, QuadratureRule rule, const Array<std::int32_t>& pair_dofs,
+                  const Array<double>& vertices, const Array<double>& interior,
+                  const Array<std::int32_t>& tags, std::map<std::int32_t, JointBehaviour> behaviours)
                {
-                 return InterfaceAssembler(gdim, degree, rule, span_of(minus), span_of(plus),
+                 return InterfaceAssembler(gdim, degree, rule, span_of(pair_dofs),
                                            span_of(vertices), span_of(interior), span_of(tags),
                                            std::move(behaviours));
                }),
-           py::arg("gdim"), py::arg("degree"), py::arg("rule"), py::arg("minus_nodes"),
-           py::arg("plus_nodes"), py::arg("vertex_coordinates"),
-           py::arg("minus_interior_points"), py::arg("joint_tags"), py::arg("behaviours"))
+           py::arg("gdim"), py::arg("degree"), py::arg("rule"), py::arg("pair_dofs"),
+           py::arg("vertex_coordinates"), py::arg("minus_interior_points"), py::arg("joint_tags"),
+           py::arg("behaviours"),
+           "pair_dofs: (num_pairs, 2 * num_facet_nodes * gdim) unrolled local dofs, minus nodes "
+           "then plus nodes (plus permuted to the minus order), node-major, component-minor")
       .def_property_readonly("gdim", &InterfaceAssembler::gdim)
       .def_property_readonly("num_pairs", &InterfaceAssembler::num_pairs)
       .def_property_readonly("num_points_per_pair", &InterfaceAssembler::num_points_per_pair)
@@ -176,6 +194,67 @@ PYBIND11_MODULE(_rockjoint_fem, m)
            "largest α <= 1 keeping Δ <= Δ + fraction (Δ_max - Δ) at every point")
       .def("update_state", [](InterfaceAssembler& a, const Array<double>& u)
            { a.update_state(span_of(u)); }, py::arg("u"))
+      .def(
+          "normal_moments",
+          [](const InterfaceAssembler& a)
+          {
+            py::dict out;
+            for (const auto& [tag, M] : a.normal_moments())
+            {
+              py::array_t<double> m({3, 3});
+              std::copy(M.begin(), M.end(), m.mutable_data());
+              out[py::int_(tag)] = m;
+            }
+            return out;
+          },
+          "{joint tag: Σ A n nᵀ (3, 3)} over this rank's pairs [m² or m]")
+      .def("set_reference_directions", &InterfaceAssembler::set_reference_directions,
+           py::arg("directions"), "{joint tag: reference tangent direction (3,)}: rebuild t1, t2")
+      .def_property_readonly(
+          "frames",
+          [](const InterfaceAssembler& a)
+          {
+            const py::ssize_t g = a.gdim();
+            py::array_t<double> out({static_cast<py::ssize_t>(a.num_pairs()), g, g});
+            for (std::int32_t p = 0; p < a.num_pairs(); ++p)
+              for (py::ssize_t i = 0; i < g; ++i)
+                for (py::ssize_t c = 0; c < g; ++c)
+                  out.mutable_at(p, i, c) = a.frame(p).axes[i][c];
+            return out;
+          },
+          "(num_pairs, gdim, gdim) frame rows n, t1[, t2] (global components)")
+      .def(
+          "set_initial_jump",
+          [](InterfaceAssembler& a, const Array<double>& j0) { a.set_initial_jump(span_of(j0)); },
+          py::arg("initial_jump"), "(num_points, gdim) initial local jump j0 [m]")
+      .def_property_readonly("initial_jump", [](const InterfaceAssembler& a)
+                             { return to_numpy(a.initial_jump(), a.gdim()); })
+      .def("commit_state", &InterfaceAssembler::commit_state, "converged point state <- trial")
+      .def("revert_state", &InterfaceAssembler::revert_state, "trial point state <- converged")
+      .def_property_readonly("num_law_evaluations", &InterfaceAssembler::num_law_evaluations)
+      .def(
+          "point_state",
+          [](const InterfaceAssembler& a, bool converged)
+          {
+            const auto& s = converged ? a.converged_state() : a.trial_state();
+            const py::ssize_t n = static_cast<py::ssize_t>(s.size()), g = a.gdim();
+            py::array_t<double> slip({n, g - 1}), dilation(n), accumulated(n);
+            for (py::ssize_t i = 0; i < n; ++i)
+            {
+              for (py::ssize_t k = 0; k < g - 1; ++k)
+                slip.mutable_at(i, k) = s[i].slip[k];
+              dilation.mutable_at(i) = s[i].dilation;
+              accumulated.mutable_at(i) = s[i].accumulated_slip;
+            }
+            py::dict out;
+            out["slip"] = slip;
+            out["dilation"] = dilation;
+            out["accumulated_slip"] = accumulated;
+            return out;
+          },
+          py::arg("converged") = false,
+          "{slip (points, gdim-1), dilation, accumulated_slip} [m] of the trial (default) or "
+          "converged point state")
       .def_property_readonly("closure", [](const InterfaceAssembler& a) { return to_numpy(a.closure()); })
       .def_property_readonly("normal_stress",
                              [](const InterfaceAssembler& a) { return to_numpy(a.normal_stress()); })

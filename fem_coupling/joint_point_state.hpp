@@ -1,0 +1,19 @@
+#pragma once
+/// @file joint_point_state.hpp
+/// Path-dependent state of one joint quadrature point (MGIS style: the assembler keeps a
+/// converged and a trial copy per point; every evaluation computes the trial state from the
+/// converged one, commit_state() accepts it after a converged load step).
+
+#include <array>
+
+namespace rockjoint::fem
+{
+
+struct JointPointState
+{
+  std::array<double, 2> slip{};  ///< irreversible shear displacement along t1, t2 [m]
+  double dilation = 0.0;         ///< normal opening produced by slip (dilatancy) [m]
+  double accumulated_slip = 0.0; ///< path length of the slip, ∫|d slip| [m]
+};
+
+} // namespace rockjoint::fem
