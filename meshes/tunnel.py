@@ -70,16 +70,6 @@ class CircularOpening:
         (x, y), a = self.centre, self.radius
         return (x - a, y - a, x + a, y + a)
 
-    @property
-    def crown(self) -> tuple:
-        return (self.centre[0], self.centre[1] + self.radius)
-
-    @property
-    def sidewalls(self) -> tuple:
-        """(left, right) wall points at springline height."""
-        (x, y), a = self.centre, self.radius
-        return ((x - a, y), (x + a, y))
-
     def outline(self, count: int = 720) -> np.ndarray:
         """(count, 2) points [m] along the outline, counter-clockwise from the right springline."""
         t = np.linspace(0.0, 2.0 * math.pi, count, endpoint=False)
@@ -137,16 +127,6 @@ class HorseshoeOpening:
     def bounds(self) -> tuple:
         (x, y), a = self.centre, self.radius
         return (x - a, y - self.wall_height - self.invert_depth, x + a, y + a)
-
-    @property
-    def crown(self) -> tuple:
-        return (self.centre[0], self.centre[1] + self.radius)
-
-    @property
-    def sidewalls(self) -> tuple:
-        """(left, right) wall points at mid-wall height."""
-        (x, y), a = self.centre, self.radius
-        return ((x - a, y - 0.5 * self.wall_height), (x + a, y - 0.5 * self.wall_height))
 
     def outline(self, count: int = 720) -> np.ndarray:
         """(about count, 2) points [m] along the outline, counter-clockwise from the right springline."""
