@@ -20,8 +20,10 @@ the in-situ state, so the intact tunnel's wall displacement is Kirsch's excavati
 (rockjoint.reference.kirsch), up to the W/a = 20 domain and the mesh (docs/tunnel.md).
 
 Outputs (in DIR): tunnel.png (hoop stress on the mesh, the deformed opening outline, joints coloured
-by their closure change), tunnel.txt (the numbers), tunnel_intact.xdmf, tunnel_jointed.xdmf (+
-tunnel_jointed_joints.xdmf, the joint state) for ParaView. Units in print: mm, MPa, m.
+by their closure change), tunnel.txt (the numbers), tunnel_intact.xdmf, tunnel_jointed.xdmf (the
+displacement at the end, + tunnel_jointed_joints.xdmf, the joint state) and tunnel_<label>_stress.xdmf
+(the total stress after excavation, per cell, tension positive [Pa]) for ParaView. Units in print:
+mm, MPa, m.
 """
 import argparse
 import logging
@@ -30,6 +32,7 @@ import os
 import time
 
 import numpy as np
+from dolfinx.io import XDMFFile
 from mpi4py import MPI
 
 import rockjoint
@@ -194,6 +197,10 @@ def main():
             u = probe(model.u, pts)  # relative to the in-situ state
             wall[label] = (u, np.einsum("ni,ni->n", u, np.stack([np.cos(th), np.sin(th)], 1)))
             stress = model.total_stress()  # σ0 + σ(u), tension positive [Pa]
+            stress.name = "total_stress_Pa"
+            with XDMFFile(COMM, out(f"tunnel_{label}_stress.xdmf"), "w") as f:
+                f.write_mesh(model.mesh)
+                f.write_function(stress)
             stress_at[label] = (stress, radial_hoop(probe(stress, pts_stress).reshape(-1, 2, 2), th[:4])[1])
         return after_excavation
 

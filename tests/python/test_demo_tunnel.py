@@ -25,7 +25,7 @@ NAMES = ("right sidewall", "crown", "left sidewall", "invert")
 def run_demo(out, ranks):
     r = demo_runner.run_demo("demo_tunnel.py", out, ranks, ("--quick",))
     for name in ("tunnel.png", "tunnel.txt", "tunnel_intact.xdmf", "tunnel_jointed.xdmf",
-                 "tunnel_jointed_joints.xdmf"):
+                 "tunnel_jointed_joints.xdmf", "tunnel_intact_stress.xdmf", "tunnel_jointed_stress.xdmf"):
         assert (out / name).exists(), name
     text = (out / "tunnel.txt").read_text()
     rows = {}
