@@ -6,9 +6,14 @@ from .distributed_mesh import (DistributedJointMesh, JointPairs, distribute,  # 
                                pair_vertex_positions)
 
 try:  # the joint elements need the compiled _rockjoint_fem (built with -DROCKJOINT_FEM=ON)
+    from .coupling import (JointCoupling, JointedNonlinearProblem, joint_behaviours,  # noqa: F401
+                           supported_dofs)
     from .interface import JointBehaviour, JointInterface, QuadratureRule, ShearModel  # noqa: F401
     from .linear_solver import LinearSolveError  # noqa: F401
-    from .model import JointedRockModel, JointedSolution  # noqa: F401
+    from .in_situ import InSituStress  # noqa: F401
+    from .loads import Load, Support  # noqa: F401
+    from .model import JointedRockModel  # noqa: F401
+    from .stages import JointedProblem, JointedSolution, Stage, StageResult  # noqa: F401
     from .newton import ConvergenceError, NewtonOptions  # noqa: F401
 except ImportError as _error:  # pragma: no cover
     if "_rockjoint_fem" not in str(_error):

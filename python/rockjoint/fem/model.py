@@ -1,24 +1,27 @@
-"""JointedRockModel: elastic rock blocks (DOLFINx) + zero-thickness joints (rockjoint C++).
+"""JointedRockModel: elastic rock blocks (DOLFINx) + zero-thickness joints (rockjoint C++),
+followed along a staged load path (docs/staged-analysis.md).
 
     model = JointedRockModel(dmesh, rock={"block_1": (E, nu), ...}, joints={"joint_1": law},
-                             shear_stiffness=1e10, plane="strain")
+                             shear_stiffness=1e10, plane="strain", density=2700.0)
     model.fix("bottom", "y"); model.fix("left", "x")
-    model.add_traction("top", (0.0, -1e6))
-    solution = model.solve(load_steps=1)
-    model.write_xdmf("out.xdmf")
+    model.set_in_situ_stress(InSituStress.depth_dependent(surface=500.0, density=2700.0, k0=0.5))
+    model.solve(name="in-situ")                       # the initial state: u = 0
+    model.excavate("tunnel"); model.solve(load_steps=5, name="excavation")
+    model.add_pressure("tunnel", 1e6); model.solve(name="lining")
 
-Units: SI (Pa, m, N). Compression positive for joint normal stress; closure Δ = -[[u]]·n.
-Supports are zero displacements of the chosen components. The bulk is linear elastic, so its
-matrix K (with the supports) and the load vector f are assembled once; Newton's residual is
-r = K u - λ f + r_joint(u), with r_joint added to the ghosted local vector before the reverse
-ghost update, and the Jacobian is K + J_joint(u) (joint blocks via MatSetValuesLocal, rows and
-columns of supported dofs left out, so supported rows stay identity rows).
+Units: SI (Pa, m, N). Compression positive for joint normal stress; closure Δ = -[[u]]·n; bulk
+stress tensors tension positive. The bulk is linear elastic: its matrix K (with the supports) is
+assembled when the supports change, the load vectors when the loads change. Newton's residual is
+    r = K u + K_fc u_c + ∫ε(v):σ0 dx - f(λ) + r_joint(u),   f(λ) = f_prev + λ (f_next - f_prev),
+zero at supported dofs, whose values u_c are the prescribed displacements of λ (K has identity
+rows and zero columns there, so K_fc u_c brings the prescribed values back in). r_joint is added
+to the ghosted local vector before the reverse ghost update; the Jacobian is K + J_joint(u) (joint
+blocks via MatSetValuesLocal, rows and columns of supported dofs left out).
 """
 from __future__ import annotations
 
 import logging
 import time
-from dataclasses import dataclass, field
 
 import numpy as np
 import ufl
@@ -28,26 +31,34 @@ from dolfinx.fem import petsc as fem_petsc
 from petsc4py import PETSc
 
 from .. import _rockjoint
+from .in_situ import STANDARD_GRAVITY, InSituStress
 from .interface import JointBehaviour, JointInterface, ShearModel
 from .linear_solver import LinearSolver, LinearSolveError, rigid_body_modes  # noqa: F401
-from .newton import ConvergenceError, NewtonOptions, solve_load_path  # noqa: F401
+from .load_path import StagedLoading
+from .loads import Load, Support
+from .newton import ConvergenceError, NewtonOptions, newton, solve_load_path  # noqa: F401
+from .stages import (JointedProblem, JointedSolution, Stage, StageClock, StageResult,  # noqa: F401
+                     lookup, min_op, names_of, snes_load_path)
 
 log = logging.getLogger(__name__)
 
 _COMPONENTS = {"x": 0, "y": 1, "z": 2}
 
 
-def _names(dmesh, kind: str) -> dict:
-    """{name: tag} of the mesh's groups of `kind`."""
-    return {str(n): int(t) for t, n in dmesh.names[kind].items()}
+_names, _lookup = names_of, lookup
 
 
-def _lookup(dmesh, kind: str, name: str) -> int:
-    names = _names(dmesh, kind)
-    if name not in names:
-        singular = {"blocks": "block", "joints": "joint", "boundaries": "boundary"}[kind]
-        raise ValueError(f"unknown {singular} {name!r}; available {kind}: {sorted(names)}")
-    return names[name]
+def _per_block(blocks: dict, value, what: str, missing_message: str) -> dict:
+    """{block name: value} from one value for every block or a dict that names them all."""
+    if not isinstance(value, dict):
+        return {b: value for b in blocks}
+    unknown = set(value) - set(blocks)
+    if unknown:
+        raise ValueError(f"{what}: unknown block(s) {sorted(unknown)}; available blocks: {sorted(blocks)}")
+    missing = set(blocks) - set(value)
+    if missing:
+        raise ValueError(f"{what}: " + missing_message.format(sorted(missing)))
+    return value
 
 
 def _per_joint(value, joint_names, what: str) -> dict:
@@ -60,50 +71,7 @@ def _per_joint(value, joint_names, what: str) -> dict:
     return {n: float(value) for n in joint_names}
 
 
-@dataclass
-class Loads:
-    tractions: list = field(default_factory=list)    #: (boundary name, vector [Pa])
-    body_forces: list = field(default_factory=list)  #: vector [N/m³]
-    supports: list = field(default_factory=list)     #: (boundary name, component indices)
-
-
-@dataclass
-class JointedSolution:
-    """Result of JointedRockModel.solve: the displacement, the joint point state and the history."""
-    displacement: fem.Function
-    joints: dict       #: point state on this rank (see JointInterface.state)
-    reports: list      #: newton.StepReport per attempted load step
-    model: "JointedRockModel"
-
-    def gather_joints(self) -> dict:
-        """The joint point state of all ranks, concatenated (on every rank)."""
-        comm = self.model.comm
-        out = {}
-        for k, v in self.joints.items():
-            parts = comm.allgather(np.asarray(v))
-            out[k] = np.concatenate(parts, axis=0)
-        return out
-
-    @property
-    def newton_iterations(self) -> int:
-        return sum(r.iterations for r in self.reports)
-
-    def beyond_law_range(self) -> dict:
-        """{joint name: number of points (all ranks)} whose law answered outside its range:
-        status validity_limit (a table driven past its last knot, continued linearly; a Tang &
-        Jiao law at its cap). Empty when every point is inside its law's range."""
-        status = np.asarray(self.joints["status"])
-        tags = np.asarray(self.joints["tag"])
-        limit = int(_rockjoint.constitutive.Status.validity_limit)
-        out = {}
-        for name, tag in _names(self.model.dmesh, "joints").items():
-            count = self.model.comm.allreduce(int(np.count_nonzero((status == limit) & (tags == tag))))
-            if count:
-                out[name] = count
-        return out
-
-
-class JointedRockModel:
+class JointedRockModel(StagedLoading):
     """A jointed rock mass: elastic blocks + joints with closure laws, loads, supports.
 
     dmesh: rockjoint.fem.distributed_mesh.DistributedJointMesh (mesh, cell_blocks, boundaries,
@@ -125,14 +93,18 @@ class JointedRockModel:
         (DOLFINx convention, e.g. {"ksp_type": "gmres", "pc_type": "hypre"}); applied after the
         defaults of `linear_solver`, so they override them.
     options_prefix: the linear solver's PETSc options prefix (default: a unique one), so that
-        command-line options such as -<prefix>ksp_monitor reach it.
+        command-line options such as -<prefix>ksp_monitor reach it (SNES options too, with
+        solve(solver="snes")).
+    density: rock density ρ [kg/m³], one value or {block name: ρ}; gives gravity ρ g on the blocks
+        (the load handle `model.gravity`). None: no gravity.
+    gravity: g [m/s²] acting along -y (2D) / -z (3D), or a gravity vector.
     """
 
     def __init__(self, dmesh, element_degree: int = 1, rock=None, joints=None, shear_stiffness=0.0,
                  shear_stiffness_ratio=None, residual_stiffness=0.0, plane: str | None = None,
                  quadrature: str = "nodal", linear_solver: str = "auto",
                  newton: NewtonOptions | None = None, petsc_options: dict | None = None,
-                 options_prefix: str | None = None):
+                 options_prefix: str | None = None, density=None, gravity=STANDARD_GRAVITY):
         self.dmesh = dmesh
         self.mesh = dmesh.mesh
         self.comm = self.mesh.comm
@@ -166,14 +138,28 @@ class JointedRockModel:
         self.newton_options = newton or NewtonOptions()
         self.rock = self._check_rock(rock)
         self.behaviours = self._check_joints(joints, shear_stiffness, shear_stiffness_ratio, residual_stiffness)
-        self.loads = Loads()
+        self.densities = self._check_density(density)  #: {block name: ρ [kg/m³]} ({} without gravity)
+        self._supports: list[Support] = []
+        self._loads: list[Load] = []
+        self._release: dict = {}   #: {boundary: excavation Load} of released in-situ tractions
+        self._multipliers: dict = {}  #: {boundary: Constant fraction of σ0·n it carries}
+        self._in_situ_compiled = None  # the InSituStress the in-situ forms were compiled for
+        self.in_situ: InSituStress | None = None
+        self.stages: list[StageResult] = []  #: the result of every stage, in order
+        self.gravity: Load | None = None     #: gravity load handle (None without a density)
+        if self.densities:
+            self.gravity = self._add_load("gravity", None, self._gravity_vector(gravity))
         #: wall-clock seconds on this rank: bulk_assembly (K and f, once), interface_residual and
         #: interface_jacobian (all calls), linear_solve (all solves), newton (solve() total), setup
         self.timings = {"bulk_assembly": 0.0, "interface_residual": 0.0, "interface_jacobian": 0.0,
                         "matrix_copy": 0.0, "linear_solve": 0.0, "newton": 0.0, "setup": 0.0}
         #: number of calls behind the timings
         self.counts = {"interface_residual": 0, "interface_jacobian": 0, "linear_solve": 0}
-        self._ready = False
+        self._space_ready = False    # function space, joints, linear solver
+        self._supports_dirty = True  # bulk matrix K (depends on the supports)
+        self._forms_dirty = True     # load forms (depend on the set of loads)
+        self._initialised = False    # initial state (in-situ loads, joint pre-closure) set
+        self._advancing = False      # a stage opened by advance() is in progress
         self.solution = None
 
     # ---- input checks --------------------------------------------------------------------
@@ -181,14 +167,7 @@ class JointedRockModel:
         blocks = _names(self.dmesh, "blocks")
         if rock is None:
             raise ValueError(f"rock properties are missing; give rock={{block: (E, nu)}} for blocks {sorted(blocks)}")
-        if not isinstance(rock, dict):
-            rock = {b: rock for b in blocks}
-        unknown = set(rock) - set(blocks)
-        if unknown:
-            raise ValueError(f"rock: unknown block(s) {sorted(unknown)}; available blocks: {sorted(blocks)}")
-        missing = set(blocks) - set(rock)
-        if missing:
-            raise ValueError(f"rock: no (E, nu) for block(s) {sorted(missing)}")
+        rock = _per_block(blocks, rock, "rock", "no (E, nu) for block(s) {}")
         out = {}
         for name, value in rock.items():
             try:
@@ -246,44 +225,53 @@ class JointedRockModel:
             raise ValueError(f"{what} must be {self.gdim} finite components, got {value!r}")
         return v
 
-    # ---- loads and supports --------------------------------------------------------------
-    def fix(self, boundary: str, components="all", block: str | None = None) -> None:
-        """Zero displacement of `components` ("x", "y", "z", indices or "all") on a named boundary;
-        with `block`, only on the part of the boundary that belongs to that block (e.g. a roller
-        under one block while the block above it, held by a joint, may slide)."""
-        _lookup(self.dmesh, "boundaries", boundary)
-        block_tag = None if block is None else _lookup(self.dmesh, "blocks", block)
-        self.loads.supports.append((boundary, self._component_indices(components), block_tag))
-        self._ready = False
-
-    def add_traction(self, boundary: str, traction) -> None:
-        """Surface traction vector [Pa] on a named boundary (scaled by the load factor)."""
-        _lookup(self.dmesh, "boundaries", boundary)
-        self.loads.tractions.append((boundary, self._vector(traction, "traction")))
-        self._ready = False
-
-    def add_body_force(self, force) -> None:
-        """Body force per unit volume [N/m³] in every block (scaled by the load factor)."""
-        self.loads.body_forces.append(self._vector(force, "body force"))
-        self._ready = False
+    def _check_density(self, density) -> dict:
+        if density is None:
+            return {}
+        density = _per_block(_names(self.dmesh, "blocks"), density, "density",
+                             "no value for block(s) {} (give one for every block)")
+        out = {}
+        for name, rho in density.items():
+            try:
+                rho = float(rho)
+            except (TypeError, ValueError):
+                raise ValueError(f"density[{name!r}] must be a number [kg/m³], got {rho!r}") from None
+            if not (np.isfinite(rho) and rho > 0):
+                raise ValueError(f"density[{name!r}] = {rho} kg/m³ is invalid; it must be finite and > 0")
+            out[name] = rho
+        return out
 
     # ---- setup -----------------------------------------------------------------------------
-    def _setup(self) -> None:
+    def _prepare(self) -> None:
+        if not self._space_ready:
+            self._setup_space()
+        if self._supports_dirty:
+            self._setup_supports()
+        if self._forms_dirty:
+            self._compile_forms()
+        self._collect_prescribed()
+        if not self._initialised:
+            self._initial_state()
+
+    def _setup_space(self) -> None:
         t0 = time.perf_counter()
         mesh, gdim, tdim = self.mesh, self.gdim, self.mesh.topology.dim
         V = fem.VectorFunctionSpace(mesh, ("Lagrange", self.degree))
         self.V = V
         self.u = fem.Function(V, name="displacement")
         self.du = fem.Function(V)
+        self._w = fem.Function(V)  # a displacement whose internal force is wanted (lift, reactions)
 
-        # Lamé parameters per cell from the block tags (DG0).
+        # Lamé parameters and density per cell from the block tags (DG0).
         Q = fem.FunctionSpace(mesh, ("DG", 0))
-        lam, mu = fem.Function(Q), fem.Function(Q)
+        lam, mu, rho = fem.Function(Q), fem.Function(Q), fem.Function(Q)
         tags = self.dmesh.cell_blocks
         ncells = mesh.topology.index_map(tdim).size_local + mesh.topology.index_map(tdim).num_ghosts
         cell_tag = np.full(ncells, -1, dtype=np.int64)
         cell_tag[tags.indices] = tags.values
-        lam_a, mu_a = np.full(ncells, np.nan), np.full(ncells, np.nan)
+        self._cell_tag = cell_tag
+        lam_a, mu_a, rho_a = np.full(ncells, np.nan), np.full(ncells, np.nan), np.zeros(ncells)
+        blocks = _names(self.dmesh, "blocks")
         for tag, (E, nu) in self.rock.items():
             sel = cell_tag == tag
             mu_a[sel] = E / (2 * (1 + nu))
@@ -291,12 +279,15 @@ class JointedRockModel:
             if self.plane == "stress":
                 l = 2 * l * mu_a[sel] / (l + 2 * mu_a[sel])
             lam_a[sel] = l
+        for name, value in self.densities.items():
+            rho_a[cell_tag == blocks[name]] = value
         if np.isnan(mu_a).any():
             raise ValueError("some cells carry no block tag with rock properties")
         dofs = Q.dofmap.list.array
         lam.x.array[dofs] = lam_a
         mu.x.array[dofs] = mu_a
-        self._lame = (lam, mu)
+        rho.x.array[dofs] = rho_a
+        self._lame, self._rho = (lam, mu), rho
 
         def eps(w):
             return ufl.sym(ufl.grad(w))
@@ -304,39 +295,14 @@ class JointedRockModel:
         def sigma(w):
             return 2 * mu * eps(w) + lam * ufl.tr(eps(w)) * ufl.Identity(gdim)
 
-        self.sigma = sigma
+        self.eps, self.sigma = eps, sigma
         du_, v = ufl.TrialFunction(V), ufl.TestFunction(V)
-        a_form = fem.form(ufl.inner(sigma(du_), eps(v)) * ufl.dx)
-        ds = ufl.Measure("ds", domain=mesh, subdomain_data=self.dmesh.boundaries)
-        L = ufl.inner(fem.Constant(mesh, np.zeros(gdim)), v) * ufl.dx
-        for name, t in self.loads.tractions:
-            L += ufl.inner(fem.Constant(mesh, t), v) * ds(_lookup(self.dmesh, "boundaries", name))
-        for f in self.loads.body_forces:
-            L += ufl.inner(fem.Constant(mesh, f), v) * ufl.dx
-        L_form = fem.form(L)
-
-        # Supports: zero components on boundaries.
-        fdim = tdim - 1
-        mesh.topology.create_connectivity(fdim, tdim)
-        bcs = []
-        f2c = mesh.topology.connectivity(fdim, tdim)
-        for name, comps, block_tag in self.loads.supports:
-            facets = self.dmesh.boundary(name)
-            if block_tag is not None:
-                facets = np.array([f for f in facets if cell_tag[f2c.links(f)[0]] == block_tag], dtype=np.int32)
-            for c in comps:
-                Vc = V.sub(c)
-                dofs_c = fem.locate_dofs_topological(Vc, fdim, facets)
-                bcs.append(fem.dirichletbc(PETSc.ScalarType(0), dofs_c, Vc))
-        self.bcs = bcs
-        imap, bs = V.dofmap.index_map, V.dofmap.index_map_bs
-        n_local_unrolled = (imap.size_local + imap.num_ghosts) * bs
-        constrained = np.zeros(n_local_unrolled, dtype=np.int8)
-        for bc in bcs:
-            idx, _ = bc.dof_indices()
-            constrained[idx] = 1
-        self._constrained = constrained
-        self._constrained_owned = np.flatnonzero(constrained[: imap.size_local * bs]).astype(np.int32)
+        self._v = v
+        self.a_form = fem.form(ufl.inner(sigma(du_), eps(v)) * ufl.dx)
+        self._internal_form = fem.form(ufl.inner(sigma(self._w), eps(v)) * ufl.dx)
+        self._ds = ufl.Measure("ds", domain=mesh, subdomain_data=self.dmesh.boundaries)
+        self._normal = ufl.FacetNormal(mesh)
+        mesh.topology.create_connectivity(tdim - 1, tdim)
 
         # Joints and the sparsity pattern with the cross-joint couplings (docs/fem.md, pitfall 4).
         self.interface = JointInterface(V, self.dmesh.pairs, self.behaviours, self.quadrature)
@@ -344,23 +310,14 @@ class JointedRockModel:
                                                {_dcpp.fem.IntegralType.cell})
         self.interface.insert_sparsity(sp)
         sp.assemble()
-        K = _dcpp.la.petsc.create_matrix(self.comm, sp)
-        # Explicit zeros reserve the joint couplings: PETSc drops unset preallocated entries at the
-        # final assembly, and J is refreshed from K with SAME_NONZERO_PATTERN.
-        self.interface.add_jacobian(K, np.zeros(n_local_unrolled), constrained, scale=0.0)
-        t1 = time.perf_counter()
-        fem_petsc.assemble_matrix(K, a_form, bcs)
-        K.assemble()
-        f = fem_petsc.assemble_vector(L_form)
-        f.ghostUpdate(addv=PETSc.InsertMode.ADD, mode=PETSc.ScatterMode.REVERSE)
-        fem_petsc.set_bc(f, bcs)
-        self.timings["bulk_assembly"] = time.perf_counter() - t1
-        self.K, self.f = K, f
-        self.J = K.duplicate(copy=True)
-        self.r = f.duplicate()
-        self._r_joint = la.create_petsc_vector(imap, bs)
-        self.f_norm = f.norm()
-        self.a_form, self.L_form = a_form, L_form
+        self._sparsity = sp
+        imap, bs = V.dofmap.index_map, V.dofmap.index_map_bs
+        self._n_local = (imap.size_local + imap.num_ghosts) * bs
+        self.r = la.create_petsc_vector(imap, bs)
+        self._r_joint = self.r.duplicate()
+        self._f_lambda = self.r.duplicate()
+        self._lift = self.r.duplicate()
+        self._r_sigma0 = None  # ∫ε(v):σ0 dx with an in-situ stress
 
         num_dofs = imap.size_global * bs
         symmetric = all(b.shear_model == ShearModel.constant for b in self.behaviours.values())
@@ -373,15 +330,63 @@ class JointedRockModel:
                                           prefix=self.options_prefix)
         self.num_dofs = num_dofs
         self.load_factor = 0.0
+        self._applied = None
         self._saved = None
-        self.timings["setup"] = time.perf_counter() - t0
-        self._ready = True
+        self.K = self.J = None
+        self.timings["setup"] += time.perf_counter() - t0
+        self._space_ready = True
+
+    def _setup_supports(self) -> None:
+        """Dirichlet dofs of every support and the bulk matrix K with them (identity rows)."""
+        t0 = time.perf_counter()
+        V, fdim = self.V, self.mesh.topology.dim - 1
+        f2c = self.mesh.topology.connectivity(fdim, fdim + 1)
+        bcs, constrained = [], np.zeros(self._n_local, dtype=np.int8)
+        self._support_dofs = {}
+        for s in self._supports:
+            facets = self.dmesh.boundary(s.boundary)
+            if s.block_tag is not None:
+                facets = np.array([f for f in facets if self._cell_tag[f2c.links(f)[0]] == s.block_tag],
+                                  dtype=np.int32)
+            entries = []
+            for k, c in enumerate(s.components):
+                Vc = V.sub(c)
+                bc = fem.dirichletbc(PETSc.ScalarType(0), fem.locate_dofs_topological(Vc, fdim, facets), Vc)
+                bcs.append(bc)
+                idx, first_ghost = bc.dof_indices()
+                constrained[idx] = 1
+                entries.append((k, c, np.asarray(idx), np.asarray(idx[:first_ghost])))
+            self._support_dofs[id(s)] = entries
+        self.bcs = bcs
+        self._constrained = constrained
+        self._constrained_local = np.flatnonzero(constrained).astype(np.int32)
+        imap = self.V.dofmap.index_map
+        self._constrained_owned = np.flatnonzero(constrained[: imap.size_local * self.V.dofmap.index_map_bs]
+                                                 ).astype(np.int32)
+        for A in (self.K, self.J):
+            if A is not None:
+                A.destroy()
+        K = _dcpp.la.petsc.create_matrix(self.comm, self._sparsity)
+        # Explicit zeros reserve the joint couplings: PETSc drops unset preallocated entries at the
+        # final assembly, and J is refreshed from K with SAME_NONZERO_PATTERN.
+        self.interface.add_jacobian(K, np.zeros(self._n_local), constrained, scale=0.0)
+        fem_petsc.assemble_matrix(K, self.a_form, bcs)
+        K.assemble()
+        self.K, self.J = K, K.duplicate(copy=True)
+        self.timings["bulk_assembly"] += time.perf_counter() - t0
+        self._supports_dirty = False
 
     # ---- the problem interface used by newton.py ------------------------------------------
     def load_norm(self, load_factor: float) -> float:
-        return abs(load_factor) * self.f_norm
+        """Scale of the forces at `load_factor`: ||f(λ)|| (+ ||∫ε(v):σ0||)."""
+        f = self._f_prev.copy()
+        f.axpy(load_factor, self._df)
+        out = f.norm()
+        f.destroy()
+        return out + (self._r_sigma0.norm() if self._r_sigma0 is not None else 0.0)
 
-    def residual(self) -> float:
+    def _joint_forces(self) -> bool:
+        """r_joint(u) into self._r_joint (owned entries complete); False if not finite."""
         t0 = time.perf_counter()
         rj = self._r_joint
         with rj.localForm() as loc:
@@ -391,38 +396,57 @@ class JointedRockModel:
         rj.ghostUpdate(addv=PETSc.InsertMode.ADD, mode=PETSc.ScatterMode.REVERSE)
         self.timings["interface_residual"] += time.perf_counter() - t0
         self.counts["interface_residual"] += 1
-        finite = self.comm.allreduce(bool(finite), op=_min_op())
-        if not finite:
+        return self.comm.allreduce(bool(finite), op=min_op())
+
+    def residual(self) -> float:
+        self._apply_load_factor()
+        if not self._joint_forces():
             return np.inf
         r = self.r
         self.K.mult(self.u.vector, r)
-        r.axpy(-self.load_factor, self.f)
-        r.axpy(1.0, rj)
+        if self._any_prescribed:
+            r.axpy(1.0, self._lift)
+        if self._r_sigma0 is not None:
+            r.axpy(1.0, self._r_sigma0)
+        r.axpy(-1.0, self._f_lambda)
+        r.axpy(1.0, self._r_joint)
         with r.localForm() as loc:  # owned entries come first in the local form
             loc.array[self._constrained_owned] = 0.0
         nrm = r.norm()
         return nrm if np.isfinite(nrm) else np.inf
 
     def jacobian(self) -> None:
+        self.jacobian_into(self.J)
+
+    def jacobian_into(self, A) -> None:
+        """A = K + joint tangent at u (A has K's nonzero pattern, e.g. JointedProblem.matrix())."""
         t0 = time.perf_counter()
-        self.K.copy(self.J, structure=PETSc.Mat.Structure.SAME_NONZERO_PATTERN)  # J = K (bulk, constant)
+        self.K.copy(A, structure=PETSc.Mat.Structure.SAME_NONZERO_PATTERN)  # bulk, constant
         t1 = time.perf_counter()
         self.timings["matrix_copy"] += t1 - t0
-        t0 = t1
-        self.interface.add_jacobian(self.J, self.u.x.array, self._constrained)
-        self.J.assemble()
-        self.timings["interface_jacobian"] += time.perf_counter() - t0
+        self.interface.add_jacobian(A, self.u.x.array, self._constrained)
+        A.assemble()
+        self.timings["interface_jacobian"] += time.perf_counter() - t1
         self.counts["interface_jacobian"] += 1
+        self._step_iterations += 1
 
-    def solve_increment(self) -> None:
+    def solve_increment(self, rtol: float | None = None) -> None:
+        """du = -J⁻¹ r; rtol: the linear tolerance Newton asks for (None: the solver's default)."""
         t0 = time.perf_counter()
         self.r.scale(-1.0)
         try:
-            self.linear_solver.solve(self.J, self.r, self.du.vector)
+            if rtol is None:
+                self.linear_solver.solve(self.J, self.r, self.du.vector)
+            else:
+                self.linear_solver.solve(self.J, self.r, self.du.vector, rtol=rtol)
         finally:
             self.r.scale(-1.0)
             self.timings["linear_solve"] += time.perf_counter() - t0
             self.counts["linear_solve"] += 1
+        # Supported rows are identity rows with a zero right-hand side: du = 0 there exactly even
+        # after a loose (inexact) solve, so the prescribed values never drift.
+        with self.du.vector.localForm() as loc:
+            loc.array[self._constrained_owned] = 0.0
         self.du.x.scatter_forward()
 
     def increment_norms(self) -> tuple:
@@ -431,7 +455,7 @@ class JointedRockModel:
 
     def admissible_step(self, fraction: float) -> float:
         alpha = self.interface._cpp.admissible_step_length(self.u.x.array, self.du.x.array, fraction)
-        return self.comm.allreduce(alpha, op=_min_op())
+        return self.comm.allreduce(alpha, op=min_op())
 
     def apply_increment(self, alpha: float) -> None:
         self.u.vector.axpy(alpha, self.du.vector)
@@ -441,30 +465,151 @@ class JointedRockModel:
         self._saved = (self.u.x.array.copy(), self.load_factor)
 
     def restore_state(self) -> None:
+        """Back to the last saved (converged) step: u, load factor and the joints' trial state."""
         arr, self.load_factor = self._saved
         self.u.x.array[:] = arr
+        self._applied = None
+        if hasattr(self.interface, "revert_state"):
+            self.interface.revert_state()
+
+    def commit_state(self) -> None:
+        """A load step converged: the joints' trial state becomes their converged state."""
+        if hasattr(self.interface, "commit_state"):
+            self.interface.commit_state()
+        clock = getattr(self, "_clock", None)
+        if clock is not None:
+            clock.step(self.load_factor, self._step_iterations)
+        self._step_iterations = 0
+
+    def problem(self) -> JointedProblem:
+        """The model as a problem object (F, J) for PETSc SNES or a user's Newton, at the current
+        stage's load factor (`model.load_factor`)."""
+        self._prepare()
+        if not hasattr(self, "_f_prev"):
+            self._begin_stage()
+        return JointedProblem(self)
 
     # ---- solve and output -----------------------------------------------------------------
-    def solve(self, load_steps: int = 1, restart: bool = True) -> JointedSolution:
-        """Apply the loads in (adaptive) load steps from zero (restart=True) or from the last
-        solution, and return the JointedSolution. Raises ConvergenceError / LinearSolveError."""
-        if not self._ready:
-            self._setup()
-        if restart:
-            self.u.x.array[:] = 0.0
-            self.load_factor = 0.0
+    def solve(self, load_steps: int = 1, name: str | None = None, solver: str = "newton",
+              restart: bool = False) -> StageResult:
+        """Solve one stage: the loads go from the previous stage's values to the ones set now in
+        (adaptive) load steps, from the converged state (restart=True: from the initial state).
+        solver: "newton" (the project's, with the closure-limiting step) or "snes" (PETSc SNES,
+        options through petsc_options/options_prefix). Returns the StageResult (also appended to
+        model.stages). Raises ConvergenceError / LinearSolveError; the model then stays at the
+        last converged load step."""
+        if solver not in ("newton", "snes"):
+            raise ValueError(f"solver must be 'newton' or 'snes', got {solver!r}")
+        if restart and self._space_ready:
+            reset = getattr(self.interface, "reset_state", None)  # path-dependent point state
+            if reset is not None:
+                reset()
+            else:
+                self.interface = JointInterface(self.V, self.dmesh.pairs, self.behaviours, self.quadrature)
+            self._initialised = False
+            self._advancing = False
+        self._prepare()
+        self._close_advanced_stage()
+        k = len(self.stages) + 1
+        name = name or f"stage_{k}"
+        label = getattr(self, "_stage_label", None) or str(k)
+        self._clock = StageClock(self.comm, f"{label} ({name})")
+        self._begin_stage()
         t0 = time.perf_counter()
-        reports = solve_load_path(self, load_steps, self.newton_options)
-        self.timings["newton"] += time.perf_counter() - t0
+        try:
+            if solver == "newton":
+                reports = solve_load_path(self, load_steps, self.newton_options)
+            else:
+                reports = snes_load_path(self, load_steps, self.newton_options)
+        except Exception:
+            self._end_stage(self.load_factor)
+            raise
+        finally:
+            self.timings["newton"] += time.perf_counter() - t0
+            self._clock = None
+        self._end_stage(1.0)
+        return self._stage_result(name, reports, time.perf_counter() - t0)
+
+    def advance(self, load_factor: float, load_steps: int = 1) -> StageResult:
+        """Continue the current stage's load path to `load_factor` in `load_steps` equal Newton
+        steps, committing the joint state after each: below the current factor unloads along the
+        path, above 1 overloads (f(λ) = f_prev + λ (f_next - f_prev) extrapolated). Starts a stage
+        (from the loads set now) if none is open; changes to the loads take effect at the next
+        solve(). Raises ConvergenceError naming the failed step (the last converged one is kept)."""
+        if int(load_steps) != load_steps or load_steps < 1:
+            raise ValueError(f"load_steps must be an integer >= 1, got {load_steps!r}")
+        target = float(load_factor)
+        if not np.isfinite(target):
+            raise ValueError(f"load_factor must be finite, got {load_factor!r}")
+        if not self._advancing:
+            self._prepare()
+            self._begin_stage()
+            self._advancing = True
+        t0 = time.perf_counter()
+        start, reports = self.load_factor, []
+        for k in range(1, int(load_steps) + 1):
+            step = start + (target - start) * k / load_steps
+            self.save_state()
+            report = newton(self, step, self.newton_options)
+            reports.append(report)
+            if not report.converged:
+                self.restore_state()
+                raise ConvergenceError(f"advance: the step to load factor {step:.6g} failed "
+                                       f"({report.reason}); kept the state at {self.load_factor:.6g}")
+            self.commit_state()
+        return self._stage_result(f"advance to {target:g}", reports, time.perf_counter() - t0)
+
+    def _close_advanced_stage(self) -> None:
+        """After advance(): the loads of the factor reached become the next stage's start."""
+        if self._advancing:
+            self._end_stage(self.load_factor)
+            self._advancing = False
+
+    def run(self, stages: list) -> list:
+        """Solve a sequence of Stage(name, load_steps, actions, solver) in order (actions(model)
+        changes the loads first); progress as 'stage k/n'. Returns their StageResults."""
+        out = []
+        for k, stage in enumerate(stages, start=1):
+            if not isinstance(stage, Stage):
+                raise ValueError(f"run: stage {k} is a {type(stage).__name__}, not a Stage")
+            if stage.actions is not None:
+                stage.actions(self)
+            self._stage_label = f"{k}/{len(stages)}"
+            try:
+                out.append(self.solve(stage.load_steps, stage.name, stage.solver))
+            finally:
+                self._stage_label = None
+        return out
+
+    def _stage_result(self, name: str, reports: list, elapsed: float) -> StageResult:
         self.interface.update_state(self.u.x.array)
-        self.solution = JointedSolution(self.u, self.interface.state(), reports, self)
-        beyond = self.solution.beyond_law_range()
+        disp = fem.Function(self.V, name="displacement")
+        disp.x.array[:] = self.u.x.array
+        result = StageResult(disp, self.interface.state(), reports, self, name, self._reactions(), elapsed)
+        self.stages.append(result)
+        self.solution = result
+        beyond = result.beyond_law_range()
         if beyond and self.comm.rank == 0:
             # Never silent: the answer there is the table's linear continuation, not the law.
             log.warning("joint law driven past its range (status validity_limit) at %s; the "
                         "response there is the table's linear continuation: tabulate to a higher "
                         "maximum stress", ", ".join(f"{n} ({c} points)" for n, c in beyond.items()))
-        return self.solution
+        return result
+
+    def total_stress(self, degree: int | None = None) -> fem.Function:
+        """Total stress σ0 + σ(u) [Pa, tension positive] interpolated in a discontinuous tensor
+        space of `degree` (default: element degree - 1, exact for σ(u))."""
+        self._prepare()
+        degree = self.degree - 1 if degree is None else degree
+        T = fem.TensorFunctionSpace(self.mesh, ("DG", degree))
+        stress = self.sigma(self.u)
+        if self.in_situ is not None:
+            stress = stress + self._sigma0
+        points = T.element.interpolation_points
+        points = points() if callable(points) else points
+        out = fem.Function(T, name="total_stress")
+        out.interpolate(fem.Expression(stress, points))
+        return out
 
     def boundary_mean_displacement(self, boundary: str) -> np.ndarray:
         """Mean displacement vector [m] over a named boundary (∫u ds / ∫ds, all ranks)."""
@@ -481,8 +626,3 @@ class JointedRockModel:
         if self.solution is None:
             raise RuntimeError("write_xdmf: call solve() first")
         return write_xdmf(self, path)
-
-
-def _min_op():
-    from mpi4py import MPI
-    return MPI.MIN

@@ -2,7 +2,8 @@
 
 The problem object supplies residual() (returns ||r||, inf if not finite), jacobian(),
 solve_increment(), admissible_step(fraction), apply_increment(α), load_norm(λ),
-save_state()/restore_state() and optionally increment_norms() -> (||du||, ||u||) and comm.
+save_state()/restore_state() and optionally increment_norms() -> (||du||, ||u||), comm and
+commit_state() (called after every converged load step).
 Newton stops on the residual (relative to the load, or to the initial residual when the load
 is zero), on an increment at round-off, and fails on stagnation or a non-finite residual. Stiffening laws (Barton-Bandis: σ → ∞ as Δ → V_m) defeat plain
 Newton from zero once the load passes about K_ni·V_m (docs/fem.md, pitfall 7): every
@@ -82,6 +83,9 @@ def solve_load_path(problem, load_steps: int, options: NewtonOptions) -> list:
         reports.append(report)
         if report.converged:
             lam = target
+            commit = getattr(problem, "commit_state", None)  # path-dependent joints (CONTRACTS B)
+            if commit is not None:
+                commit()
             if report.iterations <= options.easy_iterations:
                 increment *= options.growth
         else:

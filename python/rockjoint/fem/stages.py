@@ -1,0 +1,227 @@
+"""Stages of a load path, their results, and the model as a problem object for PETSc SNES.
+
+A stage is one JointedRockModel.solve(): the loads go linearly from the previous stage's values
+(load factor λ = 0) to the values set now (λ = 1). `Stage` is the declarative form used by
+`JointedRockModel.run`. `JointedProblem` exposes the model's residual F and Jacobian J in the shape
+of dolfinx.fem.petsc.NonlinearProblem (form(x), F(x, b), J(x, A)) and as PETSc.SNES callbacks;
+SNES evaluates at trial vectors that are not the model's displacement, so every callback first
+copies x into u (docs/fem.md, field notes recipe 6).
+"""
+from __future__ import annotations
+
+import logging
+import time
+from dataclasses import dataclass, field
+from typing import Callable
+
+import numpy as np
+from dolfinx import fem
+from petsc4py import PETSc
+
+from .. import _rockjoint
+from .newton import ConvergenceError, StepReport
+
+log = logging.getLogger(__name__)
+
+
+def names_of(dmesh, kind: str) -> dict:
+    """{name: tag} of the mesh's groups of `kind` ("blocks", "joints", "boundaries")."""
+    return {str(n): int(t) for t, n in dmesh.names[kind].items()}
+
+
+def lookup(dmesh, kind: str, name: str) -> int:
+    """The tag of a named group, or ValueError listing the available names."""
+    names = names_of(dmesh, kind)
+    if name not in names:
+        singular = {"blocks": "block", "joints": "joint", "boundaries": "boundary"}[kind]
+        raise ValueError(f"unknown {singular} {name!r}; available {kind}: {sorted(names)}")
+    return names[name]
+
+
+def min_op():
+    from mpi4py import MPI
+    return MPI.MIN
+
+
+def max_op():
+    from mpi4py import MPI
+    return MPI.MAX
+
+
+@dataclass
+class StageResult:
+    """Result of one stage (JointedRockModel.solve): displacement (a copy, relative to the initial
+    state), joint point state, support reactions and the Newton history."""
+    displacement: fem.Function
+    joints: dict       #: point state on this rank (see JointInterface.state)
+    reports: list      #: newton.StepReport per attempted load step
+    model: "object"
+    name: str = ""
+    #: {(boundary, "x"|"y"|"z"): force the support exerts on the rock [N; N/m in 2D]}, all ranks
+    reactions: dict = field(default_factory=dict)
+    elapsed: float = 0.0  #: wall time of the stage [s]
+
+    def gather_joints(self) -> dict:
+        """The joint point state of all ranks, concatenated (on every rank)."""
+        comm = self.model.comm
+        return {k: np.concatenate(comm.allgather(np.asarray(v)), axis=0) for k, v in self.joints.items()}
+
+    @property
+    def newton_iterations(self) -> int:
+        return sum(r.iterations for r in self.reports)
+
+    def beyond_law_range(self) -> dict:
+        """{joint name: number of points (all ranks)} whose law answered outside its range:
+        status validity_limit (a table driven past its last knot, continued linearly; a Tang &
+        Jiao law at its cap). Empty when every point is inside its law's range."""
+        status = np.asarray(self.joints["status"])
+        tags = np.asarray(self.joints["tag"])
+        limit = int(_rockjoint.constitutive.Status.validity_limit)
+        out = {}
+        for name, tag in names_of(self.model.dmesh, "joints").items():
+            count = self.model.comm.allreduce(int(np.count_nonzero((status == limit) & (tags == tag))))
+            if count:
+                out[name] = count
+        return out
+
+
+#: the former name of a stage's result (one solve from zero was the only stage)
+JointedSolution = StageResult
+
+
+@dataclass
+class Stage:
+    """A declarative stage for JointedRockModel.run: `actions(model)` changes loads and supports
+    (add_*, fix, excavate, handle.value = ..., handle.remove()) before the stage is solved."""
+    name: str
+    load_steps: int = 1
+    actions: Callable | None = None
+    solver: str = "newton"
+
+
+class JointedProblem:
+    """The model's nonlinear problem F(u) = 0 for PETSc SNES or a user's Newton.
+
+    F = bulk internal force + joint forces - external loads at the model's current load factor,
+    zero at supported dofs (whose values the model sets to the prescribed displacement); J the
+    consistent Jacobian with identity rows and columns at supported dofs."""
+
+    def __init__(self, model):
+        self.model = model
+
+    def _copy_in(self, x) -> None:
+        u = self.model.u
+        if x.handle != u.vector.handle:
+            x.copy(u.vector)
+        u.x.scatter_forward()
+
+    def form(self, x) -> None:
+        self._copy_in(x)
+
+    def F(self, x, b) -> None:
+        self._copy_in(x)
+        self.model.residual()
+        self.model.r.copy(b)
+
+    def J(self, x, A) -> None:
+        self._copy_in(x)
+        self.model.jacobian_into(A)
+
+    def snes_F(self, snes, x, b) -> None:
+        self.F(x, b)
+
+    def snes_J(self, snes, x, A, P) -> None:
+        self.J(x, A)
+        if P.handle != A.handle:
+            self.model.jacobian_into(P)
+
+    def matrix(self):
+        """A matrix with the joint-aware sparsity (the bulk pattern plus cross-joint couplings)."""
+        return self.model.K.duplicate(copy=True)
+
+    def vector(self):
+        return self.model.r.duplicate()
+
+
+def snes_load_path(model, load_steps: int, options) -> list:
+    """Drive the model's load factor from 0 to 1 with PETSc SNES: equal steps, each halved on
+    failure (down to options.min_load_increment); the joint state is committed after every
+    converged step and reverted after a failed one (CONTRACTS B). Returns the StepReports."""
+    if int(load_steps) != load_steps or load_steps < 1:
+        raise ValueError(f"load_steps must be an integer >= 1, got {load_steps!r}")
+    problem = JointedProblem(model)
+    snes = PETSc.SNES().create(model.comm)
+    prefix = model.linear_solver.ksp.getOptionsPrefix()
+    snes.setOptionsPrefix(prefix)
+    b, A = problem.vector(), problem.matrix()
+    snes.setFunction(problem.snes_F, b)
+    snes.setJacobian(problem.snes_J, A, A)
+    snes.setKSP(model.linear_solver.ksp)
+    _flag_matrix(model.linear_solver, A)
+    norms = []
+    snes.setMonitor(lambda s, it, rnorm: norms.append(rnorm))
+    x = model.u.vector.copy()
+    reports = []
+    lam = model.load_factor
+    increment = (1.0 - lam) / load_steps
+    try:
+        while lam < 1.0 - 1e-14:
+            target = 1.0 if 1.0 - (lam + increment) < 1e-12 else lam + increment
+            model.save_state()
+            model.load_factor = target
+            model.residual()  # sets the prescribed displacements of λ = target into u
+            scale = model.load_norm(target)
+            snes.setTolerances(atol=max(options.atol + options.rtol * scale, 1e-300), rtol=1e-14,
+                               stol=0.0, max_it=options.max_iterations)
+            snes.setFromOptions()  # user options (petsc_options, command line) win
+            model.u.vector.copy(x)
+            norms.clear()
+            snes.solve(None, x)
+            reason = snes.getConvergedReason()
+            report = StepReport(target, residual_norms=list(norms), step_lengths=[1.0] * snes.getIterationNumber(),
+                                converged=reason > 0, reason=f"SNES reason {reason}")
+            reports.append(report)
+            if report.converged:
+                problem.form(x)
+                model.commit_state()
+                lam = target
+            else:
+                model.restore_state()
+                increment *= 0.5
+                log.info("SNES load step to λ = %.6g failed (%s); cutting the increment to %.3g",
+                         target, report.reason, increment)
+                if increment < options.min_load_increment:
+                    raise ConvergenceError(f"SNES load stepping failed: increment {increment:.3g} below "
+                                           f"min_load_increment {options.min_load_increment:g} at load "
+                                           f"factor {lam:.6g} (last failure: {report.reason})")
+    finally:
+        snes.setKSP(PETSc.KSP().create(model.comm))  # the model keeps its own KSP alive
+        snes.destroy()
+        x.destroy()
+    return reports
+
+
+def _flag_matrix(solver, A) -> None:
+    """What LinearSolver.solve tells a matrix before a solve, for the matrix SNES hands its KSP."""
+    if solver.near_nullspace is not None and solver.kind == "iterative":
+        A.setNearNullSpace(solver.near_nullspace)
+    if solver.kind == "direct" and solver.symmetric:
+        A.setOption(PETSc.Mat.Option.SYMMETRIC, True)  # MUMPS Cholesky requires the flag
+
+
+class StageClock:
+    """Progress of a stage on rank 0 (logger rockjoint.fem.stages, INFO): stage k/n, load factor,
+    Newton iterations of the step, elapsed time."""
+
+    def __init__(self, comm, label: str):
+        self.comm, self.label = comm, label
+        self.start = time.perf_counter()
+
+    def step(self, load_factor: float, iterations: int) -> None:
+        if self.comm.rank == 0:
+            log.info("stage %s: λ = %.4g converged in %d Newton iteration(s), %.2f s elapsed",
+                     self.label, load_factor, iterations, time.perf_counter() - self.start)
+
+    @property
+    def elapsed(self) -> float:
+        return time.perf_counter() - self.start
