@@ -31,7 +31,7 @@ import numpy as np
 
 from .builders import (BOUNDARY_TAGS, _add_trace, _block_and_joint_groups, _block_face, _distance_threshold,
                        _ensure_gmsh, _generate, _graded_size, _normalise_joints, _OPTIONS, _resolve_bounds)
-from .joint_geometry import _positive, joint_trace
+from .joint_geometry import _positive, joint_trace, unit_normal
 from .jointed_mesh import JointedMesh
 
 OPENING = "opening"
@@ -167,7 +167,8 @@ class HorseshoeOpening:
 def tunnel_section(width: float, height: float, opening, joints: Iterable = (), *, mesh_size: float,
                    opening_mesh_size: float | None = None, opening_refine_distance: float | None = None,
                    joint_mesh_size: float | None = None, joint_refine_distance: float | None = None,
-                   intact: bool = False, quarter: bool = False, comm=None) -> JointedMesh | None:
+                   intact: bool = False, quarter: bool = False, length: float | None = None,
+                   comm=None) -> JointedMesh | None:
     """The section [0, width] x [0, height] minus ``opening``, cut by ``joints``, meshed and split.
 
     opening: CircularOpening or HorseshoeOpening, strictly inside the section (at least one element
@@ -185,11 +186,16 @@ def tunnel_section(width: float, height: float, opening, joints: Iterable = (), 
         a CircularOpening centred at the origin (0, 0), the rock [0, width] x [0, height] around it;
         "left" (x = 0) and "bottom" (y = 0) are then the symmetry planes (rollers there are exact for
         a symmetric load such as Kirsch's far field).
+    length: if given, the 3D extrusion of the section along the tunnel axis, ``length`` [m] long: the
+        section's x stays x, its y becomes z (up) and the axis is y, from y = 0 ("front") to
+        y = length ("back"); joints become planes, the opening a prism (tetrahedra, the same size
+        fields on the opening's and the joints' faces).
     comm: an mpi4py communicator; ranks != 0 return None (gmsh runs on rank 0).
     """
     if comm is not None and comm.rank != 0:
         return None
     size = np.array([_positive("width", width), _positive("height", height)])
+    length = None if length is None else _positive("length", length)
     if not isinstance(opening, (CircularOpening, HorseshoeOpening)):
         raise ValueError(f"opening must be a CircularOpening or a HorseshoeOpening, got {type(opening).__name__}")
     mesh_size = _positive("mesh_size", mesh_size)
@@ -240,7 +246,7 @@ def tunnel_section(width: float, height: float, opening, joints: Iterable = (), 
     gmsh.model.add("rockjoint_tunnel_section")
     try:
         return _build(gmsh, size, opening, joints, traces, mesh_size, opening_mesh_size, opening_refine_distance,
-                      joint_mesh_size, joint_refine_distance, intact)
+                      joint_mesh_size, joint_refine_distance, intact, length)
     finally:
         gmsh.model.remove()
         for o, v in saved.items():
@@ -248,7 +254,7 @@ def tunnel_section(width: float, height: float, opening, joints: Iterable = (), 
 
 
 def _build(gmsh, size, opening, joints, traces, mesh_size, opening_mesh_size, opening_refine_distance,
-           joint_mesh_size, joint_refine_distance, intact) -> JointedMesh:
+           joint_mesh_size, joint_refine_distance, intact, length) -> JointedMesh:
     occ = gmsh.model.occ
     rock = occ.cut([(2, occ.addRectangle(0, 0, 0, *size))], [(2, opening.add_to(occ))])[0]
     tools = [(1, _add_trace(occ, t, 2)) for t in traces]
@@ -277,19 +283,24 @@ def _build(gmsh, size, opening, joints, traces, mesh_size, opening_mesh_size, op
         occ.remove([(1, p) for p in stray], recursive=True)
         occ.synchronize()
 
-    # Boundaries: the outer sides, and every other exterior curve is the opening's.
+    dim = 2
+    if length is not None:  # the section in the x-z plane, extruded along y
+        volumes, pieces, size = _extrude(gmsh, volumes, joints, size, length)
+        dim = 3
+
+    # Boundaries: the outer sides, and every other exterior curve (face) is the opening's.
     groups = {}
-    for d, f in gmsh.model.getBoundary([(2, v) for v in volumes], combined=True, oriented=False):
+    for d, f in gmsh.model.getBoundary([(dim, v) for v in volumes], combined=True, oriented=False):
         name = _block_face(gmsh, d, abs(f), size) or OPENING
         groups.setdefault(name, []).append(abs(f))
-    joint_curves = [p for ps in pieces for p in ps]
+    joint_facets = [p for ps in pieces for p in ps]
 
     # Sizes: the finer of the opening's and the joints' Threshold fields.
     extent = float(size.max())
-    fields = [_distance_threshold(gmsh, 2, groups[OPENING], opening_mesh_size, mesh_size, opening_refine_distance,
+    fields = [_distance_threshold(gmsh, dim, groups[OPENING], opening_mesh_size, mesh_size, opening_refine_distance,
                                   extent)]
-    if joint_mesh_size is not None and joint_curves:
-        fields.append(_distance_threshold(gmsh, 2, joint_curves, joint_mesh_size, mesh_size, joint_refine_distance,
+    if joint_mesh_size is not None and joint_facets:
+        fields.append(_distance_threshold(gmsh, dim, joint_facets, joint_mesh_size, mesh_size, joint_refine_distance,
                                           extent))
     field = gmsh.model.mesh.field
     finest = field.add("Min")
@@ -297,11 +308,41 @@ def _build(gmsh, size, opening, joints, traces, mesh_size, opening_mesh_size, op
     field.setAsBackgroundMesh(finest)
     _graded_size(gmsh, mesh_size)
 
+    boundary_tags = {**SECTION_BOUNDARY_TAGS, "front": BOUNDARY_TAGS["front"], "back": BOUNDARY_TAGS["back"]}
     if intact:  # the same fragments and mesh lines, one block, no joints
         tag = 1
-        gmsh.model.addPhysicalGroup(2, volumes, tag)
-        gmsh.model.setPhysicalName(2, tag, "block_1")
+        gmsh.model.addPhysicalGroup(dim, volumes, tag)
+        gmsh.model.setPhysicalName(dim, tag, "block_1")
         names = {"blocks": {tag: "block_1"}, "joints": {}, "boundaries": {}}
-        return _generate(gmsh, 2, [volumes], [], groups, SECTION_BOUNDARY_TAGS, names)
-    ordered, names = _block_and_joint_groups(gmsh, 2, volumes, joints, pieces, extent)
-    return _generate(gmsh, 2, ordered, pieces, groups, SECTION_BOUNDARY_TAGS, names)
+        return _generate(gmsh, dim, [volumes], [], groups, boundary_tags, names)
+    ordered, names = _block_and_joint_groups(gmsh, dim, volumes, joints, pieces, extent)
+    return _generate(gmsh, dim, ordered, pieces, groups, boundary_tags, names)
+
+
+def _extrude(gmsh, surfaces, joints, size, length):
+    """Turn the meshed-to-be section (x-y plane) into the x-z plane and extrude it along y by length.
+    Returns (volumes, joint faces per joint, 3D size (width, length, height))."""
+    occ = gmsh.model.occ
+    ents = [(2, v) for v in surfaces]
+    occ.rotate(ents, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.5 * math.pi)  # (x, y, 0) -> (x, 0, y)
+    occ.extrude(ents, 0.0, length, 0.0)
+    if len(ents) > 1:
+        occ.removeAllDuplicates()  # one face between two prisms
+    occ.synchronize()
+    volumes = [t for d, t in gmsh.model.getEntities(3)]
+    size3 = np.array([size[0], length, size[1]])
+    pieces = [[] for _ in joints]
+    for d, f in gmsh.model.getEntities(2):
+        if len(gmsh.model.getAdjacencies(2, f)[0]) != 2:
+            continue
+        # the face's corners, back in section coordinates (x, z): all on one joint's plane
+        corners = np.array([gmsh.model.getValue(0, abs(t), []) for _, t in
+                            gmsh.model.getBoundary([(2, f)], combined=False, recursive=True)])[:, [0, 2]]
+        owner = [i for i, j in enumerate(joints)
+                 if np.all(np.abs((corners - np.asarray(j.point)) @ unit_normal(j.dip, j.dip_direction, 2))
+                           <= 1e-6 * size.max() + 2e-7)]
+        if len(owner) != 1:
+            raise RuntimeError(f"internal: the face between two blocks at {corners.mean(axis=0)} lies on "
+                               f"{len(owner)} joints")
+        pieces[owner[0]].append(f)
+    return volumes, [sorted(p) for p in pieces], size3

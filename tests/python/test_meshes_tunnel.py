@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from rockjoint.meshes import CircularOpening, HorseshoeOpening, Joint, joint_set, tunnel_section
-from test_meshes import check_split_invariants
+from test_meshes import check_split_invariants, facet_normal
 
 W, H, CENTRE, A = 40.0, 30.0, (20.0, 14.0), 4.0
 CIRCLE = CircularOpening(CENTRE, A)
@@ -49,11 +49,16 @@ def deficit_bound(h, radius):
 
 def clipped_length(point, dip_deg, opening_centre, radius):
     """Length of the 2D line (point, dip toward +x) inside [0, W] x [0, H] minus the chord in the circle."""
+    return clipped_length3(point, dip_deg, opening_centre, radius, W, H)
+
+
+def clipped_length3(point, dip_deg, opening_centre, radius, width, height):
+    """clipped_length in the section [0, width] x [0, height]."""
     d = math.radians(dip_deg)
     t = np.array([math.cos(d), -math.sin(d)])
     p = np.asarray(point, float)
     lo, hi = -1e9, 1e9
-    for axis, size in ((0, W), (1, H)):
+    for axis, size in ((0, width), (1, height)):
         if abs(t[axis]) > 1e-14:
             s0, s1 = sorted(((0.0 - p[axis]) / t[axis], (size - p[axis]) / t[axis]))
             lo, hi = max(lo, s0), min(hi, s1)
@@ -235,3 +240,41 @@ def test_quarter_section_of_a_symmetric_problem():
     assert segment_lengths(m.points, boundary(m, "bottom")).sum() == pytest.approx(9.0, rel=1e-12)
     with pytest.raises(ValueError, match="quarter=True needs a CircularOpening centred at"):
         tunnel_section(10.0, 8.0, CircularOpening((1.0, 0.0), 1.0), mesh_size=1.0, quarter=True)
+
+
+def test_3d_extrusion_volumes_joint_areas_and_faces():
+    """The section extruded along y: joints become planes (area = clipped length x L), the opening a
+    prism (lateral area 2πa L to the inscribed-polygon bound), front/back faces the 2D section."""
+    a, L = 2.0, 6.0
+    opening = CircularOpening((10.0, 8.0), a)
+    joints = joint_set(3.0, 0.0, 90.0, origin=(10.0, 6.5), count=2, name="bed") + [Joint((10.0, 8.0), 60.0, 90.0,
+                                                                                          "cross")]
+    m = tunnel_section(20.0, 16.0, opening, joints, mesh_size=2.0, opening_mesh_size=0.5, length=L)
+    assert m.cell_type == "tetrahedron" and m.points.shape[1] == 3
+    check_split_invariants(m)
+    f = m.boundary_facets
+    x = m.points[f]
+    area = 0.5 * np.linalg.norm(np.cross(x[:, 1] - x[:, 0], x[:, 2] - x[:, 0]), axis=1)
+    by_name = {name: area[m.boundary_tags == tag].sum() for tag, name in m.names["boundaries"].items()}
+    ring = m.points[f[m.boundary_tags == m.tag("boundaries", "opening")]]
+    h = np.linalg.norm(ring[:, [1, 2, 0]] - ring, axis=2).max()
+    bound = deficit_bound(h, a)
+    assert by_name["opening"] == pytest.approx(2 * math.pi * a * L, rel=bound)
+    for name, expected in (("left", 16.0 * L), ("right", 16.0 * L), ("bottom", 20.0 * L), ("top", 20.0 * L)):
+        assert by_name[name] == pytest.approx(expected, rel=1e-12), name
+    for name in ("front", "back"):
+        assert by_name[name] == pytest.approx(320.0 - math.pi * a * a, rel=bound * math.pi * a * a / 320.0), name
+    volume = m.cell_measures().sum()
+    assert (320.0 - math.pi * a * a) * L <= volume <= (320.0 - math.pi * a * a * (1 - bound)) * L
+    fm = m.joint_facets_minus
+    xj = m.points[fm]
+    jarea = 0.5 * np.linalg.norm(np.cross(xj[:, 1] - xj[:, 0], xj[:, 2] - xj[:, 0]), axis=1)
+    W_, H_ = 20.0, 16.0
+    for joint in joints:
+        sel = m.joint_tags == m.tag("joints", joint.name)
+        expected = clipped_length3(joint.point, joint.dip, (10.0, 8.0), a, W_, H_) * L
+        assert jarea[sel].sum() == pytest.approx(expected, rel=1e-9), joint.name
+        # the joint planes are planes y-independent: the section's normal with no y component
+        n = facet_normal(m.points[fm[sel]])
+        d = math.radians(joint.dip)
+        assert np.allclose(np.abs(n), [math.sin(d), 0.0, math.cos(d)], atol=1e-9)
