@@ -15,6 +15,8 @@ try:  # the joint elements need the compiled _rockjoint_fem (built with -DROCKJO
     from .model import JointedRockModel  # noqa: F401
     from .stages import JointedProblem, JointedSolution, Stage, StageResult  # noqa: F401
     from .newton import ConvergenceError, NewtonOptions  # noqa: F401
+    from .strength import (JointPointState, JointStrength, ShearState, StrengthModel,  # noqa: F401
+                           barton_bandis_shear_stiffness, joint_response, make_strength)
 except ImportError as _error:  # pragma: no cover
     if "_rockjoint_fem" not in str(_error):
         raise

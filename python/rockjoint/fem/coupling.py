@@ -38,6 +38,7 @@ from .. import _rockjoint
 from .distributed_mesh import DistributedJointMesh, JointPairs
 from .interface import JointBehaviour, JointInterface, ShearModel
 from .model import _per_joint  # a float or {joint name: float} per joint, names checked
+from .strength import StrengthModel, strength_per_joint
 
 log = logging.getLogger(__name__)
 
@@ -72,13 +73,14 @@ def _same_space(W, V) -> bool:
 
 def joint_behaviours(joint_tags: Mapping[str, int], laws: Mapping[str, object], *,
                      shear_stiffness=0.0, shear_stiffness_ratio=None,
-                     residual_stiffness=0.0) -> dict:
+                     residual_stiffness=0.0, strength=None) -> dict:
     """{joint tag: JointBehaviour} from a law per joint name.
 
     joint_tags: {joint name: tag} of every joint of the mesh. laws: {joint name: law} for every
     joint; a law is a rockjoint closure law or table, the path of a .rjt table, or a JointBehaviour
     (then used as it is). shear_stiffness k_s [Pa/m], shear_stiffness_ratio (k_s = ratio × k_n(Δ)
-    instead) and residual_stiffness k_r [Pa/m]: a float or {joint name: float}.
+    instead) and residual_stiffness k_r [Pa/m]: a float or {joint name: float}. strength: joint
+    shear strength, None, one description or {joint name: description} (docs/joint-strength.md).
     """
     if not isinstance(laws, Mapping):
         raise TypeError(f"laws must be a dict {{joint name: law}}, got {type(laws).__name__}")
@@ -94,6 +96,7 @@ def joint_behaviours(joint_tags: Mapping[str, int], laws: Mapping[str, object], 
     kr = _per_joint(residual_stiffness, names, "residual_stiffness")
     ratio = None if shear_stiffness_ratio is None else _per_joint(shear_stiffness_ratio, names,
                                                                    "shear_stiffness_ratio")
+    strengths = strength_per_joint(strength, names)
     out = {}
     for name, law in laws.items():
         if isinstance(law, JointBehaviour):
@@ -108,10 +111,11 @@ def joint_behaviours(joint_tags: Mapping[str, int], laws: Mapping[str, object], 
                             f"JointBehaviour, got {type(law).__name__}")
         # JointBehaviour validates the stiffnesses (finite, >= 0) and names the bad one.
         if ratio is None:
-            b = JointBehaviour(law, ShearModel.constant, shear_stiffness=ks[name], residual_stiffness=kr[name])
+            b = JointBehaviour(law, ShearModel.constant, shear_stiffness=ks[name], residual_stiffness=kr[name],
+                               strength=strengths[name])
         else:
             b = JointBehaviour(law, ShearModel.proportional, shear_stiffness_ratio=ratio[name],
-                               residual_stiffness=kr[name])
+                               residual_stiffness=kr[name], strength=strengths[name])
         out[int(joint_tags[name])] = b
     return out
 
@@ -123,7 +127,7 @@ class JointCoupling:
     joints: the DistributedJointMesh (pairs and joint names from it), or its JointPairs with
         `joint_tags` = {joint name: tag}.
     laws: {joint name: law} for every joint (see joint_behaviours); shear_stiffness,
-        shear_stiffness_ratio, residual_stiffness: as in joint_behaviours.
+        shear_stiffness_ratio, residual_stiffness, strength: as in joint_behaviours.
     quadrature: "nodal" (default; smooth tractions for stiff joints) or "gauss" (P1 only).
     bcs: the Dirichlet conditions of the problem; their dofs' rows and columns are left out of the
         joint Jacobian and rows out of the joint residual (see set_supports).
@@ -133,7 +137,7 @@ class JointCoupling:
     def __init__(self, V: fem.FunctionSpace, joints: DistributedJointMesh | JointPairs,
                  laws: Mapping[str, object], *, joint_tags: Mapping[str, int] | None = None,
                  shear_stiffness=0.0, shear_stiffness_ratio=None, residual_stiffness=0.0,
-                 quadrature: str = "nodal", bcs: Sequence[fem.DirichletBCMetaClass] = ()):
+                 strength=None, quadrature: str = "nodal", bcs: Sequence[fem.DirichletBCMetaClass] = ()):
         gdim = V.mesh.geometry.dim
         element = V.ufl_element()
         if V.dofmap.index_map_bs != gdim or element.family() not in ("Lagrange", "Q", "P") \
@@ -172,7 +176,7 @@ class JointCoupling:
         self.joint_tags = names
         self.behaviours = joint_behaviours(names, laws, shear_stiffness=shear_stiffness,
                                            shear_stiffness_ratio=shear_stiffness_ratio,
-                                           residual_stiffness=residual_stiffness)
+                                           residual_stiffness=residual_stiffness, strength=strength)
         self.interface = JointInterface(V, pairs, self.behaviours, quadrature)
         imap, bs = V.dofmap.index_map, V.dofmap.index_map_bs
         self._imap, self._bs = imap, bs
@@ -188,8 +192,10 @@ class JointCoupling:
 
     @property
     def symmetric(self) -> bool:
-        """True if the joint tangent is symmetric (constant shear stiffness on every joint)."""
-        return all(b.shear_model == ShearModel.constant for b in self.behaviours.values())
+        """True if the joint tangent is symmetric (constant shear stiffness and no strength on every
+        joint: friction couples the shear strength to the normal stress)."""
+        return all(b.shear_model == ShearModel.constant and b.strength.model == StrengthModel.none
+                   for b in self.behaviours.values())
 
     # ---- matrix --------------------------------------------------------------------------
     def insert_sparsity(self, pattern: _dcpp.la.SparsityPattern) -> None:

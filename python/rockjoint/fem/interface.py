@@ -194,14 +194,19 @@ class JointInterface:
         """Discard the trial point state (after a failed load step)."""
         self._cpp.revert_state()
 
+    def reset_state(self) -> None:
+        """Virgin point state everywhere (no slip, no dilation, bonds intact): a new analysis."""
+        self._cpp.reset_state()
+
     def update_state(self, u_local: np.ndarray) -> None:
         self._cpp.update_state(u_local)
 
     def state(self) -> dict:
         """Point state on this rank: coordinates, tag, closure [m], normal_stress [Pa, compression +],
         shear_traction [Pa] (points, gdim-1) along t1[, t2], status (rockjoint.Status values),
-        normal (of the pair), and the trial path-dependent state: slip [m] (points, gdim-1),
-        dilation [m], accumulated_slip [m]."""
+        shear_state (rockjoint.fem.ShearState values: stick, slip, open), normal (of the pair), and
+        the trial path-dependent state: slip [m] (points, gdim-1), dilation [m],
+        accumulated_slip [m], bond_broken."""
         c = self._cpp
         npp = c.num_points_per_pair
         out = {
@@ -211,6 +216,7 @@ class JointInterface:
             "normal_stress": c.normal_stress,
             "shear_traction": c.shear_traction,
             "status": c.status,
+            "shear_state": c.shear_state,
             "normal": np.repeat(c.normals, npp, axis=0) if c.num_pairs else np.zeros((0, self.gdim)),
         }
         out.update(c.point_state())

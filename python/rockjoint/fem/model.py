@@ -39,6 +39,7 @@ from .loads import Load, Support
 from .newton import ConvergenceError, NewtonOptions, newton, solve_load_path  # noqa: F401
 from .stages import (JointedProblem, JointedSolution, Stage, StageClock, StageResult,  # noqa: F401
                      lookup, min_op, names_of, snes_load_path)
+from .strength import StrengthModel, strength_per_joint
 
 log = logging.getLogger(__name__)
 
@@ -85,6 +86,11 @@ class JointedRockModel(StagedLoading):
     residual_stiffness: k_r [Pa/m] spring in parallel with every law, in tension and compression
         (float or dict; default 0: a block held only by an open joint is then a singular system and
         solve() raises LinearSolveError instead of returning garbage).
+    strength: joint shear strength (docs/joint-strength.md): None (elastic joints), one description
+        for every joint, or {joint name: description}; a description is a JointStrength or a dict
+        {"model": "coulomb" | "barton", "friction_angle": rad, "cohesion": Pa, ...} (see
+        rockjoint.fem.make_strength). With a strength the Jacobian is non-symmetric (LU / GMRES)
+        and the slip is committed only when a load step converges.
     plane: "strain" (default) or "stress" in 2D; None (or "3D") in 3D.
     quadrature: "nodal" (default; smooth tractions for stiff joints) or "gauss".
     linear_solver: "auto" (MUMPS up to 60k dofs, else CG+GAMG), "direct" or "iterative".
@@ -101,7 +107,8 @@ class JointedRockModel(StagedLoading):
     """
 
     def __init__(self, dmesh, element_degree: int = 1, rock=None, joints=None, shear_stiffness=0.0,
-                 shear_stiffness_ratio=None, residual_stiffness=0.0, plane: str | None = None,
+                 shear_stiffness_ratio=None, residual_stiffness=0.0, strength=None,
+                 plane: str | None = None,
                  quadrature: str = "nodal", linear_solver: str = "auto",
                  newton: NewtonOptions | None = None, petsc_options: dict | None = None,
                  options_prefix: str | None = None, density=None, gravity=STANDARD_GRAVITY):
@@ -137,7 +144,8 @@ class JointedRockModel(StagedLoading):
         self.options_prefix = options_prefix
         self.newton_options = newton or NewtonOptions()
         self.rock = self._check_rock(rock)
-        self.behaviours = self._check_joints(joints, shear_stiffness, shear_stiffness_ratio, residual_stiffness)
+        self.behaviours = self._check_joints(joints, shear_stiffness, shear_stiffness_ratio, residual_stiffness,
+                                             strength)
         self.densities = self._check_density(density)  #: {block name: ρ [kg/m³]} ({} without gravity)
         self._supports: list[Support] = []
         self._loads: list[Load] = []
@@ -181,7 +189,7 @@ class JointedRockModel(StagedLoading):
             out[blocks[name]] = (E, nu)
         return out
 
-    def _check_joints(self, joints, ks, ratio, kr) -> dict:
+    def _check_joints(self, joints, ks, ratio, kr, strength=None) -> dict:
         names = _names(self.dmesh, "joints")
         joints = joints or {}
         unknown = set(joints) - set(names)
@@ -193,15 +201,17 @@ class JointedRockModel(StagedLoading):
         ks = _per_joint(ks, names, "shear_stiffness")
         kr = _per_joint(kr, names, "residual_stiffness")
         ratio = None if ratio is None else _per_joint(ratio, names, "shear_stiffness_ratio")
+        strengths = strength_per_joint(strength, names)
         out = {}
         for name, law in joints.items():
             if not isinstance(law, _rockjoint.constitutive.ClosureLaw):
                 raise ValueError(f"joints[{name!r}] must be a rockjoint closure law or table, got {type(law).__name__}")
             if ratio is None:
-                b = JointBehaviour(law, ShearModel.constant, shear_stiffness=ks[name], residual_stiffness=kr[name])
+                b = JointBehaviour(law, ShearModel.constant, shear_stiffness=ks[name], residual_stiffness=kr[name],
+                                   strength=strengths[name])
             else:
                 b = JointBehaviour(law, ShearModel.proportional, shear_stiffness_ratio=ratio[name],
-                                   residual_stiffness=kr[name])
+                                   residual_stiffness=kr[name], strength=strengths[name])
             out[names[name]] = b
         return out
 
@@ -320,7 +330,9 @@ class JointedRockModel(StagedLoading):
         self._r_sigma0 = None  # ∫ε(v):σ0 dx with an in-situ stress
 
         num_dofs = imap.size_global * bs
-        symmetric = all(b.shear_model == ShearModel.constant for b in self.behaviours.values())
+        # Friction couples the shear strength to the normal stress: an unsymmetric tangent.
+        symmetric = all(b.shear_model == ShearModel.constant and b.strength.model == StrengthModel.none
+                        for b in self.behaviours.values())
         nullspace = None
         kind = self.linear_solver_kind
         if kind == "iterative" or (kind == "auto" and num_dofs > 60_000):
