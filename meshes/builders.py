@@ -17,6 +17,7 @@ gmsh runs on one process: with ``comm`` given, ranks other than 0 return None wi
 from __future__ import annotations
 
 import atexit
+import contextlib
 import math
 from typing import Iterable, Sequence
 
@@ -98,23 +99,31 @@ def jointed_block(size: Sequence[float], joints: Iterable, dim: int | None = Non
     traces = [joint_trace(j, size, [joints[k] for k in bounds], f"joint {j.name!r}")
               for j, bounds in _resolve_bounds(joints)]
 
-    import gmsh
-    _ensure_gmsh(gmsh)
-    saved = {o: gmsh.option.getNumber(o) for o in _OPTIONS}  # gmsh options are global: restore them
-    gmsh.option.setNumber("General.Terminal", 0)
-    gmsh.model.add("rockjoint_jointed_block")
-    try:
+    with _gmsh_model("rockjoint_jointed_block") as gmsh:
         gmsh.option.setNumber("Mesh.Algorithm3D", _ALGORITHMS_3D[algorithm_3d])
         return _build(gmsh, size, dim, joints, traces, mesh_size, joint_mesh_size, refine_distance)
-    finally:
-        gmsh.model.remove()
-        for o, v in saved.items():
-            gmsh.option.setNumber(o, v)
 
 
 _OPTIONS = ("General.Terminal", "Mesh.MeshSizeExtendFromBoundary", "Mesh.MeshSizeFromPoints",
             "Mesh.MeshSizeFromCurvature", "Mesh.MeshSizeMin", "Mesh.MeshSizeMax", "Mesh.ElementOrder",
             "Mesh.Algorithm3D")
+
+
+@contextlib.contextmanager
+def _gmsh_model(name: str):
+    """gmsh (initialised) with a new model `name`, quiet; afterwards the model is removed and the
+    global options a builder sets (_OPTIONS) are restored, whatever happened."""
+    import gmsh
+    _ensure_gmsh(gmsh)
+    saved = {o: gmsh.option.getNumber(o) for o in _OPTIONS}  # gmsh options are global: restore them
+    gmsh.option.setNumber("General.Terminal", 0)
+    gmsh.model.add(name)
+    try:
+        yield gmsh
+    finally:
+        gmsh.model.remove()
+        for o, v in saved.items():
+            gmsh.option.setNumber(o, v)
 
 
 _OWN_GMSH = []

@@ -30,7 +30,7 @@ from typing import Iterable
 import numpy as np
 
 from .builders import (BOUNDARY_TAGS, _add_trace, _block_and_joint_groups, _block_face, _distance_threshold,
-                       _ensure_gmsh, _generate, _graded_size, _normalise_joints, _OPTIONS, _resolve_bounds)
+                       _generate, _gmsh_model, _graded_size, _normalise_joints, _resolve_bounds)
 from .joint_geometry import _positive, joint_trace, unit_normal
 from .jointed_mesh import JointedMesh
 
@@ -239,18 +239,9 @@ def tunnel_section(width: float, height: float, opening, joints: Iterable = (), 
             raise ValueError(f"joint {j.name!r} touches the opening's outline without crossing it (tangent: "
                              f"closest {np.abs(side).min():.3g} m); sliver blocks would follow, move the joint")
 
-    import gmsh
-    _ensure_gmsh(gmsh)
-    saved = {o: gmsh.option.getNumber(o) for o in _OPTIONS}  # gmsh options are global: restore them
-    gmsh.option.setNumber("General.Terminal", 0)
-    gmsh.model.add("rockjoint_tunnel_section")
-    try:
+    with _gmsh_model("rockjoint_tunnel_section") as gmsh:
         return _build(gmsh, size, opening, joints, traces, mesh_size, opening_mesh_size, opening_refine_distance,
                       joint_mesh_size, joint_refine_distance, intact, length)
-    finally:
-        gmsh.model.remove()
-        for o, v in saved.items():
-            gmsh.option.setNumber(o, v)
 
 
 def _build(gmsh, size, opening, joints, traces, mesh_size, opening_mesh_size, opening_refine_distance,
