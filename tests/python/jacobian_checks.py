@@ -1,8 +1,30 @@
 """The assembled Newton Jacobian (bulk + joints, through PETSc) against central differences of
-the assembled residual along random free directions: one check for every FE Jacobian test."""
+the assembled residual along random free directions: one check for every FE Jacobian test, and
+the loaded block it is checked on."""
 import numpy as np
 from mpi4py import MPI
 from petsc4py import PETSc
+
+import rockjoint
+from rockjoint import meshes
+from rockjoint.fem import JointedRockModel, NewtonOptions
+from rockjoint.fem.distributed_mesh import distribute
+
+
+def sheared_block(dim, comm=MPI.COMM_WORLD, **model_options):
+    """A unit block cut by a joint dipping 25° (Barton-Bandis, k_ni = 2e10 Pa/m, V_m = 1 mm), fixed
+    at the bottom and loaded on top by a shear traction of 1 MPa and a normal one of 8 MPa: not yet
+    solved. model_options go to JointedRockModel (shear stiffness, strength, quadrature, ...)."""
+    jm = meshes.jointed_block((1.0,) * dim, [meshes.Joint((0.5,) * dim, 25.0, 90.0, "j")], dim=dim,
+                              mesh_size=0.35 if dim == 2 else 0.5, comm=comm)
+    model = JointedRockModel(distribute(jm, comm), rock=(10e9, 0.3), joints={"j": rockjoint.BartonBandis(2e10, 1e-3)},
+                             plane="strain" if dim == 2 else None, newton=NewtonOptions(verbose=False),
+                             **model_options)
+    model.fix("bottom", "all")
+    top = [0.0] * dim
+    top[0], top[-1] = 1e6, -8e6
+    model.add_traction("top", top)
+    return model
 
 
 def assert_jacobian_matches_fd(model, u0, relative_step, seed=0, draws=3, tol=1e-6, label=""):

@@ -26,7 +26,7 @@ from rockjoint import meshes  # noqa: E402
 from rockjoint.fem import (ConvergenceError, JointedRockModel, LinearSolveError,  # noqa: E402
                            NewtonOptions, ShearState)
 from rockjoint.fem.distributed_mesh import distribute  # noqa: E402
-from jacobian_checks import assert_jacobian_matches_fd  # noqa: E402
+from jacobian_checks import assert_jacobian_matches_fd, sheared_block  # noqa: E402
 
 THETA = math.radians(30.0)
 KNI, VM, KS = 1e10, 1e-3, 5e9
@@ -258,17 +258,9 @@ def jacobian_against_finite_differences(dim, case, comm=MPI.COMM_WORLD):
     committed (converged) state u1: "stick" (0.95 u1: elastic unloading), "slip" (u1 plus a
     translation of the upper block by 3 mm along the joint's t1) or "open" (-u1). Friction with
     dilation: an unsymmetric tangent."""
-    jm = meshes.jointed_block((1.0,) * dim, [meshes.Joint((0.5,) * dim, 25.0, 90.0, "j")], dim=dim,
-                              mesh_size=0.35 if dim == 2 else 0.5, comm=comm)
-    model = JointedRockModel(distribute(jm, comm), rock=(10e9, 0.3), joints={"j": rockjoint.BartonBandis(2e10, 1e-3)},
-                             shear_stiffness=5e9, plane="strain" if dim == 2 else None,
-                             strength={"friction_angle": math.radians(40.0), "cohesion": 0.3e6,
-                                       "dilation_angle": math.radians(8.0)},
-                             newton=NewtonOptions(verbose=False))
-    model.fix("bottom", "all")
-    top = [0.0] * dim
-    top[0], top[-1] = 1e6, -8e6
-    model.add_traction("top", top)
+    model = sheared_block(dim, comm, shear_stiffness=5e9,
+                          strength={"friction_angle": math.radians(40.0), "cohesion": 0.3e6,
+                                    "dilation_angle": math.radians(8.0)})
     model.solve(load_steps=2)
     u1 = model.u.x.array.copy()
     if case == "stick":

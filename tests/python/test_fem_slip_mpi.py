@@ -11,23 +11,20 @@ pytest.importorskip("rockjoint._rockjoint_fem")
 from mpi4py import MPI  # noqa: E402
 
 import test_fem_joint_slip as slip  # noqa: E402  (tests/python is on sys.path under pytest)
-
-
-def _two_ranks():
-    assert MPI.COMM_WORLD.size == 2, "run with mpirun -n 2"
+from mpi_ranks import two_ranks  # noqa: E402
 
 
 @pytest.mark.mpi
 @pytest.mark.parametrize("dim", [2, 3])
 @pytest.mark.parametrize("case", ["stick", "slip", "open"])
 def test_jacobian_matches_finite_differences_on_two_ranks(dim, case):
-    _two_ranks()
+    two_ranks()
     slip.jacobian_against_finite_differences(dim, case)
 
 
 @pytest.mark.mpi
 def test_partial_slip_on_two_ranks_equals_serial():
-    _two_ranks()
+    two_ranks()
     phi = math.radians(18.0)
     parallel, _ = slip._friction_block(phi, shear=0.3)
     par = parallel.solve(load_steps=2).gather_joints()

@@ -6,8 +6,8 @@ from .distributed_mesh import (DistributedJointMesh, JointPairs, distribute,  # 
                                pair_vertex_positions)
 
 try:  # the joint elements need the compiled _rockjoint_fem (built with -DROCKJOINT_FEM=ON)
-    from .coupling import (JointCoupling, JointedNonlinearProblem, joint_behaviours,  # noqa: F401
-                           supported_dofs)
+    from .behaviours import joint_behaviours  # noqa: F401
+    from .coupling import JointCoupling, JointedNonlinearProblem, supported_dofs  # noqa: F401
     from .interface import JointBehaviour, JointInterface, QuadratureRule, ShearModel  # noqa: F401
     from .linear_solver import LinearSolveError  # noqa: F401
     from .in_situ import InSituStress  # noqa: F401

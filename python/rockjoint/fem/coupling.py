@@ -24,7 +24,6 @@ of its remaining room to a law's maximum closure.
 from __future__ import annotations
 
 import logging
-import os
 from typing import Callable, Iterable, Mapping, Sequence
 
 import numpy as np
@@ -32,13 +31,13 @@ import ufl
 from dolfinx import cpp as _dcpp
 from dolfinx import fem, la
 from dolfinx.fem import petsc as fem_petsc
+from mpi4py import MPI
 from petsc4py import PETSc
 
-from .. import _rockjoint
-from .distributed_mesh import DistributedJointMesh, JointPairs
-from .interface import JointBehaviour, JointInterface, ShearModel
-from .model import _per_joint  # a float or {joint name: float} per joint, names checked
-from .strength import StrengthModel, strength_per_joint
+from .behaviours import joint_behaviours, symmetric_tangent
+from .distributed_mesh import DistributedJointMesh, JointPairs, names_of
+from .interface import JointInterface
+from .petsc_options import check_options_prefix, check_petsc_options
 
 log = logging.getLogger(__name__)
 
@@ -71,62 +70,13 @@ def _same_space(W, V) -> bool:
     return V._cpp_object.contains(getattr(W, "_cpp_object", W))
 
 
-def joint_behaviours(joint_tags: Mapping[str, int], laws: Mapping[str, object], *,
-                     shear_stiffness=0.0, shear_stiffness_ratio=None,
-                     residual_stiffness=0.0, strength=None) -> dict:
-    """{joint tag: JointBehaviour} from a law per joint name.
-
-    joint_tags: {joint name: tag} of every joint of the mesh. laws: {joint name: law} for every
-    joint; a law is a rockjoint closure law or table, the path of a .rjt table, or a JointBehaviour
-    (then used as it is). shear_stiffness k_s [Pa/m], shear_stiffness_ratio (k_s = ratio × k_n(Δ)
-    instead) and residual_stiffness k_r [Pa/m]: a float or {joint name: float}. strength: joint
-    shear strength, None, one description or {joint name: description} (docs/joint-strength.md).
-    """
-    if not isinstance(laws, Mapping):
-        raise TypeError(f"laws must be a dict {{joint name: law}}, got {type(laws).__name__}")
-    names = list(joint_tags)
-    unknown = set(laws) - set(names)
-    if unknown:
-        raise ValueError(f"laws: unknown joint(s) {sorted(unknown)}; available joints: {sorted(names)}")
-    missing = set(names) - set(laws)
-    if missing:
-        raise ValueError(f"laws: no law for joint(s) {sorted(missing)}; give {{joint name: law}} for "
-                         f"every joint of the mesh: {sorted(names)}")
-    ks = _per_joint(shear_stiffness, names, "shear_stiffness")
-    kr = _per_joint(residual_stiffness, names, "residual_stiffness")
-    ratio = None if shear_stiffness_ratio is None else _per_joint(shear_stiffness_ratio, names,
-                                                                   "shear_stiffness_ratio")
-    strengths = strength_per_joint(strength, names)
-    out = {}
-    for name, law in laws.items():
-        if isinstance(law, JointBehaviour):
-            out[int(joint_tags[name])] = law
-            continue
-        if isinstance(law, (str, os.PathLike)):
-            if not os.path.isfile(law):
-                raise ValueError(f"laws[{name!r}]: no table file {os.fspath(law)!r}")
-            law = _rockjoint.constitutive.TabulatedLaw.load(os.fspath(law))
-        if not isinstance(law, _rockjoint.constitutive.ClosureLaw):
-            raise TypeError(f"laws[{name!r}] must be a rockjoint closure law or table, a .rjt path or a "
-                            f"JointBehaviour, got {type(law).__name__}")
-        # JointBehaviour validates the stiffnesses (finite, >= 0) and names the bad one.
-        if ratio is None:
-            b = JointBehaviour(law, ShearModel.constant, shear_stiffness=ks[name], residual_stiffness=kr[name],
-                               strength=strengths[name])
-        else:
-            b = JointBehaviour(law, ShearModel.proportional, shear_stiffness_ratio=ratio[name],
-                               residual_stiffness=kr[name], strength=strengths[name])
-        out[int(joint_tags[name])] = b
-    return out
-
-
 class JointCoupling:
     """The joints of a mesh bound to the user's displacement space V.
 
     V: vector Lagrange space of degree 1 or 2 on the split mesh (block size = gdim).
     joints: the DistributedJointMesh (pairs and joint names from it), or its JointPairs with
         `joint_tags` = {joint name: tag}.
-    laws: {joint name: law} for every joint (see joint_behaviours); shear_stiffness,
+    laws: {joint name: law} for every joint (see behaviours.joint_behaviours); shear_stiffness,
         shear_stiffness_ratio, residual_stiffness, strength: as in joint_behaviours.
     quadrature: "nodal" (default; smooth tractions for stiff joints) or "gauss" (P1 only).
     bcs: the Dirichlet conditions of the problem; their dofs' rows and columns are left out of the
@@ -149,7 +99,7 @@ class JointCoupling:
             if joints.mesh is not V.mesh:
                 raise ValueError("V is not built on the mesh of the DistributedJointMesh `joints`")
             pairs = joints.pairs
-            names = {str(n): int(t) for t, n in joints.names["joints"].items()}
+            names = names_of(joints, "joints")
             if joint_tags is not None:
                 raise ValueError("joint_tags: the joint names come from the DistributedJointMesh; give "
                                  "joint_tags only with JointPairs")
@@ -194,8 +144,7 @@ class JointCoupling:
     def symmetric(self) -> bool:
         """True if the joint tangent is symmetric (constant shear stiffness and no strength on every
         joint: friction couples the shear strength to the normal stress)."""
-        return all(b.shear_model == ShearModel.constant and b.strength.model == StrengthModel.none
-                   for b in self.behaviours.values())
+        return symmetric_tangent(self.behaviours)
 
     # ---- matrix --------------------------------------------------------------------------
     def insert_sparsity(self, pattern: _dcpp.la.SparsityPattern) -> None:
@@ -241,7 +190,7 @@ class JointCoupling:
         else:
             arr = self._check_size(b, "b")
             arr += r
-        return bool(self.V.mesh.comm.allreduce(finite, op=_mpi_min()))
+        return bool(self.V.mesh.comm.allreduce(finite, op=MPI.MIN))
 
     def add_jacobian(self, u, A: PETSc.Mat, scale: float = 1.0) -> None:
         """Add `scale` × the joint tangent at u into A (MatSetValuesLocal, ADD_VALUES, no flush),
@@ -263,7 +212,7 @@ class JointCoupling:
             raise ValueError(f"fraction = {fraction} must be in (0, 1)")
         u_local = np.array(self._local(u, "u"))  # a copy: _local(du) may reuse the work vector
         alpha = self.interface._cpp.admissible_step_length(u_local, self._local(du, "du"), fraction)
-        return float(self.V.mesh.comm.allreduce(alpha, op=_mpi_min()))
+        return float(self.V.mesh.comm.allreduce(alpha, op=MPI.MIN))
 
     def newton_update(self, fraction: float = 0.95) -> Callable:
         """An update for dolfinx.nls.petsc.NewtonSolver.set_update: x ← x - α dx with the
@@ -332,11 +281,6 @@ class JointCoupling:
 
 
 _SNES_COUNT = [0]  # default SNES options prefixes, numbered per process (the same on every rank)
-
-
-def _mpi_min():
-    from mpi4py import MPI
-    return MPI.MIN
 
 
 class JointedNonlinearProblem:
@@ -486,8 +430,8 @@ class JointedNonlinearProblem:
         {"snes_rtol": 1e-10, "ksp_type": "preonly", "pc_type": "lu"}. Solve with
         snes.solve(None, x), x = u.vector.copy(); then x.copy(u.vector) and u.x.scatter_forward()."""
         comm = comm or self.u.function_space.mesh.comm
-        if options_prefix is not None and (not isinstance(options_prefix, str) or options_prefix.startswith("-")):
-            raise ValueError(f"options_prefix {options_prefix!r}: a string without a leading dash")
+        options_prefix = check_options_prefix(options_prefix)
+        petsc_options = check_petsc_options(petsc_options)
         if options_prefix is None:
             _SNES_COUNT[0] += 1
             options_prefix = f"rockjoint_snes_{_SNES_COUNT[0]}_"
@@ -495,9 +439,7 @@ class JointedNonlinearProblem:
         snes = PETSc.SNES().create(comm)
         snes.setOptionsPrefix(prefix)
         opts = PETSc.Options()
-        for key, value in (petsc_options or {}).items():
-            if not isinstance(key, str) or not key or key.startswith("-"):
-                raise ValueError(f"petsc_options key {key!r}: give option names without the leading dash")
+        for key, value in petsc_options.items():
             opts[prefix + key] = value
         snes.setFunction(self._snes_F, self.vector())
         snes.setJacobian(self._snes_J, self.matrix())

@@ -9,6 +9,7 @@ turns the user's description of a strength into a validated `JointStrength`.
 from __future__ import annotations
 
 from .. import _rockjoint_fem as _cpp
+from .validation import positive_number
 
 JointStrength = _cpp.JointStrength
 StrengthModel = _cpp.StrengthModel
@@ -65,14 +66,8 @@ def barton_bandis_shear_stiffness(jrc: float, jcs: float, residual_friction_angl
     τ_peak = σ_n tan(φ_r + JRC log10(JCS/σ_n)) (angle capped at 70°). A constant k_s for
     JointedRockModel(shear_stiffness=...); jcs, normal_stress in Pa, block_length in m, angle in
     radians."""
-    for name, value in (("normal_stress", normal_stress), ("block_length", block_length)):
-        try:
-            valid = 0.0 < float(value) < float("inf")
-        except (TypeError, ValueError):
-            valid = False
-        if not valid:
-            raise ValueError(f"barton_bandis_shear_stiffness: {name} = {value!r} is invalid; it must be "
-                             f"finite and > 0")
+    normal_stress = positive_number("barton_bandis_shear_stiffness: normal_stress", normal_stress, unit="Pa")
+    block_length = positive_number("barton_bandis_shear_stiffness: block_length", block_length, unit="m")
     strength = make_strength({"model": "barton", "friction_angle": residual_friction_angle, "jrc": jrc,
                               "jcs": jcs}, "barton_bandis_shear_stiffness")
     return 100.0 * strength.shear_strength(normal_stress) / block_length
