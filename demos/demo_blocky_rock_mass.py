@@ -286,6 +286,17 @@ def style(ax, title):
     ax.set_title(title, fontsize=10)
 
 
+def save(fig, what, path):
+    """Title (what, at the end of the load path, with the loads and the strength) and PNG."""
+    import matplotlib.pyplot as plt
+    fig.suptitle(f"{what} at the end of the load path: σ_v = {STAGES[-1][1] * 1e-6:g} MPa, "
+                 f"σ_h = {HORIZONTAL_STRESS * 1e-6:g} MPa; strength: Coulomb φ = "
+                 f"{math.degrees(FRICTION_ANGLE):g}°, c = {COHESION * 1e-6:g} MPa")
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
 def plot_sections(models, path):
     """|u| of the three sections at the end of the load path, filled triangles, one scale."""
     tris = {label: gathered_triangles(m) for label, m in models.items()}
@@ -303,13 +314,7 @@ def plot_sections(models, path):
                              vmin=0.0, vmax=vmax, cmap="viridis")
         fig.colorbar(shade, ax=ax, label="|u| [mm]")
         style(ax, f"{MODELS[label]}: |u| [mm]")
-    sv = STAGES[-1][1]
-    fig.suptitle(f"blocky granite mass at the end of the load path, σ_v = {sv * 1e-6:g} MPa, "
-                 f"σ_h = {HORIZONTAL_STRESS * 1e-6:g} MPa (plane strain); joints: Coulomb φ = "
-                 f"{math.degrees(FRICTION_ANGLE):g}° in the right section")
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    save(fig, "blocky granite mass (plane strain), |u|", path)
 
 
 def plot_joints(models, results, jointed, path):
@@ -358,13 +363,7 @@ def plot_joints(models, results, jointed, path):
     axes[2].add_collection(lines)
     fig.colorbar(lines, ax=axes[2], label="|slip| [mm]")
     style(axes[2], f"slipping joints: slip [mm] (deformed, u × {scale:.0f})")
-    sv = STAGES[-1][1]
-    fig.suptitle(f"joints at the end of the load path (σ_v = {sv * 1e-6:g} MPa, σ_h = "
-                 f"{HORIZONTAL_STRESS * 1e-6:g} MPa); strength: Coulomb φ = "
-                 f"{math.degrees(FRICTION_ANGLE):g}°, c = {COHESION * 1e-6:g} MPa")
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    save(fig, "joints", path)
 
 
 if __name__ == "__main__":
