@@ -97,7 +97,10 @@ def test_block_on_inclined_joint_slips_at_the_threshold_and_keeps_the_permanent_
     model.advance(1.03 * lam_star)
     s = model.interface.state()
     assert np.all(s["slip"][:, 0] < 0.0), "no slip just past the analytic threshold"
-    model.advance(lam_max, load_steps=3)
+    sliding = model.advance(lam_max, load_steps=3)
+    # A stage reports the shear state of its last converged step: the block slid in it
+    # (re-evaluated from the state just committed, the points would read "stick").
+    assert np.all(sliding.gather_joints()["shear_state"] == int(ShearState.slip))
     u_max = ref.u_at(lam_max)
     expected = ref.state(u_max)
     assert abs(expected["slip"]) > 0.1 * abs(expected["js"])  # a real plastic slip
@@ -110,7 +113,8 @@ def test_block_on_inclined_joint_slips_at_the_threshold_and_keeps_the_permanent_
     unloaded = RigidBlock().u_at(0.0, slip=expected["slip"], lo=expected["slip"] / ref.t1[0])
     back = RigidBlock().state(unloaded, slip=expected["slip"])
     assert abs(back["tau"]) < C + back["sigma"] * math.tan(PHI)
-    model.advance(0.0, load_steps=3)
+    unloading = model.advance(0.0, load_steps=3)
+    assert np.all(unloading.gather_joints()["shear_state"] == int(ShearState.stick))
     joints = model.interface.state()
     np.testing.assert_allclose(joints["slip"][:, 0], slip, rtol=1e-12)
     assert np.all(joints["shear_state"] != int(ShearState.slip))

@@ -542,10 +542,17 @@ class JointedRockModel(StagedLoading):
         return out
 
     def _stage_result(self, name: str, reports: list, elapsed: float) -> StageResult:
+        # The shear state is that of the last converged load step (stick/slip/open), as the
+        # last residual of its Newton loop classified it. update_state re-evaluates every point
+        # from the state just committed, where a point that slipped in that step sits on its
+        # strength with a zero increment and would read "stick".
+        last_step = np.array(self.interface.state()["shear_state"], copy=True)
         self.interface.update_state(self.u.x.array)
         disp = fem.Function(self.V, name="displacement")
         disp.x.array[:] = self.u.x.array
-        result = StageResult(disp, self.interface.state(), reports, self, name, self._reactions(), elapsed)
+        state = self.interface.state()
+        state["shear_state"] = last_step
+        result = StageResult(disp, state, reports, self, name, self._reactions(), elapsed)
         self.stages.append(result)
         self.solution = result
         beyond = result.beyond_law_range()
