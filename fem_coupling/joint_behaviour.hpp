@@ -59,7 +59,7 @@ void validate(const JointBehaviour& behaviour, const std::string& label);
 enum class ShearState : int
 {
   stick = 0, ///< in contact (or bonded), inside the strength: elastic shear
-  slip = 1,  ///< on the strength: the return mapping moved the slip
+  slip = 1,  ///< on the strength (|τ| = τ_y to round-off): sliding
   open = 2,  ///< open: only the residual spring acts
 };
 

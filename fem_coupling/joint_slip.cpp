@@ -76,7 +76,14 @@ LocalResponse joint_response(const JointBehaviour& b, int gdim, const std::array
   const double yield = ks.value * e - strength.strength; // f(τ_tr)
   if (!normal.in_contact || !(yield > 0.0))
   {
-    r.shear_state = normal.in_contact ? ShearState::stick : ShearState::open;
+    // A point whose elastic shear traction sits on its strength (to round-off) is sliding: it
+    // slid in the step just committed and is re-evaluated from that state with a zero
+    // increment. Labelled by where τ is, not by whether this evaluation moved the slip, so
+    // that every re-evaluation of a converged state (stage results, output) reads the same.
+    const bool on_strength = strength.strength > 0.0 && yield >= -1e-9 * strength.strength;
+    r.shear_state = !normal.in_contact ? ShearState::open
+                    : on_strength      ? ShearState::slip
+                                       : ShearState::stick;
     for (int i = 0; i < shear_components; ++i)
     {
       r.traction[i + 1] = ks.value * elastic_slip[i];

@@ -129,6 +129,29 @@ TEST(FemJointSlip, ReturnMappingReachesTheCoulombStrengthWithTheClosedFormSlip)
   EXPECT_NEAR(trial.slip[0], -(tau_trial - tau_y) / ks, 1e-12 * js);
 }
 
+TEST(FemJointSlip, ReevaluatingACommittedSlipStepReadsSlipWithoutMovingTheSlip)
+{
+  // The step slid: committed state = its trial state. Re-evaluated at the same jump (stage
+  // results, output) the elastic predictor sits on the strength with a zero increment: still
+  // "slip", the same traction, the slip unchanged. Just inside the strength it reads "stick".
+  for (const double psi : {0.0, 5 * deg})
+  {
+    const JointBehaviour b = coulomb(30 * deg, 1e5, psi);
+    const std::array<double, 3> jump{-1e-4, 5e-4, 0.0};
+    JointPointState committed, again;
+    const LocalResponse first = respond(b, 2, jump, {}, &committed);
+    ASSERT_EQ(first.shear_state, ShearState::slip);
+    const LocalResponse second = respond(b, 2, jump, committed, &again);
+    EXPECT_EQ(second.shear_state, ShearState::slip) << "ψ = " << psi;
+    EXPECT_NEAR(second.traction[1], first.traction[1], 1e-9 * std::abs(first.traction[1]));
+    EXPECT_NEAR(again.slip[0], committed.slip[0], 1e-12 * jump[1]);
+    // Unloading by 1 % of the elastic shear jump: strictly inside, elastic.
+    const double elastic = jump[1] - committed.slip[0];
+    const LocalResponse inside = respond(b, 2, {jump[0], jump[1] - 0.01 * elastic, 0.0}, committed);
+    EXPECT_EQ(inside.shear_state, ShearState::stick) << "ψ = " << psi;
+  }
+}
+
 TEST(FemJointSlip, DilationGivesTheClosedFormSlipIncrementAndNormalStress)
 {
   // Linear law: G(Δλ) = c + tanφ k_n (Δ + tanψ Δλ) - k_s (e - Δλ) = 0

@@ -101,6 +101,9 @@ def test_block_on_inclined_joint_slips_at_the_threshold_and_keeps_the_permanent_
     # A stage reports the shear state of its last converged step: the block slid in it
     # (re-evaluated from the state just committed, the points would read "stick").
     assert np.all(sliding.gather_joints()["shear_state"] == int(ShearState.slip))
+    # Any re-evaluation of the converged state (JointCoupling.state, output) reads the same.
+    model.interface.update_state(model.u.x.array)
+    assert np.all(model.interface.state()["shear_state"] == int(ShearState.slip))
     u_max = ref.u_at(lam_max)
     expected = ref.state(u_max)
     assert abs(expected["slip"]) > 0.1 * abs(expected["js"])  # a real plastic slip

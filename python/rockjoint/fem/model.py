@@ -542,16 +542,12 @@ class JointedRockModel(StagedLoading):
         return out
 
     def _stage_result(self, name: str, reports: list, elapsed: float) -> StageResult:
-        # The shear state is that of the last converged load step (stick/slip/open), as the
-        # last residual of its Newton loop classified it. update_state re-evaluates every point
-        # from the state just committed, where a point that slipped in that step sits on its
-        # strength with a zero increment and would read "stick".
-        last_step = np.array(self.interface.state()["shear_state"], copy=True)
+        # Re-evaluated from the state just committed: a point that slid in the last step sits on
+        # its strength and reads "slip" (joint_slip.cpp labels by where τ is).
         self.interface.update_state(self.u.x.array)
         disp = fem.Function(self.V, name="displacement")
         disp.x.array[:] = self.u.x.array
         state = self.interface.state()
-        state["shear_state"] = last_step
         result = StageResult(disp, state, reports, self, name, self._reactions(), elapsed)
         self.stages.append(result)
         self.solution = result
