@@ -31,7 +31,6 @@ numbers), blocky_intact.xdmf, blocky_jointed.xdmf and blocky_slip.xdmf (+ *_join
 joint state incl. slip_m and shear_state) for ParaView. Units in print: mm, MPa, degrees.
 """
 import argparse
-import logging
 import math
 import os
 import time
@@ -40,19 +39,13 @@ import numpy as np
 from mpi4py import MPI
 
 import rockjoint
+from rockjoint.console import quiet_compiler_logging, say
 from rockjoint import meshes
 from rockjoint.fem import JointedRockModel, NewtonOptions, ShearState, distribute, make_strength
 
 COMM = MPI.COMM_WORLD
-# DOLFINx compiles forms on first use through setuptools, which sets the root logger to INFO
-# and would print every compiler command: a handler of our own that passes warnings only.
-logging.basicConfig(level=logging.WARNING)
-logging.getLogger().handlers[0].setLevel(logging.WARNING)
+quiet_compiler_logging()  # DOLFINx's form compiler would log every command
 
-
-def say(*args):
-    if COMM.rank == 0:
-        print(*args, flush=True)
 
 
 # %% The rock mass -----------------------------------------------------------------------------

@@ -24,7 +24,6 @@ Outputs (in DIR, default the working directory): direct_shear.png (shear stress 
 displacement against shear displacement), direct_shear_table.txt. Units in print: mm, MPa.
 """
 import argparse
-import logging
 import math
 import os
 
@@ -32,18 +31,14 @@ import numpy as np
 from mpi4py import MPI
 
 import rockjoint
+from rockjoint.console import quiet_compiler_logging, say
 from rockjoint import meshes
 from rockjoint.fem import (JointBehaviour, JointedRockModel, JointPointState, NewtonOptions, distribute,
                            joint_response, make_strength)
 
 COMM = MPI.COMM_WORLD
-logging.basicConfig(level=logging.WARNING)
-logging.getLogger().handlers[0].setLevel(logging.WARNING)
+quiet_compiler_logging()  # DOLFINx's form compiler would log every command
 
-
-def say(*args):
-    if COMM.rank == 0:
-        print(*args, flush=True)
 
 
 # %% Parameters ------------------------------------------------------------------------------

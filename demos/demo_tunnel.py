@@ -36,6 +36,7 @@ from dolfinx.io import XDMFFile
 from mpi4py import MPI
 
 import rockjoint
+from rockjoint.console import quiet_compiler_logging
 from rockjoint import meshes
 from rockjoint import topography as topo
 from rockjoint.fem import InSituStress, JointedRockModel, NewtonOptions, distribute
@@ -43,11 +44,7 @@ from rockjoint.fem.probe import probe
 from rockjoint.reference import KirschSolution
 
 COMM = MPI.COMM_WORLD
-# DOLFINx compiles forms on first use through setuptools, which sets the root logger to INFO and
-# would print every compiler command: warnings only through the root logger, and the demo's
-# progress through a logger of its own (rank 0).
-logging.basicConfig(level=logging.WARNING)
-logging.getLogger().handlers[0].setLevel(logging.WARNING)
+quiet_compiler_logging()  # DOLFINx's form compiler would log every command
 log = logging.getLogger("demo_tunnel")
 log.propagate = False
 log.addHandler(logging.StreamHandler())

@@ -23,7 +23,6 @@ user_model_joints.xdmf (joint state), sliding_plane.rjt and bedding.rjt (the tab
 Units in print: mm, MPa, GPa.
 """
 import argparse
-import logging
 import os
 
 import gmsh
@@ -35,21 +34,15 @@ from mpi4py import MPI
 from petsc4py import PETSc
 
 import rockjoint
+from rockjoint.console import quiet_compiler_logging, say
 from rockjoint import meshes
 from rockjoint.fem import (JointCoupling, JointedNonlinearProblem, JointedRockModel, NewtonOptions,
                            distribute)
 from rockjoint.fem.output import write_joint_points
 
 COMM = MPI.COMM_WORLD
-# DOLFINx compiles forms on first use through setuptools, which sets the root logger to INFO
-# and would print every compiler command: a handler of our own that passes warnings only.
-logging.basicConfig(level=logging.WARNING)
-logging.getLogger().handlers[0].setLevel(logging.WARNING)
+quiet_compiler_logging()  # DOLFINx's form compiler would log every command
 
-
-def say(*args):
-    if COMM.rank == 0:
-        print(*args, flush=True)
 
 
 # %% The slope ---------------------------------------------------------------------------------
