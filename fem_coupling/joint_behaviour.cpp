@@ -1,9 +1,11 @@
 #include "joint_behaviour.hpp"
 
+#include <rockjoint/constitutive/root_finding.hpp>
 #include <rockjoint/constitutive/validation.hpp>
 
 #include <cmath>
 #include <limits>
+#include <sstream>
 #include <stdexcept>
 
 namespace rockjoint::fem
@@ -90,6 +92,48 @@ ShearStiffness shear_stiffness(const JointBehaviour& b, const NormalResponse& no
     return {b.shear_stiffness_ratio * normal.stiffness, b.shear_stiffness_ratio * slope};
   }
   return {b.shear_stiffness, 0.0};
+}
+
+double closure_at_normal_stress(const JointBehaviour& b, double target)
+{
+  if (!b.law)
+    throw std::invalid_argument("closure_at_normal_stress: the joint behaviour has no closure law");
+  auto refused = [&](const std::string& why)
+  {
+    std::ostringstream msg;
+    msg << "joint normal stress " << target << " Pa (law " << b.law->name() << ", k_r "
+        << b.residual_stiffness << " Pa/m) has no closure: " << why;
+    return msg.str();
+  };
+  if (!(target >= 0.0) || std::isinf(target))
+    throw std::invalid_argument(refused("it must be finite and >= 0 (compression positive)"));
+  double upper = 0.0; // Δ_law: σ(Δ_law) = σ_t, so σ(Δ_law) + k_r Δ_law >= σ_t
+  try
+  {
+    upper = b.law->closure_at_stress(target);
+  }
+  catch (const std::domain_error& e)
+  {
+    throw std::domain_error(refused(e.what()));
+  }
+  const double kr = b.residual_stiffness;
+  if (kr == 0.0 || upper == 0.0)
+    return upper;
+
+  // r(Δ) = σ(Δ) + k_r Δ - σ_t, increasing: r(0) = -σ_t < 0 <= r(Δ_law) = k_r Δ_law. Newton from
+  // Δ_law (the upper end: monotone convergence for a convex law such as Barton-Bandis).
+  namespace rf = constitutive::root_finding;
+  const rf::Root root = rf::find_root(
+      [&](double x)
+      {
+        const constitutive::ClosureResponse r = b.law->evaluate(x);
+        return rf::Residual{r.normal_stress + kr * x - target, r.normal_stiffness + kr};
+      },
+      0.0, upper, upper);
+  if (!root.converged)
+    throw std::runtime_error(refused("the root finder did not converge on [0, "
+                                     + std::to_string(upper) + "] m"));
+  return root.x;
 }
 
 } // namespace rockjoint::fem

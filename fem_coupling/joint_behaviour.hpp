@@ -55,6 +55,17 @@ struct JointBehaviour
 /// if `behaviour` has no law, a negative/non-finite stiffness or invalid strength parameters.
 void validate(const JointBehaviour& behaviour, const std::string& label);
 
+/// Closure Δ >= 0 [m] at which the joint carries the total normal stress `normal_stress` [Pa]
+/// (compression positive): σ(Δ) + k_r Δ = σ_t, the law's inverse when k_r = 0. Used for the
+/// pre-closure of a joint by an in-situ stress. The total stress increases in Δ and
+/// k_r Δ >= 0, so the root lies in [0, Δ_law] with Δ_law = law.closure_at_stress(σ_t); it is
+/// found there by root_finding::find_root (safeguarded Newton). Throws std::invalid_argument
+/// for a NaN, infinite or negative target and std::domain_error for one the law alone cannot
+/// carry (beyond its admissible range; its own message names the limit), both naming the
+/// target. Such a target is refused even if k_r Δ would make up the difference: the law would
+/// have to be evaluated near or past its validity limit.
+double closure_at_normal_stress(const JointBehaviour& behaviour, double normal_stress);
+
 /// Whether a point sticks, slips or is open (for counting in the FE layer).
 enum class ShearState : int
 {

@@ -1,6 +1,8 @@
 // Joint strength: Coulomb/Barton slip with dilation and tension cut-off (fem_coupling/
 // joint_slip.hpp). Reference values are hand-worked closed forms of the return mapping
-// (docs/joint-strength.md) and central finite differences of the traction.
+// (docs/joint-strength.md) and central finite differences of the traction. Also the closure at
+// a total normal stress (pre-closure, joint_behaviour.hpp) against the series spring of a linear
+// law and the root of Barton-Bandis's quadratic.
 #include "expect_error.hpp"
 
 #include <rockjoint/fem_coupling/interface_assembler.hpp>
@@ -11,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <numbers>
 
@@ -490,4 +493,94 @@ TEST(FemJointSlip, AssemblerKeepsTheSlipOnlyWhenCommitted)
   asm_.reset_state();
   EXPECT_EQ(asm_.converged_state()[0].slip[0], 0.0);
   EXPECT_EQ(asm_.trial_state()[0].slip[0], 0.0);
+}
+
+// ---- Pre-closure: the closure at a total normal stress σ(Δ) + k_r Δ = σ_t -------------------
+
+namespace
+{
+/// σ = k_n Δ up to Δ_lim, frozen there beyond (status validity_limit): a law whose inverse
+/// refuses targets above k_n Δ_lim.
+class LimitedLinearLaw : public LinearLaw
+{
+public:
+  LimitedLinearLaw(double stiffness, double limit) : LinearLaw(stiffness), _k(stiffness), _limit(limit) {}
+  std::string name() const override { return "limited_linear_test_law"; }
+  double maximum_closure() const override { return _limit; }
+
+protected:
+  constitutive::ClosureResponse evaluate_contact(double d) const override
+  {
+    if (d >= _limit)
+      return {_k * _limit, 0.0, 0.0, 0.0, constitutive::Status::validity_limit};
+    return LinearLaw::evaluate_contact(d);
+  }
+
+private:
+  double _k, _limit;
+};
+
+JointBehaviour elastic_joint(std::shared_ptr<const constitutive::ClosureLaw> law, double kr)
+{
+  JointBehaviour b;
+  b.law = std::move(law);
+  b.residual_stiffness = kr;
+  return b;
+}
+} // namespace
+
+TEST(FemJointBehaviour, ClosureAtNormalStressOfALinearLawIsTheSeriesOfBothSprings)
+{
+  const double kr = 2e9;
+  const JointBehaviour b = elastic_joint(std::make_shared<LinearLaw>(kn), kr);
+  for (double s : {1.0, 5e6, 80e6})
+    EXPECT_NEAR(closure_at_normal_stress(b, s), s / (kn + kr), 1e-14 * s / (kn + kr)) << s;
+  EXPECT_EQ(closure_at_normal_stress(b, 0.0), 0.0);
+}
+
+TEST(FemJointBehaviour, ClosureAtNormalStressOfBartonBandisSolvesTheQuadratic)
+{
+  // K Δ / (1 - Δ/V) + k_r Δ = σ  <=>  k_r Δ² - b Δ + σ V = 0, b = K V + k_r V + σ; the root
+  // below V, in the cancellation-free form Δ = 2 σ V / (b + sqrt(b² - 4 k_r σ V)).
+  const double K = 2e10, V = 0.5e-3;
+  auto law = std::make_shared<constitutive::BartonBandis>(K, V);
+  for (double kr : {1e8, 1e10, 1e12})
+  {
+    const JointBehaviour b = elastic_joint(law, kr);
+    for (double s : {1e3, 1e6, 10e6, 100e6})
+    {
+      const double bq = K * V + kr * V + s;
+      const double expected = 2.0 * s * V / (bq + std::sqrt(bq * bq - 4.0 * kr * s * V));
+      const double d = closure_at_normal_stress(b, s);
+      EXPECT_NEAR(d, expected, 1e-12 * expected) << "k_r " << kr << " σ " << s;
+      EXPECT_LT(d, law->closure_at_stress(s)) << "k_r carries part of σ: less closure";
+    }
+  }
+}
+
+TEST(FemJointBehaviour, ClosureAtNormalStressWithoutResidualStiffnessIsTheLawsInverse)
+{
+  auto bb = std::make_shared<constitutive::BartonBandis>(2e10, 0.5e-3);
+  auto linear = std::make_shared<LinearLaw>(kn);
+  for (double s : {1e3, 10e6, 100e6})
+  {
+    EXPECT_EQ(closure_at_normal_stress(elastic_joint(bb, 0.0), s), bb->closure_at_stress(s));
+    EXPECT_EQ(closure_at_normal_stress(elastic_joint(linear, 0.0), s), linear->closure_at_stress(s));
+  }
+}
+
+TEST(FemJointBehaviour, ClosureAtNormalStressRefusesBadTargetsWithNamedErrors)
+{
+  using rockjoint::testing::expect_error;
+  const JointBehaviour b = elastic_joint(std::make_shared<LimitedLinearLaw>(kn, 1e-3), 1e9);
+  for (double bad : {std::nan(""), -1.0, std::numeric_limits<double>::infinity()})
+    expect_error([&] { closure_at_normal_stress(b, bad); },
+                 {"joint normal stress", "limited_linear_test_law", "finite and >= 0"});
+  expect_error([&] { closure_at_normal_stress(b, -2.5e6); }, "-2.5e+06 Pa");
+  // Beyond the law's validity limit σ = k_n Δ_lim = 1e7 Pa: refused with the law's reason.
+  expect_error<std::domain_error>([&] { closure_at_normal_stress(b, 2e7); },
+                                  {"joint normal stress 2e+07 Pa", "admissible range"});
+  // Inside it: the linear closed form.
+  EXPECT_NEAR(closure_at_normal_stress(b, 5e6), 5e6 / (kn + 1e9), 1e-14 * 5e6 / (kn + 1e9));
+  expect_error([&] { closure_at_normal_stress(JointBehaviour{}, 1e6); }, "no closure law");
 }

@@ -8,7 +8,8 @@ from .distributed_mesh import (DistributedJointMesh, JointPairs, distribute,  # 
 try:  # the joint elements need the compiled _rockjoint_fem (built with -DROCKJOINT_FEM=ON)
     from .behaviours import joint_behaviours  # noqa: F401
     from .coupling import JointCoupling, JointedNonlinearProblem, supported_dofs  # noqa: F401
-    from .interface import JointBehaviour, JointInterface, QuadratureRule, ShearModel  # noqa: F401
+    from .interface import (JointBehaviour, JointInterface, QuadratureRule, ShearModel,  # noqa: F401
+                            closure_at_normal_stress)
     from .linear_solver import LinearSolveError  # noqa: F401
     from .in_situ import InSituStress  # noqa: F401
     from .loads import Load, Support  # noqa: F401

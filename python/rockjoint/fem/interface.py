@@ -18,6 +18,8 @@ from .. import _rockjoint_fem as _cpp
 QuadratureRule = _cpp.QuadratureRule
 ShearModel = _cpp.ShearModel
 JointBehaviour = _cpp.JointBehaviour
+#: Δ >= 0 [m] with σ(Δ) + k_r Δ = σ_t [Pa] per entry (fem_coupling/joint_behaviour.hpp)
+closure_at_normal_stress = _cpp.closure_at_normal_stress
 
 #: quadrature rule names accepted by the Python API
 QUADRATURE_RULES = {"nodal": QuadratureRule.nodal, "gauss": QuadratureRule.gauss}

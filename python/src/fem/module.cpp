@@ -1,6 +1,8 @@
 // The _rockjoint_fem extension: bindings of rockjoint::fem (interface assembler). Separate
 // from _rockjoint so that the closure-law module never needs PETSc/DOLFINx. Closure laws
 // come in as the shared_ptr<ClosureLaw> objects of rockjoint._rockjoint (import it first).
+#include "../array_helpers.hpp"
+
 #include <rockjoint/fem_coupling/interface_assembler.hpp>
 #include <rockjoint/fem_coupling/joint_slip.hpp>
 #include <rockjoint/fem_coupling/local_frame.hpp>
@@ -144,6 +146,34 @@ PYBIND11_MODULE(_rockjoint_fem, m)
       .def_readonly("strength", &JointBehaviour::strength)
       .def_property_readonly("law", [](const JointBehaviour& b)
                              { return std::const_pointer_cast<rockjoint::constitutive::ClosureLaw>(b.law); });
+
+  m.def(
+      "closure_at_normal_stress",
+      [](const JointBehaviour& b, const rockjoint::python::DoubleArray& stress) -> py::object
+      {
+        rockjoint::python::DoubleArray out = rockjoint::python::empty_like(stress);
+        const double* in = stress.data();
+        double* o = out.mutable_data();
+        for (py::ssize_t i = 0; i < stress.size(); ++i)
+        {
+          try
+          {
+            o[i] = closure_at_normal_stress(b, in[i]);
+          }
+          catch (const std::exception& e)
+          {
+            throw py::value_error("closure_at_normal_stress: entry " + std::to_string(i) + ": "
+                                  + e.what());
+          }
+        }
+        if (stress.ndim() == 0)
+          return out.attr("item")();
+        return out;
+      },
+      py::arg("behaviour"), py::arg("normal_stress"),
+      "Closure Δ >= 0 [m] with σ(Δ) + k_r Δ = σ_t for total normal stresses σ_t [Pa] "
+      "(compression +), shaped like the input (a scalar gives a float). ValueError naming the "
+      "entry for a NaN, infinite or negative σ_t or one beyond the law's range");
 
   m.def(
       "joint_response",
