@@ -17,7 +17,6 @@ lab_closure_test_table.txt (the numbers), granite_tang_jiao.rjt (the tabulated l
 jointed_cube.xdmf / intact_cube.xdmf (+ joint state) for ParaView. Units in print: mm, MPa.
 """
 import argparse
-import logging
 import os
 import time
 
@@ -25,20 +24,14 @@ import numpy as np
 from mpi4py import MPI
 
 import rockjoint
+from rockjoint.console import quiet_compiler_logging, say
 from rockjoint import contact, meshes
 from rockjoint import topography as topo
 from rockjoint.fem import JointedRockModel, NewtonOptions, distribute
 
 COMM = MPI.COMM_WORLD
-# DOLFINx compiles forms on first use through setuptools, which sets the root logger to INFO
-# and would print every compiler command: a handler of our own that passes warnings only.
-logging.basicConfig(level=logging.WARNING)
-logging.getLogger().handlers[0].setLevel(logging.WARNING)
+quiet_compiler_logging()  # DOLFINx's form compiler would log every command
 
-
-def say(*args):
-    if COMM.rank == 0:
-        print(*args, flush=True)
 
 
 # %% Parameters ------------------------------------------------------------------------------

@@ -91,6 +91,7 @@ InterfaceAssembler::InterfaceAssembler(int gdim, int degree, QuadratureRule rule
   _normal_stress.assign(np * nq, 0.0);
   _shear_traction.assign(np * nq * (gdim - 1), 0.0);
   _status.assign(np * nq, static_cast<std::int32_t>(constitutive::Status::open));
+  _shear_state.assign(np * nq, static_cast<std::int32_t>(ShearState::stick));
   _initial_jump.assign(np * nq * gdim, 0.0);
   _converged.assign(np * nq, JointPointState{});
   _trial = _converged;
@@ -165,6 +166,7 @@ bool InterfaceAssembler::assemble_residual(std::span<const double> u, std::span<
       _closure[point] = r.closure;
       _normal_stress[point] = r.normal_stress;
       _status[point] = static_cast<std::int32_t>(r.status);
+      _shear_state[point] = static_cast<std::int32_t>(r.shear_state);
       for (int i = 1; i < _gdim; ++i)
         _shear_traction[point * (_gdim - 1) + i - 1] = r.traction[i];
 
@@ -343,6 +345,12 @@ void InterfaceAssembler::revert_state()
 {
   _trial = _converged;
   _cache_valid = false;
+}
+
+void InterfaceAssembler::reset_state()
+{
+  std::fill(_converged.begin(), _converged.end(), JointPointState{});
+  revert_state();
 }
 
 std::vector<double> InterfaceAssembler::normals() const

@@ -116,6 +116,9 @@ public:
   void commit_state();
   /// Discard the trial state (after a failed step): trial ← converged.
   void revert_state();
+  /// Back to the virgin state (no slip, no dilation, bonds intact) at every point: a new
+  /// analysis from zero displacement.
+  void reset_state();
   /// Point states (num_points), pair-major.
   const std::vector<JointPointState>& converged_state() const { return _converged; }
   const std::vector<JointPointState>& trial_state() const { return _trial; }
@@ -129,6 +132,8 @@ public:
   /// (points, gdim-1) shear traction components along t1[, t2] [Pa]
   const std::vector<double>& shear_traction() const { return _shear_traction; }
   const std::vector<std::int32_t>& status() const { return _status; } ///< constitutive::Status
+  /// ShearState (stick 0, slip 1, open 2) of every point at the last residual.
+  const std::vector<std::int32_t>& shear_state() const { return _shear_state; }
   /// (points, gdim) quadrature point coordinates [m]
   const std::vector<double>& point_coordinates() const { return _point_coordinates; }
   /// (pairs, gdim) unit normals, minus → plus
@@ -172,7 +177,7 @@ private:
   std::vector<const JointBehaviour*> _pair_behaviour;
 
   std::vector<double> _closure, _normal_stress, _shear_traction, _point_coordinates;
-  std::vector<std::int32_t> _status;
+  std::vector<std::int32_t> _status, _shear_state;
   std::vector<double> _initial_jump;                ///< (points, gdim) j0 [m]
   std::vector<JointPointState> _converged, _trial;  ///< per point
   // Responses and jumps of the last residual (one law evaluation per point per iteration).

@@ -1,9 +1,11 @@
 #include "joint_behaviour.hpp"
 
+#include <rockjoint/constitutive/root_finding.hpp>
 #include <rockjoint/constitutive/validation.hpp>
 
 #include <cmath>
 #include <limits>
+#include <sstream>
 #include <stdexcept>
 
 namespace rockjoint::fem
@@ -18,6 +20,7 @@ void validate(const JointBehaviour& behaviour, const std::string& label)
   v::non_negative(owner, "shear_stiffness", behaviour.shear_stiffness, "Pa/m");
   v::non_negative(owner, "shear_stiffness_ratio", behaviour.shear_stiffness_ratio, "-");
   v::non_negative(owner, "residual_stiffness", behaviour.residual_stiffness, "Pa/m");
+  validate(behaviour.strength, owner);
 }
 
 namespace
@@ -36,46 +39,101 @@ double stiffness_derivative(const constitutive::ClosureLaw& law, double closure)
   return (law.normal_stiffness(closure) - law.normal_stiffness(closure - h)) / h;
 }
 
+/// k(0+) + k_r: the contact-side tangent at Δ = 0 (finite, or 0 if the law has none).
+double contact_side_stiffness(const JointBehaviour& b)
+{
+  const double k0 = b.law->normal_stiffness(std::numeric_limits<double>::min());
+  return (std::isfinite(k0) ? k0 : 0.0) + b.residual_stiffness;
+}
 } // namespace
 
-LocalResponse local_response(const JointBehaviour& b, int gdim, const std::array<double, 3>& jump)
+NormalResponse normal_response(const JointBehaviour& b, double closure, bool bonded)
 {
-  LocalResponse r;
-  r.closure = -jump[0];
+  NormalResponse r;
   // Through the base interface: a law's own opening branch (TabulatedLaw's residual stiffness
   // k_res) comes in via the ClosureLaw::evaluate_open hook.
-  const constitutive::ClosureResponse law = b.law->evaluate(r.closure);
+  const constitutive::ClosureResponse law = b.law->evaluate(closure);
   r.status = law.status;
-  r.normal_stress = law.normal_stress + b.residual_stiffness * r.closure;
-  double k = law.normal_stiffness;
-  if (r.closure == 0.0)
+  r.stress = law.normal_stress + b.residual_stiffness * closure;
+  r.stiffness = law.normal_stiffness + b.residual_stiffness;
+  r.in_contact = closure >= 0.0 || std::isnan(closure);
+  if (closure == 0.0)
   {
     // At the kink Δ = 0 (e.g. the untouched initial state) take the contact-side tangent
     // k(0+), an element of the generalized derivative: with k = 0 there, the first Newton
     // step of a column held by its joints would face a singular matrix.
-    const double k0 = b.law->normal_stiffness(std::numeric_limits<double>::min());
-    k = std::isfinite(k0) ? k0 : 0.0;
+    r.stiffness = contact_side_stiffness(b);
   }
-  r.normal_stiffness = k + b.residual_stiffness;
-
-  // t_n = -σ_total(Δ), Δ = -j_n  ⇒  ∂t_n/∂j_n = +k_total.
-  r.traction[0] = -r.normal_stress;
-  r.tangent[0][0] = r.normal_stiffness;
-
-  double ks = b.shear_stiffness, dks_dclosure = 0.0;
-  if (b.shear_model == ShearModel::proportional)
+  else if (closure < 0.0 && bonded && b.strength.tensile_strength > 0.0)
   {
-    ks = b.shear_stiffness_ratio * r.normal_stiffness;
-    dks_dclosure = b.shear_stiffness_ratio * stiffness_derivative(*b.law, r.closure);
-  }
-  for (int i = 1; i < gdim; ++i)
-  {
-    r.traction[i] = ks * jump[i];
-    r.tangent[i][i] = ks;
-    // ∂(k_s(Δ) j_s)/∂j_n = -k_s'(Δ) j_s (proportional model only; non-symmetric).
-    r.tangent[i][0] = -dks_dclosure * jump[i];
+    // Bonded joint in tension: the contact-side spring continued into tension (continuous
+    // traction and tangent at Δ = 0) while its tension stays within T (tension cut-off).
+    const double k0 = contact_side_stiffness(b);
+    if (-k0 * closure <= b.strength.tensile_strength)
+    {
+      r.stress = k0 * closure;
+      r.stiffness = k0;
+      r.in_contact = true;
+    }
+    else
+      r.bond_fails = true;
   }
   return r;
+}
+
+ShearStiffness shear_stiffness(const JointBehaviour& b, const NormalResponse& normal,
+                               double closure)
+{
+  if (!normal.in_contact)
+    return {normal.stiffness, 0.0}; // open: the isotropic residual spring k_open + k_r
+  if (b.shear_model == ShearModel::proportional)
+  {
+    const double slope = closure > 0.0 ? stiffness_derivative(*b.law, closure) : 0.0;
+    return {b.shear_stiffness_ratio * normal.stiffness, b.shear_stiffness_ratio * slope};
+  }
+  return {b.shear_stiffness, 0.0};
+}
+
+double closure_at_normal_stress(const JointBehaviour& b, double target)
+{
+  if (!b.law)
+    throw std::invalid_argument("closure_at_normal_stress: the joint behaviour has no closure law");
+  auto refused = [&](const std::string& why)
+  {
+    std::ostringstream msg;
+    msg << "joint normal stress " << target << " Pa (law " << b.law->name() << ", k_r "
+        << b.residual_stiffness << " Pa/m) has no closure: " << why;
+    return msg.str();
+  };
+  if (!(target >= 0.0) || std::isinf(target))
+    throw std::invalid_argument(refused("it must be finite and >= 0 (compression positive)"));
+  double upper = 0.0; // Δ_law: σ(Δ_law) = σ_t, so σ(Δ_law) + k_r Δ_law >= σ_t
+  try
+  {
+    upper = b.law->closure_at_stress(target);
+  }
+  catch (const std::domain_error& e)
+  {
+    throw std::domain_error(refused(e.what()));
+  }
+  const double kr = b.residual_stiffness;
+  if (kr == 0.0 || upper == 0.0)
+    return upper;
+
+  // r(Δ) = σ(Δ) + k_r Δ - σ_t, increasing: r(0) = -σ_t < 0 <= r(Δ_law) = k_r Δ_law. Newton from
+  // Δ_law (the upper end: monotone convergence for a convex law such as Barton-Bandis).
+  namespace rf = constitutive::root_finding;
+  const rf::Root root = rf::find_root(
+      [&](double x)
+      {
+        const constitutive::ClosureResponse r = b.law->evaluate(x);
+        return rf::Residual{r.normal_stress + kr * x - target, r.normal_stiffness + kr};
+      },
+      0.0, upper, upper);
+  if (!root.converged)
+    throw std::runtime_error(refused("the root finder did not converge on [0, "
+                                     + std::to_string(upper) + "] m"));
+  return root.x;
 }
 
 } // namespace rockjoint::fem

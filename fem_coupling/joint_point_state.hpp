@@ -14,6 +14,7 @@ struct JointPointState
   std::array<double, 2> slip{};  ///< irreversible shear displacement along t1, t2 [m]
   double dilation = 0.0;         ///< normal opening produced by slip (dilatancy) [m]
   double accumulated_slip = 0.0; ///< path length of the slip, ∫|d slip| [m]
+  bool bond_broken = false;      ///< tensile strength exceeded once: bond (c, T) lost for good
 };
 
 } // namespace rockjoint::fem

@@ -1,7 +1,9 @@
 #pragma once
 /// @file joint_slip.hpp
-/// The per-point joint law call of the assembler: response at local jump `jump` from the
-/// converged point state, writing the trial state.
+/// Path-dependent joint response: Coulomb (or Barton) slip with a non-associated dilatancy and
+/// a tension cut-off, integrated by backward Euler from the converged point state
+/// (docs/joint-strength.md). The result depends only on (converged state, current jump), so
+/// every Newton iteration of a load step recomputes its trial state from the same start.
 
 #include "joint_behaviour.hpp"
 #include "joint_point_state.hpp"
@@ -11,11 +13,19 @@
 namespace rockjoint::fem
 {
 
-/// Local traction, tangent and state at local jump `jump` (gdim components, frame axes
-/// (n, t1[, t2]), initial jump included) starting from the point's `converged` state; the
-/// updated state goes to `trial`. Never throws (see local_response).
+/// Traction, consistent tangent and trial state at local jump `jump` (gdim components:
+/// normal, t1[, t2]) from the `converged` state of the point.
+///
+/// Elastic predictor τ_tr = k_s (j_s - s_n) at the converged dilation; if f = |τ_tr| - τ_y(σ_n)
+/// > 0 the slip increment Δλ solves τ_y(σ_n(Δ_e)) = k_s (|j_s - s_n| - Δλ) with
+/// Δ_e = -j_n + d_n + tan ψ Δλ (radial return: the slip follows the trial shear direction,
+/// in 3D a circular cone in (τ1, τ2)), and the tangent is the consistent one (unsymmetric
+/// with friction: the shear strength follows the normal stress). An open joint carries the
+/// residual spring only and its slip is frozen. Never throws: a non-finite traction (a
+/// closure past the law's maximum) marks a failed trial; status/shear_state report the
+/// point's state.
 LocalResponse joint_response(const JointBehaviour& behaviour, int gdim,
-                             const std::array<double, 3>& jump, const JointPointState& converged,
-                             JointPointState& trial);
+                             const std::array<double, 3>& jump,
+                             const JointPointState& converged, JointPointState& trial);
 
 } // namespace rockjoint::fem

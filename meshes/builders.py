@@ -17,6 +17,7 @@ gmsh runs on one process: with ``comm`` given, ranks other than 0 return None wi
 from __future__ import annotations
 
 import atexit
+import contextlib
 import math
 from typing import Iterable, Sequence
 
@@ -98,23 +99,31 @@ def jointed_block(size: Sequence[float], joints: Iterable, dim: int | None = Non
     traces = [joint_trace(j, size, [joints[k] for k in bounds], f"joint {j.name!r}")
               for j, bounds in _resolve_bounds(joints)]
 
-    import gmsh
-    _ensure_gmsh(gmsh)
-    saved = {o: gmsh.option.getNumber(o) for o in _OPTIONS}  # gmsh options are global: restore them
-    gmsh.option.setNumber("General.Terminal", 0)
-    gmsh.model.add("rockjoint_jointed_block")
-    try:
+    with _gmsh_model("rockjoint_jointed_block") as gmsh:
         gmsh.option.setNumber("Mesh.Algorithm3D", _ALGORITHMS_3D[algorithm_3d])
         return _build(gmsh, size, dim, joints, traces, mesh_size, joint_mesh_size, refine_distance)
-    finally:
-        gmsh.model.remove()
-        for o, v in saved.items():
-            gmsh.option.setNumber(o, v)
 
 
 _OPTIONS = ("General.Terminal", "Mesh.MeshSizeExtendFromBoundary", "Mesh.MeshSizeFromPoints",
             "Mesh.MeshSizeFromCurvature", "Mesh.MeshSizeMin", "Mesh.MeshSizeMax", "Mesh.ElementOrder",
             "Mesh.Algorithm3D")
+
+
+@contextlib.contextmanager
+def _gmsh_model(name: str):
+    """gmsh (initialised) with a new model `name`, quiet; afterwards the model is removed and the
+    global options a builder sets (_OPTIONS) are restored, whatever happened."""
+    import gmsh
+    _ensure_gmsh(gmsh)
+    saved = {o: gmsh.option.getNumber(o) for o in _OPTIONS}  # gmsh options are global: restore them
+    gmsh.option.setNumber("General.Terminal", 0)
+    gmsh.model.add(name)
+    try:
+        yield gmsh
+    finally:
+        gmsh.model.remove()
+        for o, v in saved.items():
+            gmsh.option.setNumber(o, v)
 
 
 _OWN_GMSH = []
@@ -212,9 +221,53 @@ def _build(gmsh, size, dim, joints, traces, mesh_size, joint_mesh_size, refine_d
                                  "inside a block (dangling tip) — joints must end on other joints or on the "
                                  "block boundary (use bounded_by with joints that reach it)")
 
-    # Blocks: ordered by centre of mass, vertical coordinate first.
+    ordered, names = _block_and_joint_groups(gmsh, dim, volumes, joints, pieces, size.max())
+
+    # Boundaries: exterior faces of the union, classified by the block face they lie on.
+    groups = {}
+    for d, f in gmsh.model.getBoundary([(dim, v) for v in volumes], combined=True, oriented=False):
+        name = _block_face(gmsh, d, abs(f), size)
+        if name is None:
+            raise RuntimeError(f"internal: exterior entity {f} lies on no block face")
+        groups.setdefault(name, []).append(abs(f))
+
+    # Mesh sizes.
+    if joint_mesh_size is None or not joints:
+        _uniform_size(gmsh, mesh_size)
+    else:
+        field = _distance_threshold(gmsh, dim, sorted(seen), joint_mesh_size, mesh_size, refine_distance,
+                                    size.max())
+        gmsh.model.mesh.field.setAsBackgroundMesh(field)
+        _graded_size(gmsh, mesh_size)
+    return _generate(gmsh, dim, ordered, pieces, groups, BOUNDARY_TAGS, names)
+
+
+def _block_face(gmsh, fdim: int, entity: int, size) -> str | None:
+    """Name of the face of the block [0, size] ("left", "right", "bottom", "top", "front", "back") on
+    which the boundary entity (fdim, entity) lies, or None if it lies on none."""
+    dim = len(size)
+    side_names = [("left", "right"), ("bottom", "top")] if dim == 2 else \
+        [("left", "right"), ("front", "back"), ("bottom", "top")]
+    extent = float(np.max(size))
+    tol = 1e-8 * extent
+    # OCC pads bounding boxes by an absolute ~1e-7 m (Precision::Confusion) on each side, so a
+    # flat face of a lab-scale (0.1 m) block looks ~2e-7 m thick: allow that absolute pad.
+    flat = 1e-6 * extent + 1e-6
+    lo, hi = np.array(gmsh.model.getBoundingBox(fdim, entity)).reshape(2, 3)[:, :dim]
+    c = np.array(gmsh.model.occ.getCenterOfMass(fdim, entity))[:dim]
+    for axis in range(dim):
+        for end, value in ((0, 0.0), (1, size[axis])):
+            if abs(c[axis] - value) <= tol and hi[axis] - lo[axis] <= flat:
+                return side_names[axis][end]
+    return None
+
+
+def _block_and_joint_groups(gmsh, dim: int, volumes, joints, pieces, extent: float):
+    """Physical groups of the blocks (``block_<k>``, ordered by centre of mass, vertical coordinate
+    first) and of the joints (tags JOINT_TAG_OFFSET + i). Returns (ordered volumes, names)."""
+    occ, fd = gmsh.model.occ, dim - 1
     com = {v: occ.getCenterOfMass(dim, v) for v in volumes}
-    ordered = sorted(volumes, key=lambda v: tuple(round(c / size.max(), 9) for c in
+    ordered = sorted(volumes, key=lambda v: tuple(round(c / extent, 9) for c in
                                                   (com[v][dim - 1],) + tuple(com[v][:dim - 1][::-1])))
     names = {"blocks": {}, "joints": {}, "boundaries": {}}
     for k, v in enumerate(ordered, start=1):
@@ -226,55 +279,53 @@ def _build(gmsh, size, dim, joints, traces, mesh_size, joint_mesh_size, refine_d
         gmsh.model.addPhysicalGroup(fd, ps, tag)
         gmsh.model.setPhysicalName(fd, tag, j.name)
         names["joints"][tag] = j.name
+    return ordered, names
 
-    # Boundaries: exterior faces of the union, classified by the block face they lie on.
-    side_names = [("left", "right"), ("bottom", "top")] if dim == 2 else \
-        [("left", "right"), ("front", "back"), ("bottom", "top")]
-    groups = {}
-    tol = 1e-8 * size.max()
-    # OCC pads bounding boxes by an absolute ~1e-7 m (Precision::Confusion) on each side, so a
-    # flat face of a lab-scale (0.1 m) block looks ~2e-7 m thick: allow that absolute pad.
-    flat = 1e-6 * size.max() + 1e-6
-    for d, f in gmsh.model.getBoundary([(dim, v) for v in volumes], combined=True, oriented=False):
-        lo, hi = np.array(gmsh.model.getBoundingBox(d, f)).reshape(2, 3)[:, :dim]
-        c = np.array(occ.getCenterOfMass(d, f))[:dim]
-        name = None
-        for axis in range(dim):
-            for end, value in ((0, 0.0), (1, size[axis])):
-                if abs(c[axis] - value) <= tol and hi[axis] - lo[axis] <= flat:
-                    name = side_names[axis][end]
-        if name is None:
-            raise RuntimeError(f"internal: exterior entity {f} at {c} lies on no block face")
-        groups.setdefault(name, []).append(abs(f))
+
+def _uniform_size(gmsh, mesh_size: float) -> None:
+    for option, value in (("Mesh.MeshSizeExtendFromBoundary", 0), ("Mesh.MeshSizeFromPoints", 0),
+                          ("Mesh.MeshSizeFromCurvature", 0), ("Mesh.MeshSizeMin", mesh_size),
+                          ("Mesh.MeshSizeMax", mesh_size)):
+        gmsh.option.setNumber(option, value)
+
+
+def _graded_size(gmsh, mesh_size: float) -> None:
+    """Sizes from the background field, capped at mesh_size."""
+    _uniform_size(gmsh, mesh_size)
+    gmsh.option.setNumber("Mesh.MeshSizeMin", 0.0)
+
+
+def _distance_threshold(gmsh, dim: int, entities, size_min: float, size_max: float, refine_distance: float,
+                        extent: float) -> int:
+    """gmsh Distance + Threshold field: size_min within size_min/2 of the facet entities (curves in 2D,
+    surfaces in 3D), growing linearly to size_max over refine_distance. Returns the field tag."""
+    field = gmsh.model.mesh.field
+    dist = field.add("Distance")
+    field.setNumbers(dist, "FacesList" if dim == 3 else "EdgesList", list(entities))
+    # Sampling of the entities for the distance: a few points per refined element.
+    samples = int(min(400 if dim == 2 else 120, max(20, math.ceil(2.0 * extent / size_min))))
+    field.setNumber(dist, "NumPointsPerCurve", samples)
+    thr = field.add("Threshold")
+    field.setNumber(thr, "InField", dist)
+    field.setNumber(thr, "SizeMin", size_min)
+    field.setNumber(thr, "SizeMax", size_max)
+    field.setNumber(thr, "DistMin", 0.5 * size_min)
+    field.setNumber(thr, "DistMax", 0.5 * size_min + refine_distance)
+    return thr
+
+
+def _generate(gmsh, dim: int, ordered, pieces, groups: dict, boundary_tags: dict, names: dict) -> JointedMesh:
+    """Mesh the model (linear simplices), then split it by block and pair the joint facets.
+
+    ordered: block volumes (block k = ordered[k-1], a tag or a list of tags); pieces: joint entities per joint (tags
+    JOINT_TAG_OFFSET + i); groups: {boundary name: entities}, physical groups with boundary_tags[name].
+    """
+    fd = dim - 1
     for name, ents in groups.items():
-        tag = BOUNDARY_TAGS[name]
+        tag = boundary_tags[name]
         gmsh.model.addPhysicalGroup(fd, ents, tag)
         gmsh.model.setPhysicalName(fd, tag, name)
         names["boundaries"][tag] = name
-
-    # Mesh sizes.
-    gmsh.option.setNumber("Mesh.MeshSizeExtendFromBoundary", 0)
-    gmsh.option.setNumber("Mesh.MeshSizeFromPoints", 0)
-    gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", 0)
-    if joint_mesh_size is None or not joints:
-        gmsh.option.setNumber("Mesh.MeshSizeMin", mesh_size)
-        gmsh.option.setNumber("Mesh.MeshSizeMax", mesh_size)
-    else:
-        field = gmsh.model.mesh.field
-        dist = field.add("Distance")
-        field.setNumbers(dist, "FacesList" if dim == 3 else "EdgesList", sorted(seen))
-        # Sampling of the joint entities for the distance: a few points per joint element.
-        samples = int(min(400 if dim == 2 else 120, max(20, math.ceil(2.0 * size.max() / joint_mesh_size))))
-        field.setNumber(dist, "NumPointsPerCurve", samples)
-        thr = field.add("Threshold")
-        field.setNumber(thr, "InField", dist)
-        field.setNumber(thr, "SizeMin", joint_mesh_size)
-        field.setNumber(thr, "SizeMax", mesh_size)
-        field.setNumber(thr, "DistMin", 0.5 * joint_mesh_size)
-        field.setNumber(thr, "DistMax", 0.5 * joint_mesh_size + refine_distance)
-        field.setAsBackgroundMesh(thr)
-        gmsh.option.setNumber("Mesh.MeshSizeMax", mesh_size)
-        gmsh.option.setNumber("Mesh.MeshSizeMin", 0.0)
     gmsh.option.setNumber("Mesh.ElementOrder", 1)
     gmsh.model.mesh.generate(dim)
     gmsh.model.mesh.renumberNodes()
@@ -285,10 +336,11 @@ def _build(gmsh, size, dim, joints, traces, mesh_size, joint_mesh_size, refine_d
     points = points[:, :dim]
     cell_etype, cell_type = _GMSH_CELL[dim]
     cells, blocks = [], []
-    for k, v in enumerate(ordered, start=1):
-        c = _elements(gmsh, dim, v, cell_etype)
-        cells.append(c)
-        blocks.append(np.full(c.shape[0], k, dtype=np.int32))
+    for k, entities in enumerate(ordered, start=1):
+        for v in np.atleast_1d(entities):
+            c = _elements(gmsh, dim, int(v), cell_etype)
+            cells.append(c)
+            blocks.append(np.full(c.shape[0], k, dtype=np.int32))
     jel, jtag = [], []
     for i, ps in enumerate(pieces):
         for p in ps:
@@ -300,7 +352,7 @@ def _build(gmsh, size, dim, joints, traces, mesh_size, joint_mesh_size, refine_d
         for f in ents:
             e = _elements(gmsh, fd, f, _GMSH_FACET[dim])
             bel.append(e)
-            btag.append(np.full(e.shape[0], BOUNDARY_TAGS[name], dtype=np.int32))
+            btag.append(np.full(e.shape[0], boundary_tags[name], dtype=np.int32))
     empty = np.empty((0, dim), dtype=np.int64)
     return build_jointed_mesh(points, np.concatenate(cells), cell_type, np.concatenate(blocks),
                               np.concatenate(jel) if jel else empty,

@@ -16,14 +16,43 @@ _NV = {"triangle": 3, "tetrahedron": 4}
 
 
 def facet_keys(sorted_rows: np.ndarray, n_nodes: int) -> np.ndarray:
-    """One int64 per facet from its sorted node ids (exact: mixed radix n_nodes)."""
-    k = sorted_rows.shape[1]
-    if float(n_nodes) ** k >= 2.0 ** 62:
-        raise ValueError(f"mesh too large for int64 facet keys ({n_nodes} nodes, {k} nodes per facet)")
-    key = np.zeros(sorted_rows.shape[0], dtype=np.int64)
-    for j in range(k):
-        key = key * n_nodes + sorted_rows[:, j]
-    return key
+    """One int64 per facet from its sorted node ids: equal rows get equal keys, and keys order
+    the rows lexicographically. Keys are comparable within one call only (see common_facet_keys)."""
+    return common_facet_keys([sorted_rows], n_nodes)[0]
+
+
+def common_facet_keys(row_arrays, n_nodes: int) -> list:
+    """Keys of several (m_i, k) arrays of sorted node ids in [0, n_nodes), comparable across them.
+
+    Exact and uncapped: the key of the first j columns is multiplied by n_nodes and the next column
+    added (mixed radix, no sort) while that fits in int64; when it would not (n_nodes^k >= 2^63,
+    e.g. tetrahedron facets beyond 2.1 M nodes), the partial keys are first replaced by their dense
+    rank among all rows (np.unique), which keeps the order and is at most the number of rows.
+    """
+    arrays = [np.asarray(r, dtype=np.int64) for r in row_arrays]
+    if not arrays:
+        return []
+    k = arrays[0].shape[1] if arrays[0].ndim == 2 else -1
+    for i, r in enumerate(arrays):
+        if r.ndim != 2 or r.shape[1] != k or k < 1:
+            raise ValueError(f"facet keys: array {i} must be (m, {k}) node ids, got shape {r.shape}")
+        if r.size and (r.min() < 0 or r.max() >= n_nodes):
+            raise ValueError(f"facet keys: array {i} has node ids in [{r.min()}, {r.max()}], "
+                             f"outside [0, n_nodes={n_nodes})")
+    rows = np.concatenate(arrays) if len(arrays) > 1 else arrays[0]
+    key = rows[:, 0].copy()
+    bound = int(n_nodes)  # key < bound
+    for j in range(1, k):
+        if bound * int(n_nodes) >= 2 ** 63:
+            _, key = np.unique(key, return_inverse=True)
+            key = key.astype(np.int64).reshape(-1)
+            bound = int(key.max()) + 1 if key.size else 1
+            if bound * int(n_nodes) >= 2 ** 63:  # more distinct partial rows than int64 can scale
+                raise ValueError(f"facet keys: {bound} distinct partial facets x {n_nodes} nodes "
+                                 "exceed int64")
+        key = key * n_nodes + rows[:, j]
+        bound *= int(n_nodes)
+    return np.split(key, np.cumsum([r.shape[0] for r in arrays])[:-1])
 
 
 def cell_facets(cells: np.ndarray) -> np.ndarray:
@@ -91,7 +120,9 @@ def build_jointed_mesh(points: np.ndarray, cells: np.ndarray, cell_type: str, ce
     sf = np.take_along_axis(sf, order, axis=1)
     fcell = np.repeat(np.arange(nc, dtype=np.int64), nv)
     fopp = np.tile(np.arange(nv), nc)  # local vertex opposite the facet
-    keys = facet_keys(gf, n)
+    # Glued facet keys, comparable with those of the joint and boundary groups.
+    keys, jkeys, bkeys = common_facet_keys([gf, np.sort(joint_elements, axis=1),
+                                            np.sort(boundary_elements, axis=1)], n)
     srt = np.argsort(keys, kind="stable")
     ks = keys[srt]
     same = ks[1:] == ks[:-1]
@@ -119,7 +150,6 @@ def build_jointed_mesh(points: np.ndarray, cells: np.ndarray, cell_type: str, ce
     fp[flip, :2] = fp[flip, 1::-1]
 
     # Joint tags from the joint physical groups (glued keys).
-    jkeys = facet_keys(np.sort(joint_elements, axis=1), n)
     jorder = np.argsort(jkeys)
     pair_keys = keys[minus]
     pos = np.searchsorted(jkeys[jorder], pair_keys)
@@ -135,7 +165,6 @@ def build_jointed_mesh(points: np.ndarray, cells: np.ndarray, cell_type: str, ce
         raise ValueError("a joint element is not a facet between two blocks (a joint that ends inside a block?)")
 
     # Boundary facets: the split ids of the single cell owning each exterior facet.
-    bkeys = facet_keys(np.sort(boundary_elements, axis=1), n)
     ext = np.flatnonzero(single)
     ext_order = np.argsort(keys[ext])
     ext_sorted = keys[ext][ext_order]

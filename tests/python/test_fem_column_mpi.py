@@ -15,6 +15,7 @@ import rockjoint  # noqa: E402
 from rockjoint import meshes  # noqa: E402
 from rockjoint.fem import JointedRockModel, LinearSolveError  # noqa: E402
 from rockjoint.fem.distributed_mesh import distribute  # noqa: E402
+from mpi_ranks import two_ranks  # noqa: E402
 
 E, NU = 20e9, 0.25
 HEIGHT, JOINTS = 3.0, (1.0, 2.0)
@@ -42,8 +43,7 @@ def solve_column(dim, comm, stress, linear_solver="direct"):
 @pytest.mark.mpi
 @pytest.mark.parametrize("dim", [2, 3])
 def test_column_on_two_ranks_matches_closed_form_and_serial(dim):
-    comm = MPI.COMM_WORLD
-    assert comm.size == 2, "run with mpirun -n 2"
+    comm = two_ranks()
     stress = 5e6
     model, sol = solve_column(dim, comm, stress)
     # The mesh is really distributed (both ranks own cells).

@@ -262,3 +262,34 @@ def test_in_situ_tension_across_a_joint_is_refused():
     model.set_in_situ_stress(InSituStress.uniform(np.diag([-1e6, 1e6])))
     with pytest.raises(ValueError, match="pulls joint 'joint_1' apart"):
         model.solve()
+
+
+def test_a_joint_with_residual_stiffness_is_pre_closed_to_the_quadratic_root():
+    """With a residual stiffness k_r the in-situ pre-closure Δ0 solves K_ni Δ/(1 - Δ/V_m) + k_r Δ = σv,
+    i.e. k_r Δ² - b Δ + σv V_m = 0 with b = K_ni V_m + k_r V_m + σv (root below V_m, cancellation-free
+    form); the initial state is an equilibrium (nothing moves) and the joint carries σv."""
+    sh, sv, kr = 2e6, 5e6, 5e9
+    model = column(residual_stiffness=kr)
+    model.set_in_situ_stress(InSituStress.uniform(np.diag([-sh, -sv])))
+    joints = model.solve().gather_joints()
+    b = KNI * VM + kr * VM + sv
+    expected = 2.0 * sv * VM / (b + np.sqrt(b * b - 4.0 * kr * sv * VM))
+    assert expected < bb_closure(sv)  # k_r carries part of σv
+    np.testing.assert_allclose(joints["closure"], expected, rtol=1e-10)
+    np.testing.assert_allclose(joints["normal_stress"], sv, rtol=1e-10)
+    assert np.abs(model.u.x.array).max() == 0.0
+
+
+def test_closure_at_normal_stress_keeps_the_shape_and_names_a_refused_entry():
+    from rockjoint.fem import JointBehaviour, closure_at_normal_stress
+    behaviour = JointBehaviour(rockjoint.BartonBandis(KNI, VM))  # k_r = 0: the law's closed form
+    stress = np.array([[0.0, 1e6], [5e6, 20e6]])
+    closure = closure_at_normal_stress(behaviour, stress)
+    assert closure.shape == stress.shape
+    np.testing.assert_allclose(closure, bb_closure(stress), rtol=1e-14, atol=0.0)
+    assert isinstance(closure_at_normal_stress(behaviour, 1e6), float)
+    assert closure_at_normal_stress(behaviour, np.empty(0)).shape == (0,)
+    with pytest.raises(ValueError, match=r"entry 2: joint normal stress -1 Pa .*finite and >= 0"):
+        closure_at_normal_stress(behaviour, np.array([1e6, 2e6, -1.0]))
+    with pytest.raises(ValueError, match=r"entry 0: joint normal stress nan Pa"):
+        closure_at_normal_stress(behaviour, np.array([np.nan]))

@@ -14,6 +14,7 @@ from mpi4py import MPI  # noqa: E402
 
 from rockjoint.fem import InSituStress, JointedRockModel  # noqa: E402
 from staged_cases import E, NU, QUIET, column, quarter_annulus  # noqa: E402
+from mpi_ranks import two_ranks  # noqa: E402
 
 
 def jointed_column_path(comm):
@@ -54,8 +55,7 @@ def summary(model, boundaries):
 @pytest.mark.parametrize("case, boundaries", [(jointed_column_path, ("top", "right")),
                                               (excavated_hole, ("inner", "outer"))])
 def test_staged_analysis_on_two_ranks_equals_serial(case, boundaries):
-    comm = MPI.COMM_WORLD
-    assert comm.size == 2, "run with mpirun -n 2"
+    comm = two_ranks()
     parallel = case(comm)
     assert comm.allreduce(parallel.mesh.topology.index_map(2).size_local > 0, op=MPI.LAND)
     serial = case(MPI.COMM_SELF)

@@ -343,3 +343,17 @@ def pair_vertex_positions(dmesh: DistributedJointMesh) -> tuple[np.ndarray, np.n
     pos_m[flip, :2] = pos_m[flip, 1::-1]
     pos_p[flip, :2] = pos_p[flip, 1::-1]
     return pos_m.astype(np.int32), pos_p.astype(np.int32)
+
+
+def names_of(dmesh, kind: str) -> dict:
+    """{name: tag} of the mesh's groups of `kind` ("blocks", "joints", "boundaries")."""
+    return {str(n): int(t) for t, n in dmesh.names[kind].items()}
+
+
+def lookup(dmesh, kind: str, name: str) -> int:
+    """The tag of a named group, or ValueError listing the available names."""
+    names = names_of(dmesh, kind)
+    if name not in names:
+        singular = {"blocks": "block", "joints": "joint", "boundaries": "boundary"}[kind]
+        raise ValueError(f"unknown {singular} {name!r}; available {kind}: {sorted(names)}")
+    return names[name]

@@ -16,19 +16,10 @@ import numpy as np
 import ufl
 from dolfinx import fem
 
+from .validation import positive_number
+
 #: standard gravity [m/s²]
 STANDARD_GRAVITY = 9.81
-
-
-def _finite_positive(name: str, value, allow_zero: bool = False) -> float:
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a number, got {value!r}") from None
-    if not math.isfinite(v) or v < 0 or (v == 0 and not allow_zero):
-        bound = ">= 0" if allow_zero else "> 0"
-        raise ValueError(f"{name} = {value!r} is invalid; it must be finite and {bound}")
-    return v
 
 
 class InSituStress:
@@ -66,8 +57,8 @@ class InSituStress:
             raise ValueError(f"surface must be a number (vertical coordinate [m]), got {surface!r}") from None
         if not math.isfinite(surface):
             raise ValueError(f"surface = {surface!r} is invalid; it must be finite")
-        density = _finite_positive("density", density)
-        gravity = _finite_positive("gravity", gravity)
+        density = positive_number("density", density, unit="kg/m³")
+        gravity = positive_number("gravity", gravity, unit="m/s²")
         k0s = np.atleast_1d(np.asarray(k0, dtype=float))
         if k0s.ndim != 1 or k0s.size not in (1, 2) or not np.all(np.isfinite(k0s)) or np.any(k0s < 0):
             raise ValueError(f"k0 = {k0!r} is invalid; give a finite K0 >= 0, or (K0_x, K0_y) in 3D")

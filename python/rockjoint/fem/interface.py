@@ -18,6 +18,8 @@ from .. import _rockjoint_fem as _cpp
 QuadratureRule = _cpp.QuadratureRule
 ShearModel = _cpp.ShearModel
 JointBehaviour = _cpp.JointBehaviour
+#: Δ >= 0 [m] with σ(Δ) + k_r Δ = σ_t [Pa] per entry (fem_coupling/joint_behaviour.hpp)
+closure_at_normal_stress = _cpp.closure_at_normal_stress
 
 #: quadrature rule names accepted by the Python API
 QUADRATURE_RULES = {"nodal": QuadratureRule.nodal, "gauss": QuadratureRule.gauss}
@@ -194,14 +196,19 @@ class JointInterface:
         """Discard the trial point state (after a failed load step)."""
         self._cpp.revert_state()
 
+    def reset_state(self) -> None:
+        """Virgin point state everywhere (no slip, no dilation, bonds intact): a new analysis."""
+        self._cpp.reset_state()
+
     def update_state(self, u_local: np.ndarray) -> None:
         self._cpp.update_state(u_local)
 
     def state(self) -> dict:
         """Point state on this rank: coordinates, tag, closure [m], normal_stress [Pa, compression +],
         shear_traction [Pa] (points, gdim-1) along t1[, t2], status (rockjoint.Status values),
-        normal (of the pair), and the trial path-dependent state: slip [m] (points, gdim-1),
-        dilation [m], accumulated_slip [m]."""
+        shear_state (rockjoint.fem.ShearState values: stick, slip, open), normal (of the pair), and
+        the trial path-dependent state: slip [m] (points, gdim-1), dilation [m],
+        accumulated_slip [m], bond_broken."""
         c = self._cpp
         npp = c.num_points_per_pair
         out = {
@@ -211,6 +218,7 @@ class JointInterface:
             "normal_stress": c.normal_stress,
             "shear_traction": c.shear_traction,
             "status": c.status,
+            "shear_state": c.shear_state,
             "normal": np.repeat(c.normals, npp, axis=0) if c.num_pairs else np.zeros((0, self.gdim)),
         }
         out.update(c.point_state())

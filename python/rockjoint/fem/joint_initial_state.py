@@ -4,7 +4,8 @@ At a joint point with local frame F (rows n, t1[, t2]; n from the minus to the p
 in-situ traction in local components is t = F σ0 n. The joint element's local traction is
 (-σ_n(Δ), k_s j_s) with Δ = -j_n (fem_coupling/joint_behaviour.cpp), so the joint carries t at
 u = 0 when its initial jump j0 (CONTRACTS A.3) is
-    j0_n = -Δ0,  σ_n(Δ0) = σ_n0 = -t_n  (compression positive; σ_n = law + k_r Δ),
+    j0_n = -Δ0,  σ_n(Δ0) = σ_n0 = -t_n  (compression positive; σ_n = law + k_r Δ, solved by
+                                         closure_at_normal_stress, fem_coupling/joint_behaviour.hpp),
     j0_s = t_s / k_s,  k_s constant or ratio × (k_n(Δ0) + k_r).
 With the nodal (vertex) rule on P1 facets, the joint's force at vertex a of a facet is
 w_a t_a = |f|/gdim · t_a, while the bulk's in-situ stress pulls on that vertex with the consistent
@@ -18,23 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .interface import ShearModel
-
-
-def closure_at_total_stress(behaviour, stress: np.ndarray) -> np.ndarray:
-    """Δ with law(Δ) + k_r Δ = σ (σ > 0): the law's own inverse when k_r = 0, else Newton from
-    that inverse (an upper bound; the total stress is increasing in Δ)."""
-    law, kr = behaviour.law, behaviour.residual_stiffness
-    closure = np.asarray(law.closure_at_stress(stress), dtype=float)
-    if kr == 0.0 or closure.size == 0:
-        return closure
-    for _ in range(50):
-        f = np.asarray(law.normal_stress(closure)) + kr * closure - stress
-        step = f / (np.asarray(law.normal_stiffness(closure)) + kr)
-        closure = np.maximum(closure - step, 0.0)
-        if np.all(np.abs(step) <= 1e-14 * np.maximum(closure, 1e-300)):
-            break
-    return closure
+from .interface import ShearModel, closure_at_normal_stress
 
 
 def initial_jump(interface, in_situ, behaviours: dict, gdim: int, joint_names: dict,
@@ -70,7 +55,11 @@ def initial_jump(interface, in_situ, behaviours: dict, gdim: int, joint_names: d
             raise ValueError(f"the in-situ stress pulls joint {name_of.get(tag, tag)!r} apart: normal stress "
                              f"{-local[k, 0]:.4g} Pa (tension) at {points[k].tolist()}; a joint carries no tension")
         normal_stress = np.maximum(normal_stress, 0.0)
-        closure = closure_at_total_stress(behaviour, normal_stress)
+        try:
+            closure = closure_at_normal_stress(behaviour, normal_stress)
+        except ValueError as error:
+            raise ValueError(f"pre-closure of joint {name_of.get(tag, tag)!r} by the in-situ stress: "
+                             f"{error}") from error
         j0[sel, 0] = -closure
         if behaviour.shear_model == ShearModel.proportional:
             ks = behaviour.shear_stiffness_ratio * (np.asarray(behaviour.law.normal_stiffness(closure))

@@ -14,12 +14,13 @@ import numpy as np
 import ufl
 from dolfinx import fem
 from dolfinx.fem import petsc as fem_petsc
+from mpi4py import MPI
 from petsc4py import PETSc
 
+from .distributed_mesh import lookup, names_of
 from .in_situ import InSituStress
 from .joint_initial_state import initial_jump
 from .loads import Load, Support, load_term, make_coefficient, set_coefficient
-from .stages import lookup, max_op, names_of
 
 
 class StagedLoading:
@@ -280,7 +281,7 @@ class StagedLoading:
         self._g_prev = self.u.x.array[cidx].copy()
         self._g_delta = self._prescribed[cidx] - self._g_prev
         moved = bool(np.any(self._g_prev != 0.0) or np.any(self._g_delta != 0.0))
-        self._any_prescribed = self.comm.allreduce(moved, op=max_op())
+        self._any_prescribed = self.comm.allreduce(moved, op=MPI.MAX)
         self.load_factor = 0.0
         self._applied = None
         self._step_iterations = 0

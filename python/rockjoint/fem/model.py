@@ -28,24 +28,25 @@ import ufl
 from dolfinx import cpp as _dcpp
 from dolfinx import fem, la
 from dolfinx.fem import petsc as fem_petsc
+from mpi4py import MPI
 from petsc4py import PETSc
 
-from .. import _rockjoint
+from .behaviours import joint_behaviours, symmetric_tangent
+from .distributed_mesh import lookup, names_of
 from .in_situ import STANDARD_GRAVITY, InSituStress
-from .interface import JointBehaviour, JointInterface, ShearModel
+from .interface import JointInterface
 from .linear_solver import LinearSolver, LinearSolveError, rigid_body_modes  # noqa: F401
 from .load_path import StagedLoading
 from .loads import Load, Support
 from .newton import ConvergenceError, NewtonOptions, newton, solve_load_path  # noqa: F401
+from .petsc_options import check_options_prefix, check_petsc_options
 from .stages import (JointedProblem, JointedSolution, Stage, StageClock, StageResult,  # noqa: F401
-                     lookup, min_op, names_of, snes_load_path)
+                     snes_load_path)
+from .validation import positive_number
 
 log = logging.getLogger(__name__)
 
 _COMPONENTS = {"x": 0, "y": 1, "z": 2}
-
-
-_names, _lookup = names_of, lookup
 
 
 def _per_block(blocks: dict, value, what: str, missing_message: str) -> dict:
@@ -59,16 +60,6 @@ def _per_block(blocks: dict, value, what: str, missing_message: str) -> dict:
     if missing:
         raise ValueError(f"{what}: " + missing_message.format(sorted(missing)))
     return value
-
-
-def _per_joint(value, joint_names, what: str) -> dict:
-    """A float for every joint, or a {joint name: float} dict (missing joints get 0)."""
-    if isinstance(value, dict):
-        unknown = set(value) - set(joint_names)
-        if unknown:
-            raise ValueError(f"{what}: unknown joint(s) {sorted(unknown)}; available joints: {sorted(joint_names)}")
-        return {n: float(value.get(n, 0.0)) for n in joint_names}
-    return {n: float(value) for n in joint_names}
 
 
 class JointedRockModel(StagedLoading):
@@ -85,6 +76,11 @@ class JointedRockModel(StagedLoading):
     residual_stiffness: k_r [Pa/m] spring in parallel with every law, in tension and compression
         (float or dict; default 0: a block held only by an open joint is then a singular system and
         solve() raises LinearSolveError instead of returning garbage).
+    strength: joint shear strength (docs/joint-strength.md): None (elastic joints), one description
+        for every joint, or {joint name: description}; a description is a JointStrength or a dict
+        {"model": "coulomb" | "barton", "friction_angle": rad, "cohesion": Pa, ...} (see
+        rockjoint.fem.make_strength). With a strength the Jacobian is non-symmetric (LU / GMRES)
+        and the slip is committed only when a load step converges.
     plane: "strain" (default) or "stress" in 2D; None (or "3D") in 3D.
     quadrature: "nodal" (default; smooth tractions for stiff joints) or "gauss".
     linear_solver: "auto" (MUMPS up to 60k dofs, else CG+GAMG), "direct" or "iterative".
@@ -101,7 +97,8 @@ class JointedRockModel(StagedLoading):
     """
 
     def __init__(self, dmesh, element_degree: int = 1, rock=None, joints=None, shear_stiffness=0.0,
-                 shear_stiffness_ratio=None, residual_stiffness=0.0, plane: str | None = None,
+                 shear_stiffness_ratio=None, residual_stiffness=0.0, strength=None,
+                 plane: str | None = None,
                  quadrature: str = "nodal", linear_solver: str = "auto",
                  newton: NewtonOptions | None = None, petsc_options: dict | None = None,
                  options_prefix: str | None = None, density=None, gravity=STANDARD_GRAVITY):
@@ -123,21 +120,12 @@ class JointedRockModel(StagedLoading):
         self.plane = plane if self.gdim == 2 else None
         self.quadrature = quadrature
         self.linear_solver_kind = linear_solver
-        if petsc_options is not None and not isinstance(petsc_options, dict):
-            raise ValueError(f"petsc_options must be a dict {{option: value}}, got "
-                             f"{type(petsc_options).__name__}")
-        for key in petsc_options or {}:
-            if not isinstance(key, str) or key.startswith("-") or not key:
-                raise ValueError(f"petsc_options key {key!r}: give option names without the "
-                                 f"leading dash, e.g. 'ksp_type'")
-        self.petsc_options = dict(petsc_options or {})
-        if options_prefix is not None and (not isinstance(options_prefix, str)
-                                           or options_prefix.startswith("-")):
-            raise ValueError(f"options_prefix {options_prefix!r}: a string without a leading dash")
-        self.options_prefix = options_prefix
+        self.petsc_options = check_petsc_options(petsc_options)
+        self.options_prefix = check_options_prefix(options_prefix)
         self.newton_options = newton or NewtonOptions()
         self.rock = self._check_rock(rock)
-        self.behaviours = self._check_joints(joints, shear_stiffness, shear_stiffness_ratio, residual_stiffness)
+        self.behaviours = self._check_joints(joints, shear_stiffness, shear_stiffness_ratio, residual_stiffness,
+                                             strength)
         self.densities = self._check_density(density)  #: {block name: ρ [kg/m³]} ({} without gravity)
         self._supports: list[Support] = []
         self._loads: list[Load] = []
@@ -164,7 +152,7 @@ class JointedRockModel(StagedLoading):
 
     # ---- input checks --------------------------------------------------------------------
     def _check_rock(self, rock) -> dict:
-        blocks = _names(self.dmesh, "blocks")
+        blocks = names_of(self.dmesh, "blocks")
         if rock is None:
             raise ValueError(f"rock properties are missing; give rock={{block: (E, nu)}} for blocks {sorted(blocks)}")
         rock = _per_block(blocks, rock, "rock", "no (E, nu) for block(s) {}")
@@ -181,29 +169,10 @@ class JointedRockModel(StagedLoading):
             out[blocks[name]] = (E, nu)
         return out
 
-    def _check_joints(self, joints, ks, ratio, kr) -> dict:
-        names = _names(self.dmesh, "joints")
-        joints = joints or {}
-        unknown = set(joints) - set(names)
-        if unknown:
-            raise ValueError(f"joints: unknown joint(s) {sorted(unknown)}; available joints: {sorted(names)}")
-        missing = set(names) - set(joints)
-        if missing:
-            raise ValueError(f"joints: no closure law for joint(s) {sorted(missing)}; give joints={{name: law}}")
-        ks = _per_joint(ks, names, "shear_stiffness")
-        kr = _per_joint(kr, names, "residual_stiffness")
-        ratio = None if ratio is None else _per_joint(ratio, names, "shear_stiffness_ratio")
-        out = {}
-        for name, law in joints.items():
-            if not isinstance(law, _rockjoint.constitutive.ClosureLaw):
-                raise ValueError(f"joints[{name!r}] must be a rockjoint closure law or table, got {type(law).__name__}")
-            if ratio is None:
-                b = JointBehaviour(law, ShearModel.constant, shear_stiffness=ks[name], residual_stiffness=kr[name])
-            else:
-                b = JointBehaviour(law, ShearModel.proportional, shear_stiffness_ratio=ratio[name],
-                                   residual_stiffness=kr[name])
-            out[names[name]] = b
-        return out
+    def _check_joints(self, joints, ks, ratio, kr, strength=None) -> dict:
+        return joint_behaviours(names_of(self.dmesh, "joints"), joints or {}, shear_stiffness=ks,
+                                shear_stiffness_ratio=ratio, residual_stiffness=kr, strength=strength,
+                                argument="joints", closure_laws_only=True)
 
     def _component_indices(self, components) -> list:
         if components in ("all", None):
@@ -228,18 +197,9 @@ class JointedRockModel(StagedLoading):
     def _check_density(self, density) -> dict:
         if density is None:
             return {}
-        density = _per_block(_names(self.dmesh, "blocks"), density, "density",
+        density = _per_block(names_of(self.dmesh, "blocks"), density, "density",
                              "no value for block(s) {} (give one for every block)")
-        out = {}
-        for name, rho in density.items():
-            try:
-                rho = float(rho)
-            except (TypeError, ValueError):
-                raise ValueError(f"density[{name!r}] must be a number [kg/m³], got {rho!r}") from None
-            if not (np.isfinite(rho) and rho > 0):
-                raise ValueError(f"density[{name!r}] = {rho} kg/m³ is invalid; it must be finite and > 0")
-            out[name] = rho
-        return out
+        return {name: positive_number(f"density[{name!r}]", rho, unit="kg/m³") for name, rho in density.items()}
 
     # ---- setup -----------------------------------------------------------------------------
     def _prepare(self) -> None:
@@ -271,7 +231,7 @@ class JointedRockModel(StagedLoading):
         cell_tag[tags.indices] = tags.values
         self._cell_tag = cell_tag
         lam_a, mu_a, rho_a = np.full(ncells, np.nan), np.full(ncells, np.nan), np.zeros(ncells)
-        blocks = _names(self.dmesh, "blocks")
+        blocks = names_of(self.dmesh, "blocks")
         for tag, (E, nu) in self.rock.items():
             sel = cell_tag == tag
             mu_a[sel] = E / (2 * (1 + nu))
@@ -320,7 +280,7 @@ class JointedRockModel(StagedLoading):
         self._r_sigma0 = None  # ∫ε(v):σ0 dx with an in-situ stress
 
         num_dofs = imap.size_global * bs
-        symmetric = all(b.shear_model == ShearModel.constant for b in self.behaviours.values())
+        symmetric = symmetric_tangent(self.behaviours)
         nullspace = None
         kind = self.linear_solver_kind
         if kind == "iterative" or (kind == "auto" and num_dofs > 60_000):
@@ -396,7 +356,7 @@ class JointedRockModel(StagedLoading):
         rj.ghostUpdate(addv=PETSc.InsertMode.ADD, mode=PETSc.ScatterMode.REVERSE)
         self.timings["interface_residual"] += time.perf_counter() - t0
         self.counts["interface_residual"] += 1
-        return self.comm.allreduce(bool(finite), op=min_op())
+        return self.comm.allreduce(bool(finite), op=MPI.MIN)
 
     def residual(self) -> float:
         self._apply_load_factor()
@@ -460,7 +420,7 @@ class JointedRockModel(StagedLoading):
 
     def admissible_step(self, fraction: float) -> float:
         alpha = self.interface._cpp.admissible_step_length(self.u.x.array, self.du.x.array, fraction)
-        return self.comm.allreduce(alpha, op=min_op())
+        return self.comm.allreduce(alpha, op=MPI.MIN)
 
     def apply_increment(self, alpha: float) -> None:
         self.u.vector.axpy(alpha, self.du.vector)
@@ -587,10 +547,13 @@ class JointedRockModel(StagedLoading):
         return out
 
     def _stage_result(self, name: str, reports: list, elapsed: float) -> StageResult:
+        # Re-evaluated from the state just committed: a point that slid in the last step sits on
+        # its strength and reads "slip" (joint_slip.cpp labels by where τ is).
         self.interface.update_state(self.u.x.array)
         disp = fem.Function(self.V, name="displacement")
         disp.x.array[:] = self.u.x.array
-        result = StageResult(disp, self.interface.state(), reports, self, name, self._reactions(), elapsed)
+        state = self.interface.state()
+        result = StageResult(disp, state, reports, self, name, self._reactions(), elapsed)
         self.stages.append(result)
         self.solution = result
         beyond = result.beyond_law_range()
@@ -618,7 +581,7 @@ class JointedRockModel(StagedLoading):
 
     def boundary_mean_displacement(self, boundary: str) -> np.ndarray:
         """Mean displacement vector [m] over a named boundary (∫u ds / ∫ds, all ranks)."""
-        tag = _lookup(self.dmesh, "boundaries", boundary)
+        tag = lookup(self.dmesh, "boundaries", boundary)
         ds = ufl.Measure("ds", domain=self.mesh, subdomain_data=self.dmesh.boundaries)(tag)
         area = self.comm.allreduce(fem.assemble_scalar(fem.form(fem.Constant(self.mesh, 1.0) * ds)))
         return np.array([self.comm.allreduce(fem.assemble_scalar(fem.form(self.u[i] * ds))) / area

@@ -20,7 +20,8 @@ def write_joint_points(path: str, state: dict, gdim: int) -> None:
     """Write a gathered joint state dict (all points) as an XDMF Polyvertex grid with its
     heavy data in <stem>.h5 (meshio's XDMF writer, HDF5 through h5py). Attribute names carry
     their units: closure_m, normal_stress_Pa, shear_traction_Pa (vector, local axes t1[, t2]),
-    status (rockjoint.Status values), joint_tag."""
+    status (rockjoint.Status values), joint_tag, and when the state has them slip_m (vector,
+    local axes), dilation_m, shear_state (rockjoint.fem.ShearState values)."""
     import meshio  # Debian python3-meshio; imported here so the FE layer loads without it
 
     x = np.asarray(state["coordinates"], dtype=float).reshape(-1, gdim)
@@ -34,6 +35,12 @@ def write_joint_points(path: str, state: dict, gdim: int) -> None:
                   "shear_traction_Pa": shear,
                   "status": np.asarray(state["status"], dtype=np.int32),
                   "joint_tag": np.asarray(state["tag"], dtype=np.int32)}
+    if "slip" in state:  # joint strength: the path-dependent state
+        slip = np.zeros((n, 3))
+        slip[:, :gdim - 1] = np.asarray(state["slip"], dtype=float).reshape(n, gdim - 1)
+        point_data["slip_m"] = slip
+        point_data["dilation_m"] = np.asarray(state["dilation"], dtype=float)
+        point_data["shear_state"] = np.asarray(state["shear_state"], dtype=np.int32)
     cells = [("vertex", np.arange(n, dtype=np.int64).reshape(-1, 1))]
     meshio.write(path, meshio.Mesh(xyz, cells, point_data=point_data), file_format="xdmf")
 

@@ -19,33 +19,10 @@ from dolfinx import fem
 from petsc4py import PETSc
 
 from .. import _rockjoint
+from .distributed_mesh import names_of
 from .newton import ConvergenceError, StepReport
 
 log = logging.getLogger(__name__)
-
-
-def names_of(dmesh, kind: str) -> dict:
-    """{name: tag} of the mesh's groups of `kind` ("blocks", "joints", "boundaries")."""
-    return {str(n): int(t) for t, n in dmesh.names[kind].items()}
-
-
-def lookup(dmesh, kind: str, name: str) -> int:
-    """The tag of a named group, or ValueError listing the available names."""
-    names = names_of(dmesh, kind)
-    if name not in names:
-        singular = {"blocks": "block", "joints": "joint", "boundaries": "boundary"}[kind]
-        raise ValueError(f"unknown {singular} {name!r}; available {kind}: {sorted(names)}")
-    return names[name]
-
-
-def min_op():
-    from mpi4py import MPI
-    return MPI.MIN
-
-
-def max_op():
-    from mpi4py import MPI
-    return MPI.MAX
 
 
 @dataclass

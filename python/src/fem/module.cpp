@@ -1,7 +1,10 @@
 // The _rockjoint_fem extension: bindings of rockjoint::fem (interface assembler). Separate
 // from _rockjoint so that the closure-law module never needs PETSc/DOLFINx. Closure laws
 // come in as the shared_ptr<ClosureLaw> objects of rockjoint._rockjoint (import it first).
+#include "../array_helpers.hpp"
+
 #include <rockjoint/fem_coupling/interface_assembler.hpp>
+#include <rockjoint/fem_coupling/joint_slip.hpp>
 #include <rockjoint/fem_coupling/local_frame.hpp>
 #include <rockjoint/fem_coupling/petsc_assembly.hpp>
 
@@ -11,6 +14,8 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <limits>
+#include <optional>
 #include <span>
 
 namespace py = pybind11;
@@ -51,25 +56,158 @@ PYBIND11_MODULE(_rockjoint_fem, m)
       .value("constant", ShearModel::constant)
       .value("proportional", ShearModel::proportional);
 
+  py::enum_<StrengthModel>(m, "StrengthModel", "Peak shear strength of a joint")
+      .value("none", StrengthModel::none)
+      .value("coulomb", StrengthModel::coulomb)
+      .value("barton", StrengthModel::barton);
+
+  py::enum_<ShearState>(m, "ShearState", "Stick, slip or open, per joint point")
+      .value("stick", ShearState::stick)
+      .value("slip", ShearState::slip)
+      .value("open", ShearState::open);
+
+  py::class_<JointStrength>(m, "JointStrength",
+                            "Shear strength of a joint (docs/joint-strength.md); SI units, "
+                            "angles in radians")
+      .def(py::init(
+               [](StrengthModel model, double phi, double c, double t, double psi,
+                  double limit, double jrc, double jcs, double cap)
+               {
+                 JointStrength s{model, phi, c, t, psi, limit, jrc, jcs, cap};
+                 validate(s, "JointStrength");
+                 return s;
+               }),
+           py::arg("model") = StrengthModel::coulomb, py::kw_only(),
+           py::arg("friction_angle") = 0.0, py::arg("cohesion") = 0.0,
+           py::arg("tensile_strength") = 0.0, py::arg("dilation_angle") = 0.0,
+           py::arg("dilation_limit") = std::numeric_limits<double>::infinity(),
+           py::arg("jrc") = 0.0, py::arg("jcs") = 0.0,
+           py::arg("maximum_friction_angle") = JointStrength{}.maximum_friction_angle,
+           "model: StrengthModel; friction_angle φ (Barton: φ_r) [rad]; cohesion c [Pa]; "
+           "tensile_strength T [Pa] (bonded joint, <= c / tan φ); dilation_angle ψ [rad] "
+           "(<= φ); dilation_limit: slip after which dilation stops [m]; jrc [-], jcs [Pa] "
+           "(Barton); maximum_friction_angle: cap of Barton's angle [rad]")
+      .def_readonly("model", &JointStrength::model)
+      .def_readonly("friction_angle", &JointStrength::friction_angle)
+      .def_readonly("cohesion", &JointStrength::cohesion)
+      .def_readonly("tensile_strength", &JointStrength::tensile_strength)
+      .def_readonly("dilation_angle", &JointStrength::dilation_angle)
+      .def_readonly("dilation_limit", &JointStrength::dilation_limit)
+      .def_readonly("jrc", &JointStrength::jrc)
+      .def_readonly("jcs", &JointStrength::jcs)
+      .def_readonly("maximum_friction_angle", &JointStrength::maximum_friction_angle)
+      .def("shear_strength",
+           [](const JointStrength& s, double normal_stress)
+           { return shear_strength(s, normal_stress, true).strength; },
+           py::arg("normal_stress"), "τ_y [Pa] at σ_n [Pa] (compression +), bond intact");
+
+  py::class_<JointPointState>(m, "JointPointState", "Path-dependent state of one joint point")
+      .def(py::init(
+               [](const std::vector<double>& slip, double dilation, double accumulated,
+                  bool broken)
+               {
+                 if (slip.size() > 2)
+                   throw py::value_error("JointPointState: slip has " + std::to_string(slip.size())
+                                         + " components; at most 2 (t1, t2)");
+                 JointPointState s;
+                 std::copy(slip.begin(), slip.end(), s.slip.begin());
+                 s.dilation = dilation;
+                 s.accumulated_slip = accumulated;
+                 s.bond_broken = broken;
+                 return s;
+               }),
+           py::arg("slip") = std::vector<double>{}, py::arg("dilation") = 0.0,
+           py::arg("accumulated_slip") = 0.0, py::arg("bond_broken") = false)
+      .def_property_readonly("slip", [](const JointPointState& s)
+                             { return std::vector<double>(s.slip.begin(), s.slip.end()); })
+      .def_readonly("dilation", &JointPointState::dilation)
+      .def_readonly("accumulated_slip", &JointPointState::accumulated_slip)
+      .def_readonly("bond_broken", &JointPointState::bond_broken);
+
   py::class_<JointBehaviour>(m, "JointBehaviour",
-                             "Closure law + shear stiffness + residual stiffness of a joint")
+                             "Closure law + shear stiffness + residual stiffness + strength of "
+                             "a joint")
       .def(py::init(
                [](std::shared_ptr<const rockjoint::constitutive::ClosureLaw> law,
-                  ShearModel model, double ks, double ratio, double kr)
+                  ShearModel model, double ks, double ratio, double kr,
+                  std::optional<JointStrength> strength)
                {
-                 JointBehaviour b{law, model, ks, ratio, kr};
+                 JointBehaviour b{law, model, ks, ratio, kr, strength.value_or(JointStrength{})};
                  validate(b, law ? law->name() : std::string("?"));
                  return b;
                }),
            py::arg("law"), py::arg("shear_model") = ShearModel::constant,
            py::arg("shear_stiffness") = 0.0, py::arg("shear_stiffness_ratio") = 0.0,
-           py::arg("residual_stiffness") = 0.0)
+           py::arg("residual_stiffness") = 0.0, py::arg("strength") = py::none())
       .def_readonly("shear_model", &JointBehaviour::shear_model)
       .def_readonly("shear_stiffness", &JointBehaviour::shear_stiffness)
       .def_readonly("shear_stiffness_ratio", &JointBehaviour::shear_stiffness_ratio)
       .def_readonly("residual_stiffness", &JointBehaviour::residual_stiffness)
+      .def_readonly("strength", &JointBehaviour::strength)
       .def_property_readonly("law", [](const JointBehaviour& b)
                              { return std::const_pointer_cast<rockjoint::constitutive::ClosureLaw>(b.law); });
+
+  m.def(
+      "closure_at_normal_stress",
+      [](const JointBehaviour& b, const rockjoint::python::DoubleArray& stress) -> py::object
+      {
+        rockjoint::python::DoubleArray out = rockjoint::python::empty_like(stress);
+        const double* in = stress.data();
+        double* o = out.mutable_data();
+        for (py::ssize_t i = 0; i < stress.size(); ++i)
+        {
+          try
+          {
+            o[i] = closure_at_normal_stress(b, in[i]);
+          }
+          catch (const std::exception& e)
+          {
+            throw py::value_error("closure_at_normal_stress: entry " + std::to_string(i) + ": "
+                                  + e.what());
+          }
+        }
+        if (stress.ndim() == 0)
+          return out.attr("item")();
+        return out;
+      },
+      py::arg("behaviour"), py::arg("normal_stress"),
+      "Closure Δ >= 0 [m] with σ(Δ) + k_r Δ = σ_t for total normal stresses σ_t [Pa] "
+      "(compression +), shaped like the input (a scalar gives a float). ValueError naming the "
+      "entry for a NaN, infinite or negative σ_t or one beyond the law's range");
+
+  m.def(
+      "joint_response",
+      [](const JointBehaviour& b, const Array<double>& jump, const JointPointState& converged)
+      {
+        const int gdim = static_cast<int>(jump.size());
+        if (gdim != 2 && gdim != 3)
+          throw py::value_error("joint_response: jump must have 2 or 3 components, got "
+                                + std::to_string(gdim));
+        std::array<double, 3> j{};
+        std::copy_n(jump.data(), gdim, j.begin());
+        JointPointState trial;
+        const LocalResponse r = joint_response(b, gdim, j, converged, trial);
+        py::array_t<double> t(gdim), D({gdim, gdim});
+        for (int i = 0; i < gdim; ++i)
+        {
+          t.mutable_at(i) = r.traction[i];
+          for (int k = 0; k < gdim; ++k)
+            D.mutable_at(i, k) = r.tangent[i][k];
+        }
+        py::dict out;
+        out["traction"] = t;
+        out["tangent"] = D;
+        out["closure"] = r.closure;
+        out["normal_stress"] = r.normal_stress;
+        out["status"] = static_cast<int>(r.status);
+        out["shear_state"] = r.shear_state;
+        out["state"] = trial;
+        return out;
+      },
+      py::arg("behaviour"), py::arg("local_jump"), py::arg("converged") = JointPointState{},
+      "{traction [Pa], tangent ∂t/∂j [Pa/m], closure [m], normal_stress [Pa], status, "
+      "shear_state, state (trial JointPointState)} at local jump (n, t1[, t2]) [m] from the "
+      "converged state");
 
   m.def(
       "local_response",
@@ -231,6 +369,8 @@ PYBIND11_MODULE(_rockjoint_fem, m)
                              { return to_numpy(a.initial_jump(), a.gdim()); })
       .def("commit_state", &InterfaceAssembler::commit_state, "converged point state <- trial")
       .def("revert_state", &InterfaceAssembler::revert_state, "trial point state <- converged")
+      .def("reset_state", &InterfaceAssembler::reset_state,
+           "virgin point state (no slip, no dilation, bonds intact) at every point")
       .def_property_readonly("num_law_evaluations", &InterfaceAssembler::num_law_evaluations)
       .def(
           "point_state",
@@ -239,8 +379,10 @@ PYBIND11_MODULE(_rockjoint_fem, m)
             const auto& s = converged ? a.converged_state() : a.trial_state();
             const py::ssize_t n = static_cast<py::ssize_t>(s.size()), g = a.gdim();
             py::array_t<double> slip({n, g - 1}), dilation(n), accumulated(n);
+            py::array_t<bool> broken(n);
             for (py::ssize_t i = 0; i < n; ++i)
             {
+              broken.mutable_at(i) = s[i].bond_broken;
               for (py::ssize_t k = 0; k < g - 1; ++k)
                 slip.mutable_at(i, k) = s[i].slip[k];
               dilation.mutable_at(i) = s[i].dilation;
@@ -250,11 +392,12 @@ PYBIND11_MODULE(_rockjoint_fem, m)
             out["slip"] = slip;
             out["dilation"] = dilation;
             out["accumulated_slip"] = accumulated;
+            out["bond_broken"] = broken;
             return out;
           },
           py::arg("converged") = false,
-          "{slip (points, gdim-1), dilation, accumulated_slip} [m] of the trial (default) or "
-          "converged point state")
+          "{slip (points, gdim-1), dilation, accumulated_slip} [m], bond_broken (bool) of the "
+          "trial (default) or converged point state")
       .def_property_readonly("closure", [](const InterfaceAssembler& a) { return to_numpy(a.closure()); })
       .def_property_readonly("normal_stress",
                              [](const InterfaceAssembler& a) { return to_numpy(a.normal_stress()); })
@@ -267,6 +410,9 @@ PYBIND11_MODULE(_rockjoint_fem, m)
                                return t;
                              })
       .def_property_readonly("status", [](const InterfaceAssembler& a) { return to_numpy(a.status()); })
+      .def_property_readonly("shear_state", [](const InterfaceAssembler& a)
+                             { return to_numpy(a.shear_state()); },
+                             "ShearState per point at the last residual (stick 0, slip 1, open 2)")
       .def_property_readonly("point_coordinates", [](const InterfaceAssembler& a)
                              { return to_numpy(a.point_coordinates(), a.gdim()); })
       .def_property_readonly("normals", [](const InterfaceAssembler& a)

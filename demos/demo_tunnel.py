@@ -1,0 +1,307 @@
+#!/usr/bin/env python3
+"""A circular tunnel excavated in a jointed rock mass at 300 m depth, beside the same tunnel in intact rock.
+
+Read it top to bottom; run it as it is (serial or `mpirun -n 2`):
+
+    PYTHONPATH=python:build/python /usr/bin/python3 demos/demo_tunnel.py [--output DIR] [--quick]
+
+The scene: an 8 m diameter tunnel (a = 4 m) with its axis 300 m deep in granite (ρ = 2700 kg/m³:
+σ_v = ρ g z = 7.95 MPa at the axis, uniform over the section), horizontal stress σ_h = K0 σ_v with
+K0 = 0.5, plane strain, in a 80 m x 80 m section (W/a = 20) with rollers on its four sides. Two joint
+sets cross the tunnel: bedding planes (horizontal, 3 m apart) carrying the Tang & Jiao law of a
+synthetic mated granite joint (its topography → η, β, σ_s → the recommended law, tabulated once), and
+a cross set dipping 60° (5 m apart) with a Barton-Bandis law from JRC, JCS and aperture. The intact
+section is meshed with the same triangles (the joint traces kept as mesh lines) and solved beside it.
+
+Stages (rockjoint's staged analysis, docs/staged-analysis.md): in-situ (σ0 in equilibrium, joints
+pre-closed to their law's closure at their initial normal stress) → excavation (the in-situ traction
+on the opening released in load steps) → a 0.5 MPa lining pressure. Displacements are relative to
+the in-situ state, so the intact tunnel's wall displacement is Kirsch's excavation displacement
+(rockjoint.reference.kirsch), up to the W/a = 20 domain and the mesh (docs/tunnel.md).
+
+Outputs (in DIR): tunnel.png (hoop stress on the mesh, the deformed opening outline, joints coloured
+by their closure change), tunnel.txt (the numbers), tunnel_intact.xdmf, tunnel_jointed.xdmf (the
+displacement at the end, + tunnel_jointed_joints.xdmf, the joint state) and tunnel_<label>_stress.xdmf
+(the total stress after excavation, per cell, tension positive [Pa]) for ParaView. Units in print:
+mm, MPa, m.
+"""
+import argparse
+import logging
+import math
+import os
+import time
+
+import numpy as np
+from dolfinx.io import XDMFFile
+from mpi4py import MPI
+
+import rockjoint
+from rockjoint.console import quiet_compiler_logging
+from rockjoint import meshes
+from rockjoint import topography as topo
+from rockjoint.fem import InSituStress, JointedRockModel, NewtonOptions, distribute
+from rockjoint.fem.probe import probe
+from rockjoint.reference import KirschSolution
+
+COMM = MPI.COMM_WORLD
+quiet_compiler_logging()  # DOLFINx's form compiler would log every command
+log = logging.getLogger("demo_tunnel")
+log.propagate = False
+log.addHandler(logging.StreamHandler())
+log.handlers[0].setFormatter(logging.Formatter("%(message)s"))
+log.setLevel(logging.INFO if COMM.rank == 0 else logging.WARNING)
+
+# %% The scene ---------------------------------------------------------------------------------
+RADIUS = 4.0                       # tunnel radius a [m] (8 m diameter)
+DEPTH = 300.0                      # depth of the axis [m]
+DENSITY, GRAVITY = 2700.0, 9.81    # [kg/m³], [m/s²]
+SIGMA_V = DENSITY * GRAVITY * DEPTH  # 7.95 MPa
+K0 = 0.5                           # σ_h / σ_v
+WIDTH = HEIGHT = 80.0              # section [m], W/a = 20
+CENTRE = (WIDTH / 2, HEIGHT / 2)
+YOUNG, POISSON = 50e9, 0.25        # granite
+LINING_PRESSURE = 0.5e6            # [Pa]
+SHEAR_RATIO = 0.1                  # joint shear stiffness k_s = 0.1 k_n(Δ)
+RESIDUAL_STIFFNESS = 1e6           # [Pa/m], keeps a block held only by open joints from being singular
+
+# Bedding: horizontal, 3 m apart, the nearest 1.5 m above and below the axis (none tangent to the
+# opening); cross set: dip 60° toward +x, 5 m apart, one through the axis.
+BEDDING = meshes.joint_set(3.0, 0.0, 90.0, origin=(CENTRE[0], CENTRE[1] - 10.5), count=8, name="bedding")
+CROSS = meshes.joint_set(5.0, 60.0, 90.0, origin=(CENTRE[0] - 10.0, CENTRE[1]), count=5, name="cross")
+
+
+def joint_laws():
+    """Bedding: Tang & Jiao from a synthetic mated granite joint; cross set: Barton-Bandis (JRC/JCS)."""
+    n, spacing = 128, 0.5e-3  # a 64 mm scan at 0.5 mm
+    spec = topo.SelfAffineSpec(hurst_exponent=0.8, rms_height=1.0e-3)
+    upper, lower = topo.mated_pair(spec, (n, n), spacing, 2.5e-3, seed=1)
+    analysis = topo.analyse(topo.composite_topography(upper, lower, offset=(0, 0)).composite)
+    params = topo.closure_parameters(analysis, young=YOUNG, poisson=POISSON)
+    bedding = rockjoint.laws.laws_from_topography(params, summits=analysis, empirical=False)
+    bedding = bedding[rockjoint.laws.RECOMMENDED].law
+    cross = rockjoint.BartonBandis.from_joint_properties(jrc=8.0, jcs=80e6, initial_aperture=0.4e-3)
+    log.info("bedding (Tang & Jiao from the topography): η = %.3f /mm², β = %.3f mm, σ_s = %.4f mm",
+             params.summit_density * 1e-6, params.summit_radius * 1e3, params.summit_height_std * 1e3)
+    log.info("cross set (Bandis 1983): K_ni = %.2f MPa/mm, V_m = %.3f mm",
+             cross.initial_normal_stiffness * 1e-9, cross.maximum_closure * 1e3)
+    # Tables cover the stresses the scene can reach (the sidewall hoop stress is 2.5 σ_v).
+    top = 4.0 * SIGMA_V
+    return {"bedding": rockjoint.tabulate(bedding, max_stress=top, tolerance=1e-6),
+            "cross": rockjoint.tabulate(cross, max_stress=top, tolerance=1e-6)}
+
+
+def section(mesh_size, intact):
+    opening = meshes.CircularOpening(CENTRE, RADIUS)
+    return meshes.tunnel_section(WIDTH, HEIGHT, opening, BEDDING + CROSS, mesh_size=mesh_size,
+                                 opening_mesh_size=mesh_size / 8, opening_refine_distance=2 * RADIUS,
+                                 joint_mesh_size=mesh_size / 4, joint_refine_distance=mesh_size,
+                                 intact=intact, comm=COMM)
+
+
+def staged_model(dmesh, tables, steps, after_excavation):
+    """In-situ → excavation → lining pressure; after_excavation(model) runs between the last two
+    stages. Returns the model (its stages kept in model.stages)."""
+    joints = {name: tables[name.split("_")[0]] for name in dmesh.names["joints"].values()}
+    model = JointedRockModel(dmesh, rock=(YOUNG, POISSON), joints=joints,
+                             shear_stiffness_ratio=SHEAR_RATIO if joints else None,
+                             residual_stiffness=RESIDUAL_STIFFNESS if joints else 0.0,
+                             plane="strain", newton=NewtonOptions(verbose=False))
+    for side, component in (("left", "x"), ("right", "x"), ("bottom", "y"), ("top", "y")):
+        model.fix(side, component)
+    model.set_in_situ_stress(InSituStress.uniform([[-K0 * SIGMA_V, 0.0], [0.0, -SIGMA_V]]))
+    model.solve(name="in-situ")
+    model.excavate(meshes.OPENING)
+    model.solve(load_steps=steps, name="excavation")
+    after_excavation(model)
+    model.add_pressure(meshes.OPENING, LINING_PRESSURE)
+    model.solve(load_steps=1, name="lining")
+    return model
+
+
+def wall_points(h_wall):
+    """Points just inside the rock at θ = 0 (right sidewall), 90° (crown), 180°, 270° (invert), and
+    the outline (360 points) for the deformed-shape plot: at r = a + h²/(4a), twice the sagitta of
+    the mesh's chords, so that they lie in the mesh."""
+    r = RADIUS + h_wall ** 2 / (4 * RADIUS)
+    th = np.concatenate([[0.0, 0.5 * math.pi, math.pi, 1.5 * math.pi], np.linspace(0, 2 * math.pi, 361)[:-1]])
+    return r, th, np.stack([CENTRE[0] + r * np.cos(th), CENTRE[1] + r * np.sin(th)], axis=1)
+
+
+def radial_hoop(sigma, th):
+    """(σ_rr, σ_θθ) compression positive from tension-positive tensors (n, 2, 2) at angles th."""
+    c, s = np.cos(th), np.sin(th)
+    er, et = np.stack([c, s], 1), np.stack([-s, c], 1)
+    return (-np.einsum("ni,nij,nj->n", er, sigma, er), -np.einsum("ni,nij,nj->n", et, sigma, et))
+
+
+def cell_hoop_stress(model, stress):
+    """(triangles (n, 3, 2), hoop stress [Pa, compression +]) of the owned cells, gathered on rank 0."""
+    mesh = model.mesh
+    n = mesh.topology.index_map(2).size_local
+    x = mesh.geometry.x[:, :2]
+    tri = x[mesh.geometry.dofmap.array.reshape(-1, 3)[:n]]
+    centroid = tri.mean(axis=1)
+    sig = stress.x.array.reshape(-1, 2, 2)[stress.function_space.dofmap.list.array.reshape(-1)[:n]]
+    th = np.arctan2(centroid[:, 1] - CENTRE[1], centroid[:, 0] - CENTRE[0])
+    hoop = radial_hoop(sig, th)[1]
+    parts = COMM.gather((tri, hoop), root=0)
+    if COMM.rank != 0:
+        return None, None
+    return np.concatenate([p[0] for p in parts]), np.concatenate([p[1] for p in parts])
+
+
+def joint_segments(state):
+    """(segments (m, 2, 2), per-segment point rows (m, k)) of the joints from the point state
+    (points come in groups per facet pair, the pair's endpoints among them)."""
+    xy = np.asarray(state["coordinates"]).reshape(-1, 2)
+    k = 2  # points per pair of the nodal rule on P1 segments
+    groups = np.arange(xy.shape[0]).reshape(-1, k)
+    return xy[groups], groups
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--output", default=".", help="output folder")
+    ap.add_argument("--mesh-size", type=float, default=2.0,
+                    help="element size far from the opening [m]; opening h/8, joints h/4")
+    ap.add_argument("--quick", action="store_true", help="a coarse version (mesh size 8 m, 2 excavation steps)")
+    args = ap.parse_args()
+    t_start = time.perf_counter()
+    os.makedirs(args.output, exist_ok=True)
+    out = lambda name: os.path.join(args.output, name)  # noqa: E731
+    h = 8.0 if args.quick else args.mesh_size
+    steps = 2 if args.quick else 4
+
+    # %% 1. Joint laws, tabulated once ----------------------------------------------------------
+    tables = joint_laws()
+
+    # %% 2. Meshes: jointed and intact on the same triangles ------------------------------------
+    jointed = distribute(section(h, intact=False), COMM)
+    intact = distribute(section(h, intact=True), COMM)
+    log.info("jointed section: %d blocks, %d joint facet pairs; element size %.2f m at the wall, %.2f m far",
+             len(jointed.names["blocks"]), COMM.allreduce(len(jointed.pairs)), h / 8, h)
+
+    # %% 3. Stages: in-situ → excavation → lining; the wall and the stresses after excavation ------
+    kirsch = KirschSolution(RADIUS, SIGMA_V, K0, YOUNG, POISSON, CENTRE)
+    r_wall, th, pts = wall_points(h / 8)
+    # P1 stresses are constant per cell: compare them where the wall cells' centroids lie (r ≈ a + h/3)
+    r_stress = RADIUS + h / 24
+    pts_stress = np.stack([CENTRE[0] + r_stress * np.cos(th[:4]), CENTRE[1] + r_stress * np.sin(th[:4])], axis=1)
+    models, wall, stress_at = {}, {}, {}
+
+    def record(label):
+        def after_excavation(model):
+            u = probe(model.u, pts)  # relative to the in-situ state
+            wall[label] = (u, np.einsum("ni,ni->n", u, np.stack([np.cos(th), np.sin(th)], 1)))
+            stress = model.total_stress()  # σ0 + σ(u), tension positive [Pa]
+            stress.name = "total_stress_Pa"
+            with XDMFFile(COMM, out(f"tunnel_{label}_stress.xdmf"), "w") as f:
+                f.write_mesh(model.mesh)
+                f.write_function(stress)
+            stress_at[label] = (stress, radial_hoop(probe(stress, pts_stress).reshape(-1, 2, 2), th[:4])[1])
+        return after_excavation
+
+    for label, dmesh in (("intact", intact), ("jointed", jointed)):
+        t0 = time.perf_counter()
+        models[label] = staged_model(dmesh, tables, steps, record(label))
+        log.info("%s: %s (%.1f s)", label, ", ".join(f"{s.name} {s.newton_iterations} Newton it."
+                                                      for s in models[label].stages), time.perf_counter() - t0)
+        models[label].write_xdmf(out(f"tunnel_{label}.xdmf"))  # the final (lining) stage
+
+    # %% 4. Wall convergence, stress concentration, joints --------------------------------------
+    ur_kirsch = kirsch.excavation_displacement(np.full(4, RADIUS), th[:4])[0]
+    state = {name: models["jointed"].stages[i].gather_joints() for i, name in ((0, "in-situ"), (1, "excavation"))}
+    closure_change = state["excavation"]["closure"] - state["in-situ"]["closure"]
+    xy = np.asarray(state["excavation"]["coordinates"]).reshape(-1, 2)
+    dist = (np.hypot(xy[:, 0] - CENTRE[0], xy[:, 1] - CENTRE[1]) - RADIUS) / RADIUS
+    # Opened: the joint opened at excavation by more than 10 % of its in-situ closure (it lost a good
+    # part of its pre-closure); separated: it lost contact (closure <= 0, no normal stress).
+    opened = closure_change < -0.1 * np.asarray(state["in-situ"]["closure"])
+    separated = np.asarray(state["excavation"]["closure"]) <= 0.0
+    extent = float(dist[opened].max()) if opened.any() else 0.0
+    extent_separated = float(dist[separated].max()) if separated.any() else 0.0
+
+    names = ("right sidewall", "crown", "left sidewall", "invert")
+    conv_i, conv_j = -wall["intact"][1][:4], -wall["jointed"][1][:4]
+    lines = [f"{'after excavation':34}{'Kirsch':>10}{'intact':>10}{'jointed':>10}{'joints share':>14}"]
+    for k, name in enumerate(names):
+        share = (conv_j[k] - conv_i[k]) / conv_j[k]
+        lines.append(f"{'wall convergence ' + name + ' [mm]':34}{-ur_kirsch[k] * 1e3:10.3f}{conv_i[k] * 1e3:10.3f}"
+                     f"{conv_j[k] * 1e3:10.3f}{100 * share:13.1f}%")
+    hoop_k = kirsch.polar_stress(np.full(4, r_stress), th[:4])[1]
+    for k in (0, 1):
+        lines.append(f"{'hoop stress ' + names[k] + ' [MPa]*':34}{hoop_k[k] * 1e-6:10.2f}"
+                     f"{stress_at['intact'][1][k] * 1e-6:10.2f}{stress_at['jointed'][1][k] * 1e-6:10.2f}")
+    lines += [f"* at r = a + h/3 = {r_stress:.3f} m (the wall cells' centroids, h = {h / 8:g} m at the wall)",
+              f"stress concentration at the wall (Kirsch, r = a): sidewall {3 - K0:.2f} σ_v, crown {3 * K0 - 1:.2f} σ_v",
+              f"joint closure change at excavation [mm]: min {closure_change.min() * 1e3:.4f}, "
+              f"max {closure_change.max() * 1e3:.4f} (< 0: opening)",
+              f"opened joint points (> 10 % of the in-situ closure): {int(opened.sum())} of {opened.size}; "
+              f"opened zone extends {extent:.2f} a from the wall",
+              f"separated joint points (closure <= 0): {int(separated.sum())}; farthest {extent_separated:.2f} a "
+              "from the wall"]
+    push = [probe(models[k].stages[2].displacement, pts[1:2])[0, 1] - wall[k][0][1, 1] for k in ("intact", "jointed")]
+    lines.append(f"lining pressure {LINING_PRESSURE * 1e-6:g} MPa moves the crown up by [mm]: intact "
+                 f"{push[0] * 1e3:.4f}, jointed {push[1] * 1e3:.4f}")
+    elapsed = time.perf_counter() - t_start
+    lines.append(f"demo wall time [s]: {COMM.allreduce(elapsed, op=MPI.MAX):.1f} on {COMM.size} rank(s)")
+    if COMM.rank == 0:
+        print("\n" + "\n".join(lines), flush=True)
+        with open(out("tunnel.txt"), "w") as f:
+            f.write(f"# rockjoint tunnel demo: a = {RADIUS} m at {DEPTH:g} m depth, σ_v = {SIGMA_V * 1e-6:.2f} MPa, "
+                    f"K0 = {K0}, plane strain, mesh size {h} m (wall {h / 8} m)\n")
+            f.write("\n".join(lines) + "\n")
+    plot(models, stress_at, wall, pts, th, state, closure_change, out("tunnel.png"))
+
+
+def plot(models, stress_at, wall, pts, th, state, closure_change, path):
+    cells = {label: cell_hoop_stress(models[label], stress_at[label][0]) for label in models}
+    if COMM.rank != 0:
+        return
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.collections import LineCollection
+    from matplotlib.tri import Triangulation
+
+    zoom = 3.0 * RADIUS
+    fig, axes = plt.subplots(1, 3, figsize=(17, 5.4))
+    vmax = max(c[1].max() for c in cells.values()) * 1e-6
+    vmin = min(0.0, min(c[1].min() for c in cells.values()) * 1e-6)  # tension (< 0) at a low-K0 crown
+    for ax, label in zip(axes[:2], ("intact", "jointed")):
+        tri, hoop = cells[label]
+        t = Triangulation(tri.reshape(-1, 2)[:, 0], tri.reshape(-1, 2)[:, 1], np.arange(tri.shape[0] * 3).reshape(-1, 3))
+        pc = ax.tripcolor(t, facecolors=hoop * 1e-6, cmap="magma_r", vmin=vmin, vmax=vmax)
+        fig.colorbar(pc, ax=ax, label="hoop stress σ_θθ [MPa] (compression +)")
+        ax.set_title(f"{label}: hoop stress after excavation")
+    # Deformed outline: the wall displacement magnified.
+    ax = axes[2]
+    outline = pts[4:]
+    umax = max(np.abs(w[0][4:]).max() for w in wall.values())
+    scale = 0.15 * RADIUS / umax
+    ax.plot(*np.vstack([outline, outline[:1]]).T, "k:", lw=1, label="opening (undeformed)")
+    for label, style in (("intact", "C0-"), ("jointed", "C3-")):
+        d = outline + scale * wall[label][0][4:]
+        ax.plot(*np.vstack([d, d[:1]]).T, style, lw=1.5, label=f"{label}, displacement × {scale:.0f}")
+    segs, groups = joint_segments(state["excavation"])
+    change = closure_change[groups].mean(axis=1) * 1e3
+    lim = np.abs(change).max()
+    lc = LineCollection(segs, array=change, cmap="coolwarm_r", clim=(-lim, lim), linewidths=2.0)
+    ax.add_collection(lc)
+    fig.colorbar(lc, ax=ax, label="joint closure change at excavation [mm] (< 0: opening)")
+    ax.set_title("deformed opening and joints")
+    ax.legend(loc="lower left", fontsize=7)
+    for ax in axes:
+        ax.set_aspect("equal")
+        ax.set_xlim(CENTRE[0] - zoom, CENTRE[0] + zoom)
+        ax.set_ylim(CENTRE[1] - zoom, CENTRE[1] + zoom)
+        ax.set_xlabel("x [m]")
+        ax.set_ylabel("y [m]")
+    fig.suptitle(f"{2 * RADIUS:g} m tunnel at {DEPTH:g} m depth, σ_v = {SIGMA_V * 1e-6:.2f} MPa, K0 = {K0} "
+                 "(plane strain; the central 24 m of the 80 m section)")
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,70 @@
+#pragma once
+/// @file joint_strength.hpp
+/// Shear strength of a joint (docs/joint-strength.md): the yield function of the Coulomb slip
+/// model, its tension cut-off and the dilatancy of its non-associated flow rule.
+///
+/// With σ_n the normal stress (compression +) and τ = |(τ1, τ2)| the shear stress magnitude:
+///   Coulomb:  τ_y(σ_n) = c + σ_n tan φ,
+///   Barton:   τ_y(σ_n) = c + σ_n tan(φ_r + JRC log10(JCS/σ_n))   (Barton & Choubey 1977),
+///             the mobilised angle capped at `maximum_friction_angle` (70°, Barton & Choubey's
+///             limit for low stress, also used for σ_n <= 0) and the roughness term at zero for
+///             σ_n >= JCS (the correlation's range ends there);
+/// yield function f = τ - τ_y(σ_n) <= 0; plastic potential g = τ - σ_n tan ψ (slip opens the
+/// joint by tan ψ per unit slip while the accumulated slip is below `dilation_limit`).
+/// Tension cut-off: a joint carries tension only while bonded (tensile_strength T > 0, never
+/// exceeded); T = 0 (default): an open joint transmits no traction.
+
+#include <limits>
+#include <string>
+
+namespace rockjoint::fem
+{
+
+/// Which peak strength bounds the shear stress.
+enum class StrengthModel : int
+{
+  none = 0,    ///< elastic joint: no strength, no slip (the model before joint strength)
+  coulomb = 1, ///< τ_y = c + σ_n tan φ
+  barton = 2,  ///< τ_y = c + σ_n tan(φ_r + JRC log10(JCS/σ_n))
+};
+
+/// Parameters of the shear strength (angles in radians, stresses in Pa, lengths in m).
+struct JointStrength
+{
+  StrengthModel model = StrengthModel::none;
+  double friction_angle = 0.0;   ///< φ (Coulomb) or the residual angle φ_r (Barton) [rad], [0, π/2)
+  double cohesion = 0.0;         ///< c [Pa], >= 0
+  double tensile_strength = 0.0; ///< T [Pa], >= 0, at most the cone apex c / tan φ_max
+  double dilation_angle = 0.0;   ///< ψ [rad], 0 <= ψ <= φ (Barton: <= the angle cap)
+  /// Accumulated slip after which dilation stops [m], > 0 (∞: never).
+  double dilation_limit = std::numeric_limits<double>::infinity();
+  double jrc = 0.0;              ///< joint roughness coefficient [-], [0, 20] (Barton)
+  double jcs = 0.0;              ///< joint wall compressive strength [Pa], > 0 (Barton)
+  /// Cap of Barton's mobilised friction angle [rad] (70°: Barton & Choubey 1977).
+  double maximum_friction_angle = 70.0 * 3.14159265358979323846 / 180.0;
+};
+
+/// Throw std::invalid_argument naming `owner`, the parameter, its value and valid range.
+void validate(const JointStrength& strength, const std::string& owner);
+
+/// Shear strength τ_y [Pa] and its slope μ = dτ_y/dσ_n [-] at normal stress σ_n (compression
+/// +). `bonded` = false drops cohesion (a bond broken in tension). τ_y is clamped at 0 (only
+/// reachable in tension, where the validated T keeps a bonded joint inside the cone).
+struct ShearStrength
+{
+  double strength = std::numeric_limits<double>::infinity();
+  double slope = 0.0;
+};
+ShearStrength shear_strength(const JointStrength& strength, double normal_stress, bool bonded);
+
+/// Dilation produced by increasing the accumulated slip from κ0 to κ0 + dλ [m], and its rate
+/// d(dilation)/d(dλ) at that end (tan ψ before the dilation limit, 0 after it).
+struct DilationIncrement
+{
+  double opening = 0.0;
+  double rate = 0.0;
+};
+DilationIncrement dilation_increment(const JointStrength& strength, double accumulated_slip,
+                                     double slip_increment);
+
+} // namespace rockjoint::fem

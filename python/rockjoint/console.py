@@ -1,0 +1,25 @@
+"""Console output of scripts that run serially or under mpirun (the demos): rank 0 speaks.
+
+DOLFINx compiles forms on first use through setuptools, which sets the root logger to INFO and
+would print every compiler command: `quiet_compiler_logging()` lets only warnings through the
+root logger's handlers. A script's own progress goes through its own logger or `say`.
+"""
+from __future__ import annotations
+
+import logging
+
+
+def quiet_compiler_logging() -> None:
+    """Root logger: warnings and errors only (on every handler, the ones DOLFINx added too)."""
+    logging.basicConfig(level=logging.WARNING)
+    for handler in logging.getLogger().handlers:
+        handler.setLevel(logging.WARNING)
+
+
+def say(*args, comm=None) -> None:
+    """print(*args) on rank 0 of `comm` (default MPI.COMM_WORLD), flushed."""
+    if comm is None:
+        from mpi4py import MPI
+        comm = MPI.COMM_WORLD
+    if comm.rank == 0:
+        print(*args, flush=True)

@@ -1,0 +1,2 @@
+"""Closed-form reference solutions, each in its own module in the notation of its source."""
+from .kirsch import KirschSolution  # noqa: F401
