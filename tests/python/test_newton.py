@@ -90,3 +90,73 @@ def test_a_step_that_does_not_reduce_the_residual_is_stagnation_and_cuts_the_loa
     with pytest.raises(Exception, match="load stepping failed"):
         solve_load_path(p, 1, NewtonOptions(verbose=False, stagnation_window=4,
                                             min_load_increment=0.2))
+
+
+class Recording(Scalar):
+    """The scalar spring with the optional protocol: commit_state, and a linear solve that takes
+    (and records) the forcing term rtol."""
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.commits, self.restores, self.asked = 0, 0, []
+
+    def commit_state(self):
+        self.commits += 1
+
+    def restore_state(self):
+        self.restores += 1
+        super().restore_state()
+
+    def solve_increment(self, rtol=None):
+        self.asked.append(rtol)
+        super().solve_increment()
+        return 1
+
+
+def test_commit_after_every_converged_load_step_restore_after_a_failed_one():
+    p = Recording()
+    reports = solve_load_path(p, 3, QUIET)
+    assert all(r.converged for r in reports) and p.commits == len(reports) == 3 and p.restores == 0
+    # A step whose Newton cannot converge in one iteration fails, is restored and cut; its
+    # halves converge (the spring is nearly linear below λ = 0.1) and are committed.
+    p = Recording(c=50.0)
+    reports = solve_load_path(p, 1, NewtonOptions(verbose=False, max_iterations=3, growth=1.0))
+    failed = [r for r in reports if not r.converged]
+    assert failed and p.restores == len(failed) and p.commits == len(reports) - len(failed)
+    assert abs(2 * p.u + 50 * p.u**3 - 3.0) <= 1e-10 * 3.0   # the root of 2u + 50u³ = 3
+
+
+def test_forcing_terms_follow_eisenstat_walker_choice_2_with_safeguards():
+    p = Recording(c=5.0)
+    opts = NewtonOptions(verbose=False, rtol=1e-12)
+    report = newton(p, 1.0, opts)
+    assert report.converged
+    r, eta = report.residual_norms, p.asked
+    tol = 1e-12 * 3.0
+    assert eta[0] == 0.1   # forcing_initial
+    for k in range(1, len(eta)):
+        expected = 0.9 * (r[k] / r[k - 1]) ** 2          # choice 2, γ = 0.9, α = 2
+        if 0.9 * eta[k - 1] ** 2 > 0.1:                  # no sudden tightening
+            expected = max(expected, 0.9 * eta[k - 1] ** 2)
+        expected = min(expected, 0.5)                    # forcing_max
+        if expected * r[k] < 10 * tol:                   # aim at the tolerance near the end
+            expected = 0.5 * tol / r[k]
+        expected = min(max(expected, 0.5 * tol / r[k]), 0.5)   # no oversolving
+        assert eta[k] == pytest.approx(expected, rel=1e-12)
+    # A linear problem (is_linear) and fixed forcing solve to the linear solver's own tolerance.
+    p = Recording()
+    p.is_linear = True
+    newton(p, 1.0, QUIET)
+    assert set(p.asked) == {None}
+    p = Recording()
+    newton(p, 1.0, NewtonOptions(verbose=False, forcing="fixed"))
+    assert set(p.asked) == {None}
+
+
+def test_bad_forcing_options_are_refused_with_their_range():
+    with pytest.raises(ValueError, match="forcing must be"):
+        NewtonOptions(forcing="loose")
+    with pytest.raises(ValueError, match=r"forcing_max must be in \(0, 1\), got 1.5"):
+        NewtonOptions(forcing_max=1.5)
+    with pytest.raises(ValueError, match=r"forcing_alpha must be in \(1, 2\]"):
+        NewtonOptions(forcing_alpha=3.0)

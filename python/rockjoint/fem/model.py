@@ -390,24 +390,29 @@ class JointedRockModel(StagedLoading):
         self.counts["interface_jacobian"] += 1
         self._step_iterations += 1
 
-    def solve_increment(self, rtol: float | None = None) -> None:
-        """du = -J⁻¹ r; rtol: the linear tolerance Newton asks for (None: the solver's default)."""
+    @property
+    def is_linear(self) -> bool:
+        """No joints: the model is linear (Newton then solves to the full linear tolerance)."""
+        return not self.behaviours
+
+    def solve_increment(self, rtol: float | None = None) -> int:
+        """du = -J⁻¹ r to the relative tolerance rtol (None: the linear solver's); returns the
+        Krylov iterations."""
         t0 = time.perf_counter()
         self.r.scale(-1.0)
         try:
-            if rtol is None:
-                self.linear_solver.solve(self.J, self.r, self.du.vector)
-            else:
-                self.linear_solver.solve(self.J, self.r, self.du.vector, rtol=rtol)
+            its = self.linear_solver.solve(self.J, self.r, self.du.vector, rtol=rtol)
         finally:
             self.r.scale(-1.0)
             self.timings["linear_solve"] += time.perf_counter() - t0
             self.counts["linear_solve"] += 1
-        # Supported rows are identity rows with a zero right-hand side: du = 0 there exactly even
-        # after a loose (inexact) solve, so the prescribed values never drift.
+        # Supported rows are identity rows with a zero right-hand side, so du = 0 there only if
+        # the solve is exact; a loose (inexact Newton) solve leaves an error the zeroed residual
+        # would never see: the supports would drift.
         with self.du.vector.localForm() as loc:
             loc.array[self._constrained_owned] = 0.0
         self.du.x.scatter_forward()
+        return its
 
     def increment_norms(self) -> tuple:
         """(||du||, ||u||) of the last Newton increment and the current displacement [m]."""

@@ -1,0 +1,77 @@
+"""The lagged preconditioner of the iterative linear solver: built once, reused while it serves,
+rebuilt after a solve that needed more than rebuild_factor times the iterations per decade of the
+solve that built it; per-solve tolerances (the forcing term of inexact Newton)."""
+import pytest
+
+pytest.importorskip("dolfinx")
+
+from petsc4py import PETSc  # noqa: E402
+
+from rockjoint.fem.linear_solver import LinearSolver  # noqa: E402
+
+
+def laplacian(n, shift=0.0):
+    """5-point Laplacian on an n x n grid (SPD), + `shift` on the diagonal of the right half."""
+    A = PETSc.Mat().createAIJ([n * n, n * n], nnz=5, comm=PETSc.COMM_SELF)
+    for i in range(n):
+        for j in range(n):
+            k = i * n + j
+            A.setValue(k, k, 4.0 + (shift if j >= n // 2 else 0.0))
+            for ii, jj in ((i + 1, j), (i - 1, j), (i, j + 1), (i, j - 1)):
+                if 0 <= ii < n and 0 <= jj < n:
+                    A.setValue(k, ii * n + jj, -1.0)
+    A.assemble()
+    return A
+
+
+def residual(A, x, b):
+    r = b.duplicate()
+    A.mult(x, r)
+    r.axpy(-1.0, b)
+    return r.norm() / b.norm()
+
+
+def test_the_preconditioner_is_reused_while_it_serves_and_rebuilt_when_it_stops_serving():
+    solver = LinearSolver(PETSc.COMM_SELF, "iterative", rtol=1e-10)
+    A = laplacian(60)
+    b = A.createVecLeft()
+    b.set(1.0)
+    x = b.duplicate()
+    fresh = solver.solve(A, b, x)
+    assert solver.setups == 1 and residual(A, x, b) <= 1e-10
+    # A looser solve with the same (lagged) preconditioner: fewer iterations, no new set-up.
+    assert solver.solve(A, b, x, rtol=1e-6) < fresh and solver.setups == 1
+    assert 1e-8 < residual(A, x, b) <= 1e-6
+    # The matrix changes a lot (a stiff half): the lagged preconditioner still converges, but
+    # slowly; the next solve rebuilds it and needs about as many iterations as at the start.
+    laplacian(60, shift=1e3).copy(A, structure=PETSc.Mat.Structure.SAME_NONZERO_PATTERN)
+    lagged = solver.solve(A, b, x)
+    assert solver.setups == 1 and lagged > 2 * fresh and residual(A, x, b) <= 1e-10
+    rebuilt = solver.solve(A, b, x)
+    assert solver.setups == 2 and rebuilt < 2 * fresh and residual(A, x, b) <= 1e-10
+    assert solver.solve(A, b, x) == rebuilt and solver.setups == 2   # and kept while it serves
+    # The KSP is left at the solver's own tolerance for whoever drives it next (SNES).
+    assert solver.ksp.getTolerances()[0] == pytest.approx(1e-10)
+
+
+def test_without_reuse_a_changed_matrix_gets_a_new_preconditioner_at_once():
+    solver = LinearSolver(PETSc.COMM_SELF, "iterative", rtol=1e-10, reuse_preconditioner=False)
+    A = laplacian(60)
+    b = A.createVecLeft()
+    b.set(1.0)
+    x = b.duplicate()
+    fresh = solver.solve(A, b, x)
+    laplacian(60, shift=1e3).copy(A, structure=PETSc.Mat.Structure.SAME_NONZERO_PATTERN)
+    assert solver.solve(A, b, x) < 2 * fresh and solver.setups == 2
+
+
+def test_bad_tolerances_are_refused_with_their_range():
+    solver = LinearSolver(PETSc.COMM_SELF, "iterative")
+    A = laplacian(10)
+    b = A.createVecLeft()
+    b.set(1.0)
+    for bad in (0.0, 1.0, float("nan")):
+        with pytest.raises(ValueError, match=r"rtol must be in \(0, 1\)"):
+            solver.solve(A, b, b.duplicate(), rtol=bad)
+    with pytest.raises(ValueError, match="rebuild_factor must be >= 1, got 0.5"):
+        LinearSolver(PETSc.COMM_SELF, "iterative", rebuild_factor=0.5)
