@@ -75,3 +75,19 @@ def test_bad_tolerances_are_refused_with_their_range():
             solver.solve(A, b, b.duplicate(), rtol=bad)
     with pytest.raises(ValueError, match="rebuild_factor must be >= 1, got 0.5"):
         LinearSolver(PETSc.COMM_SELF, "iterative", rebuild_factor=0.5)
+
+
+def test_auto_picks_mumps_only_below_the_measured_crossover():
+    """bench/results/direct_vs_iterative.md: in 3D GAMG wins from a few thousand dofs on, in 2D
+    the two are comparable up to ~90k dofs."""
+    from rockjoint.fem.linear_solver import DIRECT_DOF_LIMIT, resolve_kind
+
+    assert resolve_kind("auto", 40_000, 2) == "direct"
+    assert resolve_kind("auto", 40_000, 3) == "iterative"
+    assert resolve_kind("auto", DIRECT_DOF_LIMIT[3], 3) == "direct"
+    assert resolve_kind("auto", DIRECT_DOF_LIMIT[3] + 1, 3) == "iterative"
+    assert resolve_kind("direct", 10**7, 3) == "direct"
+    with pytest.raises(ValueError, match="'direct', 'iterative' or 'auto'"):
+        resolve_kind("lu", 100, 2)
+    with pytest.raises(ValueError, match="gdim must be 2 or 3"):
+        resolve_kind("auto", 100, 1)

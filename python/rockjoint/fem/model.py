@@ -35,7 +35,7 @@ from .behaviours import joint_behaviours, symmetric_tangent
 from .distributed_mesh import lookup, names_of
 from .in_situ import STANDARD_GRAVITY, InSituStress
 from .interface import JointInterface
-from .linear_solver import LinearSolver, LinearSolveError, rigid_body_modes  # noqa: F401
+from .linear_solver import LinearSolver, LinearSolveError, resolve_kind, rigid_body_modes  # noqa: F401
 from .load_path import StagedLoading
 from .loads import Load, Support
 from .newton import ConvergenceError, NewtonOptions, newton, solve_load_path  # noqa: F401
@@ -83,7 +83,8 @@ class JointedRockModel(StagedLoading):
         and the slip is committed only when a load step converges.
     plane: "strain" (default) or "stress" in 2D; None (or "3D") in 3D.
     quadrature: "nodal" (default; smooth tractions for stiff joints) or "gauss".
-    linear_solver: "auto" (MUMPS up to 60k dofs, else CG+GAMG), "direct" or "iterative".
+    linear_solver: "auto" (MUMPS up to 60k dofs in 2D and 5k in 3D, else CG+GAMG; see
+        linear_solver.DIRECT_DOF_LIMIT), "direct" or "iterative".
     newton: NewtonOptions (tolerances, closure limit, load-step control, verbosity).
     petsc_options: {option: value} for the linear solver's KSP/PC, without the leading dash
         (DOLFINx convention, e.g. {"ksp_type": "gmres", "pc_type": "hypre"}); applied after the
@@ -282,8 +283,8 @@ class JointedRockModel(StagedLoading):
         num_dofs = imap.size_global * bs
         symmetric = symmetric_tangent(self.behaviours)
         nullspace = None
-        kind = self.linear_solver_kind
-        if kind == "iterative" or (kind == "auto" and num_dofs > 60_000):
+        kind = resolve_kind(self.linear_solver_kind, num_dofs, self.gdim)
+        if kind == "iterative":
             nullspace = rigid_body_modes(V)
         self.linear_solver = LinearSolver(self.comm, kind, num_dofs=num_dofs, near_nullspace=nullspace,
                                           symmetric=symmetric, options=self.petsc_options,
