@@ -11,4 +11,9 @@ echo "== closure laws"; "$build/bench/bench_closure_laws" bench/results/closure_
 echo "== interaction cell"; /usr/bin/python3 bench/bench_interaction_cell.py --build "$build"
 echo "== tabulation"; /usr/bin/python3 bench/bench_tabulation.py --build "$build"
 echo "== topography"; /usr/bin/python3 bench/bench_topography.py
-echo "== FE coupling"; /usr/bin/python3 bench/bench_fem.py --build "$build" --ranks 1 2
+echo "== FE coupling"; /usr/bin/python3 bench/bench_fem.py --build "$build" --repeat 5 --ranks 1 2 \
+    --ratio-size 0.0235 --scaling-sizes 0.0174 0.0135 --scaling-repeat 3 --scaling-ranks 1
+echo "== direct vs iterative"; /usr/bin/python3 bench/bench_direct_vs_iterative.py
+echo "== Kirsch"; /usr/bin/python3 bench/bench_kirsch.py
+echo "== exact contact (BEM)"; /usr/bin/python3 bench/bench_contact.py --repeat 5
+echo "== accuracy ladder"; /usr/bin/python3 bench/bench_accuracy_ladder.py
