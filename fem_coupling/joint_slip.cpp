@@ -80,7 +80,9 @@ LocalResponse joint_response(const JointBehaviour& b, int gdim, const std::array
     // slid in the step just committed and is re-evaluated from that state with a zero
     // increment. Labelled by where τ is, not by whether this evaluation moved the slip, so
     // that every re-evaluation of a converged state (stage results, output) reads the same.
-    const bool on_strength = strength.strength > 0.0 && yield >= -1e-9 * strength.strength;
+    // (No strength model: τ_y = +∞, never on it.)
+    const bool on_strength = std::isfinite(strength.strength) && strength.strength > 0.0
+                             && yield >= -1e-9 * strength.strength;
     r.shear_state = !normal.in_contact ? ShearState::open
                     : on_strength      ? ShearState::slip
                                        : ShearState::stick;

@@ -155,6 +155,23 @@ TEST(FemJointSlip, ReevaluatingACommittedSlipStepReadsSlipWithoutMovingTheSlip)
   }
 }
 
+TEST(FemJointSlip, AJointWithoutStrengthSticksAtAnyShear)
+{
+  // No strength model: τ_y = +∞, so a closed joint is elastic and reads "stick" however far it
+  // is sheared (re-evaluated from a committed state too).
+  JointBehaviour b;
+  b.law = std::make_shared<LinearLaw>(kn);
+  b.shear_stiffness = ks;
+  JointPointState committed;
+  for (const double js : {0.0, 1e-4, 1.0})
+  {
+    const LocalResponse r = respond(b, 3, {-1e-4, js, -js}, {}, &committed);
+    EXPECT_EQ(r.shear_state, ShearState::stick) << "j_s = " << js;
+    EXPECT_DOUBLE_EQ(r.traction[1], ks * js);
+    EXPECT_EQ(respond(b, 3, {-1e-4, js, -js}, committed).shear_state, ShearState::stick);
+  }
+}
+
 TEST(FemJointSlip, DilationGivesTheClosedFormSlipIncrementAndNormalStress)
 {
   // Linear law: G(Δλ) = c + tanφ k_n (Δ + tanψ Δλ) - k_s (e - Δλ) = 0

@@ -135,8 +135,10 @@ def test_elastic_joint_without_strength_never_slips():
     """The same block with no strength follows the elastic branch past the threshold."""
     ref = RigidBlock(slip_floor=0.0)
     model = _slipping_block(None)
-    model.advance(1.6, load_steps=2)
+    stage = model.advance(1.6, load_steps=2)
     assert np.all(model.interface.state()["slip"] == 0.0)
+    # In contact and without a strength (τ_y = ∞): every point sticks, in the stage's result too.
+    assert np.all(stage.gather_joints()["shear_state"] == int(ShearState.stick))
     elastic = brentq(lambda u: RigidBlock.length * (-_sigma(-u * ref.n[0]) * ref.n[0]
                                                     + KS * u * ref.t1[0] ** 2) / Q - 1.6, -5e-4, 0.0)
     assert model.boundary_mean_displacement("top")[0] == pytest.approx(elastic, rel=RTOL_RIGID)
