@@ -302,6 +302,16 @@ def main():
     plot_slip(models["slip"], slipping, wall["slip"], pts, out("tunnel_joint_slip.png"))
 
 
+def frame(ax):
+    """Equal axes on the central 3a x 3a around the opening, labelled in metres."""
+    zoom = 3.0 * RADIUS
+    ax.set_aspect("equal")
+    ax.set_xlim(CENTRE[0] - zoom, CENTRE[0] + zoom)
+    ax.set_ylim(CENTRE[1] - zoom, CENTRE[1] + zoom)
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+
+
 def plot(models, stress_at, wall, pts, th, state, closure_change, path):
     cells = {label: cell_hoop_stress(models[label], stress_at[label][0]) for label in ("intact", "jointed")}
     if COMM.rank != 0:
@@ -312,7 +322,6 @@ def plot(models, stress_at, wall, pts, th, state, closure_change, path):
     from matplotlib.collections import LineCollection
     from matplotlib.tri import Triangulation
 
-    zoom = 3.0 * RADIUS
     fig, axes = plt.subplots(1, 3, figsize=(17, 5.4))
     vmax = max(c[1].max() for c in cells.values()) * 1e-6
     vmin = min(0.0, min(c[1].min() for c in cells.values()) * 1e-6)  # tension (< 0) at a low-K0 crown
@@ -340,11 +349,7 @@ def plot(models, stress_at, wall, pts, th, state, closure_change, path):
     ax.set_title("deformed opening and joints")
     ax.legend(loc="lower left", fontsize=7)
     for ax in axes:
-        ax.set_aspect("equal")
-        ax.set_xlim(CENTRE[0] - zoom, CENTRE[0] + zoom)
-        ax.set_ylim(CENTRE[1] - zoom, CENTRE[1] + zoom)
-        ax.set_xlabel("x [m]")
-        ax.set_ylabel("y [m]")
+        frame(ax)
     fig.suptitle(f"{2 * RADIUS:g} m tunnel at {DEPTH:g} m depth, σ_v = {SIGMA_V * 1e-6:.2f} MPa, K0 = {K0} "
                  "(plane strain; the central 24 m of the 80 m section)")
     fig.tight_layout()
@@ -365,7 +370,6 @@ def plot_slip(model, state, wall, pts, path):
     from matplotlib.collections import LineCollection
     from matplotlib.colors import ListedColormap
 
-    zoom = 3.0 * RADIUS
     outline = pts[4:]
     scale = 0.15 * RADIUS / np.abs(wall[0][4:]).max()
     moved = outline + scale * wall[0][4:]
@@ -390,11 +394,7 @@ def plot_slip(model, state, wall, pts, path):
             bar.set_ticks(sorted(order))
             bar.ax.set_yticklabels([ShearState(v).name for v in sorted(order)])
         ax.set_title(f"{label} after excavation (deformed, u × {scale:.0f})")
-        ax.set_aspect("equal")
-        ax.set_xlim(CENTRE[0] - zoom, CENTRE[0] + zoom)
-        ax.set_ylim(CENTRE[1] - zoom, CENTRE[1] + zoom)
-        ax.set_xlabel("x [m]")
-        ax.set_ylabel("y [m]")
+        frame(ax)
     fig.suptitle(f"Coulomb joints (φ = {math.degrees(FRICTION_ANGLE):g}°, c = {COHESION * 1e-6:g} MPa) around the "
                  f"{2 * RADIUS:g} m tunnel at {DEPTH:g} m depth (the central 24 m of the 80 m section)")
     fig.tight_layout()
