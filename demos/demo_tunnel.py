@@ -11,7 +11,9 @@ K0 = 0.5, plane strain, in a 80 m x 80 m section (W/a = 20) with rollers on its 
 sets cross the tunnel: bedding planes (horizontal, 3 m apart) carrying the Tang & Jiao law of a
 synthetic mated granite joint (its topography → η, β, σ_s → the recommended law, tabulated once), and
 a cross set dipping 60° (5 m apart) with a Barton-Bandis law from JRC, JCS and aperture. The intact
-section is meshed with the same triangles (the joint traces kept as mesh lines) and solved beside it.
+section is meshed with the same triangles (the joint traces kept as mesh lines) and solved beside it,
+and the jointed section twice: with elastic joints (any shear stress) and with slipping joints (a
+Coulomb strength on both sets, docs/joint-strength.md: a joint point slips once |τ| = c + σ_n tan φ).
 
 Stages (rockjoint's staged analysis, docs/staged-analysis.md): in-situ (σ0 in equilibrium, joints
 pre-closed to their law's closure at their initial normal stress) → excavation (the in-situ traction
@@ -20,10 +22,13 @@ the in-situ state, so the intact tunnel's wall displacement is Kirsch's excavati
 (rockjoint.reference.kirsch), up to the W/a = 20 domain and the mesh (docs/tunnel.md).
 
 Outputs (in DIR): tunnel.png (hoop stress on the mesh, the deformed opening outline, joints coloured
-by their closure change), tunnel.txt (the numbers), tunnel_intact.xdmf, tunnel_jointed.xdmf (the
-displacement at the end, + tunnel_jointed_joints.xdmf, the joint state) and tunnel_<label>_stress.xdmf
-(the total stress after excavation, per cell, tension positive [Pa]) for ParaView. Units in print:
-mm, MPa, m.
+by their closure change), tunnel_joint_slip.png (the slipping joints on the deformed section, coloured
+by shear state and by slip), tunnel.txt (the numbers), tunnel_{intact,jointed,slip}.xdmf (the
+displacement at the end, + tunnel_{jointed,slip}_joints.xdmf, the joint state incl. slip_m and
+shear_state), tunnel_<label>_stress.xdmf (the total stress after excavation, per cell, tension
+positive [Pa]) for ParaView, and tunnel_slip_joints.npz (the slipping model's joint points after
+excavation: coordinates, set, normal_stress, shear_traction [Pa], shear_state, slip [m]). Units in
+print: mm, MPa, m.
 """
 import argparse
 import logging
@@ -39,7 +44,7 @@ import rockjoint
 from rockjoint.console import quiet_compiler_logging
 from rockjoint import meshes
 from rockjoint import topography as topo
-from rockjoint.fem import InSituStress, JointedRockModel, NewtonOptions, distribute
+from rockjoint.fem import InSituStress, JointedRockModel, NewtonOptions, ShearState, distribute
 from rockjoint.fem.probe import probe
 from rockjoint.reference import KirschSolution
 
@@ -63,6 +68,14 @@ YOUNG, POISSON = 50e9, 0.25        # granite
 LINING_PRESSURE = 0.5e6            # [Pa]
 SHEAR_RATIO = 0.1                  # joint shear stiffness k_s = 0.1 k_n(Δ)
 RESIDUAL_STIFFNESS = 1e6           # [Pa/m], keeps a block held only by open joints from being singular
+# Strength of the slipping model, both sets: Coulomb with the basic friction angle of wet
+# fine-grained granite, φ_b = 29-31° (Barton & Choubey 1977, Table 2: 31-35° dry, 29-31° wet),
+# taken as 30°, and no cohesion (Barton 1973: natural unfilled joints have no reliable cohesion or
+# tensile strength): the strength of a planar or sheared-through joint, the lower bound.
+FRICTION_ANGLE = math.radians(30.0)  # [rad]
+COHESION = 0.0                       # [Pa]
+STRENGTH = {"model": "coulomb", "friction_angle": FRICTION_ANGLE, "cohesion": COHESION}
+MODELS = {"intact": "intact", "jointed": "elastic joints", "slip": "slipping joints"}
 
 # Bedding: horizontal, 3 m apart, the nearest 1.5 m above and below the axis (none tangent to the
 # opening); cross set: dip 60° toward +x, 5 m apart, one through the axis.
@@ -98,13 +111,15 @@ def section(mesh_size, intact):
                                  intact=intact, comm=COMM)
 
 
-def staged_model(dmesh, tables, steps, after_excavation):
+def staged_model(dmesh, tables, steps, after_excavation, strength=None):
     """In-situ → excavation → lining pressure; after_excavation(model) runs between the last two
-    stages. Returns the model (its stages kept in model.stages)."""
+    stages; strength: the joints' (None: elastic joints). Returns the model (its stages kept in
+    model.stages)."""
     joints = {name: tables[name.split("_")[0]] for name in dmesh.names["joints"].values()}
     model = JointedRockModel(dmesh, rock=(YOUNG, POISSON), joints=joints,
                              shear_stiffness_ratio=SHEAR_RATIO if joints else None,
                              residual_stiffness=RESIDUAL_STIFFNESS if joints else 0.0,
+                             strength=strength if joints else None,
                              plane="strain", newton=NewtonOptions(verbose=False))
     for side, component in (("left", "x"), ("right", "x"), ("bottom", "y"), ("top", "y")):
         model.fix(side, component)
@@ -159,6 +174,30 @@ def joint_segments(state):
     return xy[groups], groups
 
 
+def joint_set_of(state, joint_names):
+    """The joint set ("bedding", "cross") of every joint point, from its tag."""
+    return np.array([joint_names[int(t)].split("_")[0] for t in state["tag"]])
+
+
+def slip_rows(state, joint_names):
+    """Per joint set after excavation (slipping model): points, slipping points (count and fraction),
+    the farthest slipping point from the wall [tunnel radii], the largest slip [mm]."""
+    set_of = joint_set_of(state, joint_names)
+    slips = np.asarray(state["shear_state"]) == int(ShearState.slip)
+    xy = np.asarray(state["coordinates"]).reshape(-1, 2)
+    dist = (np.hypot(xy[:, 0] - CENTRE[0], xy[:, 1] - CENTRE[1]) - RADIUS) / RADIUS
+    slip = np.abs(np.asarray(state["slip"])).reshape(-1)
+    lines = [f"slipping joints after excavation (Coulomb φ = {math.degrees(FRICTION_ANGLE):g}°, "
+             f"c = {COHESION * 1e-6:g} MPa):",
+             f"{'joint set':12}{'points':>8}{'slipping':>10}{'fraction':>10}{'farthest [a]':>14}{'max slip [mm]':>15}"]
+    for name in ("bedding", "cross"):
+        sel = set_of == name
+        hit = sel & slips
+        lines.append(f"{'slip ' + name:12}{sel.sum():8d}{hit.sum():10d}{100 * hit.sum() / sel.sum():9.1f}%"
+                     f"{(dist[hit].max() if hit.any() else 0.0):14.2f}{slip[sel].max() * 1e3:15.4f}")
+    return lines
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--output", default=".", help="output folder")
@@ -201,9 +240,9 @@ def main():
             stress_at[label] = (stress, radial_hoop(probe(stress, pts_stress).reshape(-1, 2, 2), th[:4])[1])
         return after_excavation
 
-    for label, dmesh in (("intact", intact), ("jointed", jointed)):
+    for label, dmesh, strength in (("intact", intact, None), ("jointed", jointed, None), ("slip", jointed, STRENGTH)):
         t0 = time.perf_counter()
-        models[label] = staged_model(dmesh, tables, steps, record(label))
+        models[label] = staged_model(dmesh, tables, steps, record(label), strength)
         log.info("%s: %s (%.1f s)", label, ", ".join(f"{s.name} {s.newton_iterations} Newton it."
                                                       for s in models[label].stages), time.perf_counter() - t0)
         models[label].write_xdmf(out(f"tunnel_{label}.xdmf"))  # the final (lining) stage
@@ -222,16 +261,17 @@ def main():
     extent_separated = float(dist[separated].max()) if separated.any() else 0.0
 
     names = ("right sidewall", "crown", "left sidewall", "invert")
-    conv_i, conv_j = -wall["intact"][1][:4], -wall["jointed"][1][:4]
-    lines = [f"{'after excavation':34}{'Kirsch':>10}{'intact':>10}{'jointed':>10}{'joints share':>14}"]
+    conv_i, conv_j, conv_s = (-wall[label][1][:4] for label in MODELS)
+    lines = [f"{'after excavation':34}{'Kirsch':>10}{'intact':>10}{'jointed':>10}{'slipping':>10}{'joints share':>14}",
+             "(jointed: elastic joints; slipping: Coulomb joints; joints share: of the elastic-joint convergence)"]
     for k, name in enumerate(names):
         share = (conv_j[k] - conv_i[k]) / conv_j[k]
         lines.append(f"{'wall convergence ' + name + ' [mm]':34}{-ur_kirsch[k] * 1e3:10.3f}{conv_i[k] * 1e3:10.3f}"
-                     f"{conv_j[k] * 1e3:10.3f}{100 * share:13.1f}%")
+                     f"{conv_j[k] * 1e3:10.3f}{conv_s[k] * 1e3:10.3f}{100 * share:13.1f}%")
     hoop_k = kirsch.polar_stress(np.full(4, r_stress), th[:4])[1]
     for k in (0, 1):
         lines.append(f"{'hoop stress ' + names[k] + ' [MPa]*':34}{hoop_k[k] * 1e-6:10.2f}"
-                     f"{stress_at['intact'][1][k] * 1e-6:10.2f}{stress_at['jointed'][1][k] * 1e-6:10.2f}")
+                     + "".join(f"{stress_at[label][1][k] * 1e-6:10.2f}" for label in MODELS))
     lines += [f"* at r = a + h/3 = {r_stress:.3f} m (the wall cells' centroids, h = {h / 8:g} m at the wall)",
               f"stress concentration at the wall (Kirsch, r = a): sidewall {3 - K0:.2f} σ_v, crown {3 * K0 - 1:.2f} σ_v",
               f"joint closure change at excavation [mm]: min {closure_change.min() * 1e3:.4f}, "
@@ -240,9 +280,13 @@ def main():
               f"opened zone extends {extent:.2f} a from the wall",
               f"separated joint points (closure <= 0): {int(separated.sum())}; farthest {extent_separated:.2f} a "
               "from the wall"]
-    push = [probe(models[k].stages[2].displacement, pts[1:2])[0, 1] - wall[k][0][1, 1] for k in ("intact", "jointed")]
+    push = [probe(models[k].stages[2].displacement, pts[1:2])[0, 1] - wall[k][0][1, 1] for k in MODELS]
     lines.append(f"lining pressure {LINING_PRESSURE * 1e-6:g} MPa moves the crown up by [mm]: intact "
-                 f"{push[0] * 1e3:.4f}, jointed {push[1] * 1e3:.4f}")
+                 f"{push[0] * 1e3:.4f}, jointed {push[1] * 1e3:.4f}, slipping {push[2] * 1e3:.4f}")
+    slipping = models["slip"].stages[1].gather_joints()
+    lines += slip_rows(slipping, jointed.names["joints"])
+    lines.append("Newton iterations (in-situ, excavation, lining): " + "; ".join(
+        f"{MODELS[label]} " + ", ".join(str(s.newton_iterations) for s in models[label].stages) for label in MODELS))
     elapsed = time.perf_counter() - t_start
     lines.append(f"demo wall time [s]: {COMM.allreduce(elapsed, op=MPI.MAX):.1f} on {COMM.size} rank(s)")
     if COMM.rank == 0:
@@ -251,11 +295,25 @@ def main():
             f.write(f"# rockjoint tunnel demo: a = {RADIUS} m at {DEPTH:g} m depth, σ_v = {SIGMA_V * 1e-6:.2f} MPa, "
                     f"K0 = {K0}, plane strain, mesh size {h} m (wall {h / 8} m)\n")
             f.write("\n".join(lines) + "\n")
+        np.savez(out("tunnel_slip_joints.npz"), set=joint_set_of(slipping, jointed.names["joints"]),
+                 **{k: np.asarray(slipping[k]) for k in ("coordinates", "normal_stress", "shear_traction",
+                                                         "shear_state", "slip")})
     plot(models, stress_at, wall, pts, th, state, closure_change, out("tunnel.png"))
+    plot_slip(models["slip"], slipping, wall["slip"], pts, out("tunnel_joint_slip.png"))
+
+
+def frame(ax):
+    """Equal axes on the central 3a x 3a around the opening, labelled in metres."""
+    zoom = 3.0 * RADIUS
+    ax.set_aspect("equal")
+    ax.set_xlim(CENTRE[0] - zoom, CENTRE[0] + zoom)
+    ax.set_ylim(CENTRE[1] - zoom, CENTRE[1] + zoom)
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
 
 
 def plot(models, stress_at, wall, pts, th, state, closure_change, path):
-    cells = {label: cell_hoop_stress(models[label], stress_at[label][0]) for label in models}
+    cells = {label: cell_hoop_stress(models[label], stress_at[label][0]) for label in ("intact", "jointed")}
     if COMM.rank != 0:
         return
     import matplotlib
@@ -264,7 +322,6 @@ def plot(models, stress_at, wall, pts, th, state, closure_change, path):
     from matplotlib.collections import LineCollection
     from matplotlib.tri import Triangulation
 
-    zoom = 3.0 * RADIUS
     fig, axes = plt.subplots(1, 3, figsize=(17, 5.4))
     vmax = max(c[1].max() for c in cells.values()) * 1e-6
     vmin = min(0.0, min(c[1].min() for c in cells.values()) * 1e-6)  # tension (< 0) at a low-K0 crown
@@ -277,7 +334,7 @@ def plot(models, stress_at, wall, pts, th, state, closure_change, path):
     # Deformed outline: the wall displacement magnified.
     ax = axes[2]
     outline = pts[4:]
-    umax = max(np.abs(w[0][4:]).max() for w in wall.values())
+    umax = max(np.abs(wall[label][0][4:]).max() for label in ("intact", "jointed"))
     scale = 0.15 * RADIUS / umax
     ax.plot(*np.vstack([outline, outline[:1]]).T, "k:", lw=1, label="opening (undeformed)")
     for label, style in (("intact", "C0-"), ("jointed", "C3-")):
@@ -292,13 +349,54 @@ def plot(models, stress_at, wall, pts, th, state, closure_change, path):
     ax.set_title("deformed opening and joints")
     ax.legend(loc="lower left", fontsize=7)
     for ax in axes:
-        ax.set_aspect("equal")
-        ax.set_xlim(CENTRE[0] - zoom, CENTRE[0] + zoom)
-        ax.set_ylim(CENTRE[1] - zoom, CENTRE[1] + zoom)
-        ax.set_xlabel("x [m]")
-        ax.set_ylabel("y [m]")
+        frame(ax)
     fig.suptitle(f"{2 * RADIUS:g} m tunnel at {DEPTH:g} m depth, σ_v = {SIGMA_V * 1e-6:.2f} MPa, K0 = {K0} "
                  "(plane strain; the central 24 m of the 80 m section)")
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+
+
+def plot_slip(model, state, wall, pts, path):
+    """The slipping model's joints after excavation as line segments on the deformed section
+    (displacement magnified; the joint points moved by the displacement of one of their faces):
+    (a) shear state, (b) slip [mm]."""
+    segs, groups = joint_segments(state)
+    u = probe(model.stages[1].displacement, segs.reshape(-1, 2)).reshape(segs.shape)
+    if COMM.rank != 0:
+        return
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.collections import LineCollection
+    from matplotlib.colors import ListedColormap
+
+    outline = pts[4:]
+    scale = 0.15 * RADIUS / np.abs(wall[0][4:]).max()
+    moved = outline + scale * wall[0][4:]
+    shear_state = np.asarray(state["shear_state"])[groups]
+    # a segment slips (opens) when either of its points does; open wins over slip
+    seg_state = np.where((shear_state == int(ShearState.open)).any(1), int(ShearState.open),
+                         np.where((shear_state == int(ShearState.slip)).any(1), int(ShearState.slip),
+                                  int(ShearState.stick)))
+    slip = np.abs(np.asarray(state["slip"])).reshape(-1)[groups].max(axis=1) * 1e3
+    fig, axes = plt.subplots(1, 2, figsize=(13, 5.6))
+    order = [int(ShearState.stick), int(ShearState.slip), int(ShearState.open)]
+    colours = {int(ShearState.stick): "0.6", int(ShearState.slip): "C3", int(ShearState.open): "C0"}
+    cmap = ListedColormap([colours[v] for v in sorted(order)])
+    panels = ((seg_state.astype(float), cmap, (min(order) - 0.5, max(order) + 0.5), "shear state"),
+              (slip, "viridis", (0.0, max(slip.max(), 1e-12)), "slip [mm]"))
+    for ax, (values, cm, clim, label) in zip(axes, panels):
+        ax.fill(*moved.T, color="white", ec="k", lw=1.0, zorder=3)
+        lc = LineCollection(segs + scale * u, array=values, cmap=cm, clim=clim, linewidths=2.0)
+        ax.add_collection(lc)
+        bar = fig.colorbar(lc, ax=ax, label=label)
+        if label == "shear state":
+            bar.set_ticks(sorted(order))
+            bar.ax.set_yticklabels([ShearState(v).name for v in sorted(order)])
+        ax.set_title(f"{label} after excavation (deformed, u × {scale:.0f})")
+        frame(ax)
+    fig.suptitle(f"Coulomb joints (φ = {math.degrees(FRICTION_ANGLE):g}°, c = {COHESION * 1e-6:g} MPa) around the "
+                 f"{2 * RADIUS:g} m tunnel at {DEPTH:g} m depth (the central 24 m of the 80 m section)")
     fig.tight_layout()
     fig.savefig(path, dpi=110)
 
