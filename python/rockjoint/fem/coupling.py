@@ -162,14 +162,7 @@ class JointCoupling:
         pattern = fem.create_sparsity_pattern(a)
         self.insert_sparsity(pattern)
         pattern.assemble()
-        A = _dcpp.la.petsc.create_matrix(self.V.mesh.comm, pattern)
-        # Explicit zeros: PETSc drops preallocated entries never set at a final assembly; a flush
-        # keeps the matrix usable by zeroEntries() and DOLFINx's assembler.
-        self.interface.add_jacobian(A, np.zeros(self.num_local_dofs), np.zeros(self.num_local_dofs, np.int8),
-                                    scale=0.0)
-        A.assemblyBegin(PETSc.Mat.AssemblyType.FLUSH)
-        A.assemblyEnd(PETSc.Mat.AssemblyType.FLUSH)
-        return A
+        return self.interface.create_matrix(pattern)
 
     # ---- residual and Jacobian -----------------------------------------------------------
     def add_residual(self, u, b) -> bool:
@@ -211,8 +204,7 @@ class JointCoupling:
         if not (0.0 < fraction < 1.0):
             raise ValueError(f"fraction = {fraction} must be in (0, 1)")
         u_local = np.array(self._local(u, "u"))  # a copy: _local(du) may reuse the work vector
-        alpha = self.interface._cpp.admissible_step_length(u_local, self._local(du, "du"), fraction)
-        return float(self.V.mesh.comm.allreduce(alpha, op=MPI.MIN))
+        return self.interface.admissible_step(u_local, self._local(du, "du"), fraction)
 
     def newton_update(self, fraction: float = 0.95) -> Callable:
         """An update for dolfinx.nls.petsc.NewtonSolver.set_update: x ← x - α dx with the

@@ -11,6 +11,9 @@ over all ranks (docs/fem.md, "The joint element").
 from __future__ import annotations
 
 import numpy as np
+from dolfinx import cpp as _dcpp
+from mpi4py import MPI
+from petsc4py import PETSc
 
 from .. import _rockjoint  # noqa: F401  (registers the ClosureLaw types used by _rockjoint_fem)
 from .. import _rockjoint_fem as _cpp
@@ -153,6 +156,26 @@ class JointInterface:
         """MatSetValuesLocal/ADD_VALUES of `scale` × the joint tangent (no flush); rows/columns
         with constrained != 0 are left out. scale=0 reserves the couplings with explicit zeros."""
         self._cpp.assemble_matrix(A, u_local, constrained, scale)
+
+    def create_matrix(self, pattern):
+        """A PETSc matrix of an assembled sparsity pattern that holds the pairs' couplings
+        (insert_sparsity), with those couplings reserved by explicit zeros and flushed: PETSc
+        drops preallocated entries never set at a final assembly (docs/fem.md, pitfall 4), and a
+        Jacobian refreshed with SAME_NONZERO_PATTERN needs them."""
+        A = _dcpp.la.petsc.create_matrix(self.V.mesh.comm, pattern)
+        imap, bs = self.V.dofmap.index_map, self.V.dofmap.index_map_bs
+        n_local = (imap.size_local + imap.num_ghosts) * bs
+        self.add_jacobian(A, np.zeros(n_local), np.zeros(n_local, dtype=np.int8), scale=0.0)
+        A.assemblyBegin(PETSc.Mat.AssemblyType.FLUSH)
+        A.assemblyEnd(PETSc.Mat.AssemblyType.FLUSH)
+        return A
+
+    def admissible_step(self, u_local: np.ndarray, du_local: np.ndarray, fraction: float) -> float:
+        """Largest α in (0, 1] such that no closure along u + α du moves past `fraction` of its
+        remaining room to its law's maximum closure (docs/fem.md, pitfall 7). Collective: the
+        minimum over the ranks of V.mesh.comm, so every rank takes the same step."""
+        alpha = self._cpp.admissible_step_length(u_local, du_local, fraction)
+        return float(self.V.mesh.comm.allreduce(alpha, op=MPI.MIN))
 
     def maximum_closure_ratio(self, u_local: np.ndarray) -> float:
         """max Δ / Δ_max over this rank's points (0 for laws without a maximum closure)."""

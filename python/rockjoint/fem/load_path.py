@@ -260,11 +260,6 @@ class StagedLoading:
         """Joints carry the in-situ traction at u = 0: initial jump j0 = (-Δ0, τ0/k_s) with
         Δ0 = law.closure_at_stress(σ_n0), σ_n0 = -n·σ0·n (compression positive), τ0 = t·σ0·n."""
         iface = self.interface
-        if not hasattr(iface, "set_initial_jump"):
-            if self.comm.allreduce(iface.num_pairs) > 0:
-                raise NotImplementedError("in-situ stress with joints needs JointInterface.set_initial_jump "
-                                          "(joint pre-closure), missing in this build")
-            return
         vertex_rule = self.quadrature == "nodal" and self.degree == 1
         iface.set_initial_jump(initial_jump(iface, self.in_situ, self.behaviours, self.gdim,
                                             names_of(self.dmesh, "joints"), vertex_rule))

@@ -149,6 +149,9 @@ class JointedRockModel(StagedLoading):
         self._forms_dirty = True     # load forms (depend on the set of loads)
         self._initialised = False    # initial state (in-situ loads, joint pre-closure) set
         self._advancing = False      # a stage opened by advance() is in progress
+        self._f_prev = None          # load vector at the start of the current stage
+        self._clock = None           # progress clock of the stage being solved
+        self._stage_label = None     # "k/n" while run() drives the stages
         self.solution = None
 
     # ---- input checks --------------------------------------------------------------------
@@ -327,10 +330,7 @@ class JointedRockModel(StagedLoading):
         for A in (self.K, self.J):
             if A is not None:
                 A.destroy()
-        K = _dcpp.la.petsc.create_matrix(self.comm, self._sparsity)
-        # Explicit zeros reserve the joint couplings: PETSc drops unset preallocated entries at the
-        # final assembly, and J is refreshed from K with SAME_NONZERO_PATTERN.
-        self.interface.add_jacobian(K, np.zeros(self._n_local), constrained, scale=0.0)
+        K = self.interface.create_matrix(self._sparsity)  # joint couplings reserved (pitfall 4)
         fem_petsc.assemble_matrix(K, self.a_form, bcs)
         K.assemble()
         self.K, self.J = K, K.duplicate(copy=True)
@@ -420,8 +420,7 @@ class JointedRockModel(StagedLoading):
         return self.du.vector.norm(), self.u.vector.norm()
 
     def admissible_step(self, fraction: float) -> float:
-        alpha = self.interface._cpp.admissible_step_length(self.u.x.array, self.du.x.array, fraction)
-        return self.comm.allreduce(alpha, op=MPI.MIN)
+        return self.interface.admissible_step(self.u.x.array, self.du.x.array, fraction)
 
     def apply_increment(self, alpha: float) -> None:
         self.u.vector.axpy(alpha, self.du.vector)
@@ -435,23 +434,20 @@ class JointedRockModel(StagedLoading):
         arr, self.load_factor = self._saved
         self.u.x.array[:] = arr
         self._applied = None
-        if hasattr(self.interface, "revert_state"):
-            self.interface.revert_state()
+        self.interface.revert_state()
 
     def commit_state(self) -> None:
         """A load step converged: the joints' trial state becomes their converged state."""
-        if hasattr(self.interface, "commit_state"):
-            self.interface.commit_state()
-        clock = getattr(self, "_clock", None)
-        if clock is not None:
-            clock.step(self.load_factor, self._step_iterations)
+        self.interface.commit_state()
+        if self._clock is not None:
+            self._clock.step(self.load_factor, self._step_iterations)
         self._step_iterations = 0
 
     def problem(self) -> JointedProblem:
         """The model as a problem object (F, J) for PETSc SNES or a user's Newton, at the current
         stage's load factor (`model.load_factor`)."""
         self._prepare()
-        if not hasattr(self, "_f_prev"):
+        if self._f_prev is None:
             self._begin_stage()
         return JointedProblem(self)
 
@@ -467,18 +463,14 @@ class JointedRockModel(StagedLoading):
         if solver not in ("newton", "snes"):
             raise ValueError(f"solver must be 'newton' or 'snes', got {solver!r}")
         if restart and self._space_ready:
-            reset = getattr(self.interface, "reset_state", None)  # path-dependent point state
-            if reset is not None:
-                reset()
-            else:
-                self.interface = JointInterface(self.V, self.dmesh.pairs, self.behaviours, self.quadrature)
+            self.interface.reset_state()  # path-dependent point state
             self._initialised = False
             self._advancing = False
         self._prepare()
         self._close_advanced_stage()
         k = len(self.stages) + 1
         name = name or f"stage_{k}"
-        label = getattr(self, "_stage_label", None) or str(k)
+        label = self._stage_label or str(k)
         self._clock = StageClock(self.comm, f"{label} ({name})")
         self._begin_stage()
         t0 = time.perf_counter()
