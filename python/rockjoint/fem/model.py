@@ -38,7 +38,7 @@ from .interface import JointInterface
 from .linear_solver import LinearSolver, LinearSolveError, resolve_kind, rigid_body_modes  # noqa: F401
 from .load_path import StagedLoading
 from .loads import Load, Support
-from .newton import ConvergenceError, NewtonOptions, newton, solve_load_path  # noqa: F401
+from .newton import ConvergenceError, NewtonOptions, solve_load_path  # noqa: F401
 from .petsc_options import check_options_prefix, check_petsc_options
 from .stages import (JointedProblem, JointedSolution, Stage, StageClock, StageResult,  # noqa: F401
                      snes_load_path)
@@ -504,17 +504,7 @@ class JointedRockModel(StagedLoading):
             self._begin_stage()
             self._advancing = True
         t0 = time.perf_counter()
-        start, reports = self.load_factor, []
-        for k in range(1, int(load_steps) + 1):
-            step = start + (target - start) * k / load_steps
-            self.save_state()
-            report = newton(self, step, self.newton_options)
-            reports.append(report)
-            if not report.converged:
-                self.restore_state()
-                raise ConvergenceError(f"advance: the step to load factor {step:.6g} failed "
-                                       f"({report.reason}); kept the state at {self.load_factor:.6g}")
-            self.commit_state()
+        reports = solve_load_path(self, load_steps, self.newton_options, target=target, adaptive=False)
         return self._stage_result(f"advance to {target:g}", reports, time.perf_counter() - t0)
 
     def _close_advanced_stage(self) -> None:

@@ -104,39 +104,56 @@ class StepReport:
         return len(self.step_lengths)
 
 
-def solve_load_path(problem, load_steps: int, options: NewtonOptions) -> list:
-    """Drive the load factor from problem.load_factor (usually 0) to 1. Returns the StepReports
-    (failed attempts included); raises ConvergenceError if the increment falls below the minimum."""
+def solve_load_path(problem, load_steps: int, options: NewtonOptions, *, target: float = 1.0,
+                    adaptive: bool = True, solve_step=None) -> list:
+    """Drive problem.load_factor (usually 0) to `target` (1: the stage's full loads; below the
+    current factor unloads along the path, above 1 overloads). Before each step the problem's
+    state is saved; a converged step is committed (problem.commit_state, if it has one), a failed
+    one restored. adaptive: a failed step is halved (ConvergenceError below
+    options.min_load_increment) and one that converged in at most options.easy_iterations lets
+    the next grow by options.growth; otherwise `load_steps` equal steps and a failed one raises
+    ConvergenceError. solve_step(problem, load_factor, step, start) -> StepReport solves one step
+    (default: the project's newton). Returns the StepReports (failed attempts included)."""
     if int(load_steps) != load_steps or load_steps < 1:
         raise ValueError(f"load_steps must be an integer >= 1, got {load_steps!r}")
+    if solve_step is None:
+        def solve_step(p, load_factor, step, start):
+            return newton(p, load_factor, options, step=step, start=start)
     reports = []
-    lam = problem.load_factor
-    increment = (1.0 - lam) / load_steps
+    lam = float(problem.load_factor)
+    increment = (target - lam) / load_steps
     start = time.perf_counter()
-    commit = getattr(problem, "commit_state", None)
-    while lam < 1.0 - 1e-14:
-        target = min(1.0, lam + increment)
-        if 1.0 - target < 1e-12:
-            target = 1.0
+    commit = getattr(problem, "commit_state", None)  # optional for problems without history
+
+    def reached(x: float) -> bool:
+        return abs(target - x) <= 1e-12 * max(1.0, abs(target))
+
+    while not reached(lam):
+        step_to = lam + increment
+        if reached(step_to) or (step_to - target) * (target - lam) > 0:  # do not pass the target
+            step_to = target
         problem.save_state()
-        report = newton(problem, target, options, step=len(reports) + 1, start=start)
+        report = solve_step(problem, step_to, len(reports) + 1, start)
         reports.append(report)
         if report.converged:
-            lam = target
+            lam = step_to
             if commit is not None:
                 commit()
-            if report.iterations <= options.easy_iterations:
+            if adaptive and report.iterations <= options.easy_iterations:
                 increment *= options.growth
-        else:
-            problem.restore_state()
-            increment *= 0.5
-            if options.verbose and _rank(problem) == 0:
-                log.info("load step %d to λ = %.6g failed (%s); cutting the increment to %.3g",
-                         len(reports), target, report.reason, increment)
-            if increment < options.min_load_increment:
-                raise ConvergenceError(
-                    f"load stepping failed: increment {increment:.3g} below min_load_increment "
-                    f"{options.min_load_increment:g} at load factor {lam:.6g} (last failure: {report.reason})")
+            continue
+        problem.restore_state()
+        if not adaptive:
+            raise ConvergenceError(f"the load step to λ = {step_to:.6g} failed ({report.reason}); the "
+                                   f"state is kept at the last converged λ = {lam:.6g}")
+        increment *= 0.5
+        if options.verbose and _rank(problem) == 0:
+            log.info("load step %d to λ = %.6g failed (%s); cutting the increment to %.3g",
+                     len(reports), step_to, report.reason, abs(increment))
+        if abs(increment) < options.min_load_increment:
+            raise ConvergenceError(
+                f"load stepping failed: increment {abs(increment):.3g} below min_load_increment "
+                f"{options.min_load_increment:g} at load factor {lam:.6g} (last failure: {report.reason})")
     return reports
 
 

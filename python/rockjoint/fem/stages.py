@@ -20,7 +20,7 @@ from petsc4py import PETSc
 
 from .. import _rockjoint
 from .distributed_mesh import names_of
-from .newton import ConvergenceError, StepReport
+from .newton import StepReport, solve_load_path
 
 log = logging.getLogger(__name__)
 
@@ -121,11 +121,10 @@ class JointedProblem:
 
 
 def snes_load_path(model, load_steps: int, options) -> list:
-    """Drive the model's load factor from 0 to 1 with PETSc SNES: equal steps, each halved on
-    failure (down to options.min_load_increment); the joint state is committed after every
-    converged step and reverted after a failed one (CONTRACTS B). Returns the StepReports."""
-    if int(load_steps) != load_steps or load_steps < 1:
-        raise ValueError(f"load_steps must be an integer >= 1, got {load_steps!r}")
+    """Drive the model's load factor from 0 to 1 with PETSc SNES solving each load step, the
+    steps controlled as for the project's Newton (newton.solve_load_path: halved on failure, grown
+    after easy ones, the joint state committed after every converged step and reverted after a
+    failed one). Returns the StepReports."""
     problem = JointedProblem(model)
     snes = PETSc.SNES().create(model.comm)
     prefix = model.linear_solver.ksp.getOptionsPrefix()
@@ -138,44 +137,29 @@ def snes_load_path(model, load_steps: int, options) -> list:
     norms = []
     snes.setMonitor(lambda s, it, rnorm: norms.append(rnorm))
     x = model.u.vector.copy()
-    reports = []
-    lam = model.load_factor
-    increment = (1.0 - lam) / load_steps
+
+    def solve_step(_, target, step, start):
+        model.load_factor = target
+        model.residual()  # sets the prescribed displacements of λ = target into u
+        scale = model.load_norm(target)
+        snes.setTolerances(atol=max(options.atol + options.rtol * scale, 1e-300), rtol=1e-14,
+                           stol=0.0, max_it=options.max_iterations)
+        snes.setFromOptions()  # user options (petsc_options, command line) win
+        model.u.vector.copy(x)
+        norms.clear()
+        snes.solve(None, x)
+        reason = snes.getConvergedReason()
+        if reason > 0:
+            problem.form(x)  # the converged x into u before the state is committed
+        return StepReport(target, residual_norms=list(norms), step_lengths=[1.0] * snes.getIterationNumber(),
+                          converged=reason > 0, reason=f"SNES reason {reason}")
+
     try:
-        while lam < 1.0 - 1e-14:
-            target = 1.0 if 1.0 - (lam + increment) < 1e-12 else lam + increment
-            model.save_state()
-            model.load_factor = target
-            model.residual()  # sets the prescribed displacements of λ = target into u
-            scale = model.load_norm(target)
-            snes.setTolerances(atol=max(options.atol + options.rtol * scale, 1e-300), rtol=1e-14,
-                               stol=0.0, max_it=options.max_iterations)
-            snes.setFromOptions()  # user options (petsc_options, command line) win
-            model.u.vector.copy(x)
-            norms.clear()
-            snes.solve(None, x)
-            reason = snes.getConvergedReason()
-            report = StepReport(target, residual_norms=list(norms), step_lengths=[1.0] * snes.getIterationNumber(),
-                                converged=reason > 0, reason=f"SNES reason {reason}")
-            reports.append(report)
-            if report.converged:
-                problem.form(x)
-                model.commit_state()
-                lam = target
-            else:
-                model.restore_state()
-                increment *= 0.5
-                log.info("SNES load step to λ = %.6g failed (%s); cutting the increment to %.3g",
-                         target, report.reason, increment)
-                if increment < options.min_load_increment:
-                    raise ConvergenceError(f"SNES load stepping failed: increment {increment:.3g} below "
-                                           f"min_load_increment {options.min_load_increment:g} at load "
-                                           f"factor {lam:.6g} (last failure: {report.reason})")
+        return solve_load_path(model, load_steps, options, solve_step=solve_step)
     finally:
         snes.setKSP(PETSc.KSP().create(model.comm))  # the model keeps its own KSP alive
         snes.destroy()
         x.destroy()
-    return reports
 
 
 def _flag_matrix(solver, A) -> None:
