@@ -42,6 +42,7 @@ import rockjoint
 from rockjoint.console import quiet_compiler_logging, say
 from rockjoint import meshes
 from rockjoint.fem import JointedRockModel, NewtonOptions, ShearState, distribute, make_strength
+from rockjoint.fem.output import gather_triangles
 
 COMM = MPI.COMM_WORLD
 quiet_compiler_logging()  # DOLFINx's form compiler would log every command
@@ -235,21 +236,6 @@ def main():
 
 
 # %% Drawing -------------------------------------------------------------------------------------
-def gathered_triangles(model):
-    """Vertex coordinates and displacements of the owned cells of every rank, on rank 0:
-    (cells, 3, 2) arrays [m] (P1: dof i of a cell sits on its vertex i)."""
-    mesh, u = model.mesh, model.solution.displacement
-    n_cells = mesh.topology.index_map(mesh.topology.dim).size_local
-    geometry = mesh.geometry.dofmap.array.reshape(-1, 3)[:n_cells]
-    dofs = u.function_space.dofmap.list.array.reshape(-1, 3)[:n_cells]
-    tri_x = mesh.geometry.x[:, :2][geometry]
-    tri_u = u.x.array.reshape(-1, 2)[dofs]
-    parts = [COMM.gather(a.reshape(-1, 6), root=0) for a in (tri_x, tri_u)]
-    if COMM.rank != 0:
-        return None, None
-    return tuple(np.concatenate(p).reshape(-1, 3, 2) for p in parts)
-
-
 def joint_segments(state, pairs, tri_x, tri_u):
     """The joint facets as half-segments, one per joint point (from the point to the facet's
     midpoint, so each carries its own point's state), with the displacement of each end: at a
@@ -292,7 +278,7 @@ def save(fig, what, path):
 
 def plot_sections(models, path):
     """|u| of the three sections at the end of the load path, filled triangles, one scale."""
-    tris = {label: gathered_triangles(m) for label, m in models.items()}
+    tris = {label: gather_triangles(m.solution.displacement) for label, m in models.items()}
     if COMM.rank != 0:
         return
     import matplotlib
@@ -315,7 +301,7 @@ def plot_joints(models, results, jointed, path):
     the slipping joints on the deformed section (u magnified), joints as line segments."""
     pairs = COMM.allreduce(len(jointed.pairs))
     elastic, slipping = results["jointed"][-1][4], results["slip"][-1][4]
-    tri_x, tri_u = gathered_triangles(models["slip"])
+    tri_x, tri_u = gather_triangles(models["slip"].solution.displacement)
     if COMM.rank != 0:
         return
     import matplotlib

@@ -45,6 +45,7 @@ from rockjoint.console import quiet_compiler_logging
 from rockjoint import meshes
 from rockjoint import topography as topo
 from rockjoint.fem import InSituStress, JointedRockModel, NewtonOptions, ShearState, distribute
+from rockjoint.fem.output import gather_triangles
 from rockjoint.fem.probe import probe
 from rockjoint.reference import KirschSolution
 
@@ -159,10 +160,8 @@ def cell_hoop_stress(model, stress):
     sig = stress.x.array.reshape(-1, 2, 2)[stress.function_space.dofmap.list.array.reshape(-1)[:n]]
     th = np.arctan2(centroid[:, 1] - CENTRE[1], centroid[:, 0] - CENTRE[0])
     hoop = radial_hoop(sig, th)[1]
-    parts = COMM.gather((tri, hoop), root=0)
-    if COMM.rank != 0:
-        return None, None
-    return np.concatenate([p[0] for p in parts]), np.concatenate([p[1] for p in parts])
+    tri, _, hoop = gather_triangles(model.u, cell_values=hoop)
+    return tri, hoop
 
 
 def joint_segments(state):

@@ -38,7 +38,7 @@ from rockjoint.console import quiet_compiler_logging, say
 from rockjoint import meshes
 from rockjoint.fem import (JointCoupling, JointedNonlinearProblem, JointedRockModel, NewtonOptions,
                            distribute)
-from rockjoint.fem.output import write_joint_points
+from rockjoint.fem.output import gather_triangles, write_joint_points
 
 COMM = MPI.COMM_WORLD
 quiet_compiler_logging()  # DOLFINx's form compiler would log every command
@@ -307,12 +307,9 @@ def plot(u, dmesh, path):
     from dolfinx.mesh import exterior_facet_indices
     mesh = dmesh.mesh
     tdim = mesh.topology.dim
-    n_cells = mesh.topology.index_map(tdim).size_local
     x = mesh.geometry.x[:, :2]
-    geometry = mesh.geometry.dofmap.array.reshape(-1, 3)[:n_cells]
-    dofs = u.function_space.dofmap.list.array.reshape(-1, 3)[:n_cells]  # P1: dof i on vertex i
     values = u.x.array.reshape(-1, 2)
-    tri_x, tri_u = x[geometry], values[dofs]                              # (cells, 3, 2)
+    tri_x, tri_u = gather_triangles(u)                                    # (cells, 3, 2) on rank 0
     # Outline: exterior facets of the split mesh, i.e. the boundary and both faces of every joint.
     mesh.topology.create_connectivity(tdim - 1, tdim)
     facets = exterior_facet_indices(mesh.topology)
@@ -325,17 +322,14 @@ def plot(u, dmesh, path):
         verts = [i for i in range(3) if i != local]                      # facet i is opposite vertex i
         segs_x.append(x[mesh.geometry.dofmap.links(c)[verts]])
         segs_u.append(values[u.function_space.dofmap.cell_dofs(c)[verts]])
-    parts = [COMM.gather(np.asarray(a).reshape(-1, 2 * k), root=0)
-             for a, k in ((tri_x, 3), (tri_u, 3), (segs_x, 2), (segs_u, 2))]
+    parts = [COMM.gather(np.asarray(a).reshape(-1, 4), root=0) for a in (segs_x, segs_u)]
     if COMM.rank != 0:
         return
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     from matplotlib.collections import LineCollection
-    tri_x, tri_u, segs_x, segs_u = (np.concatenate(p) for p in parts)
-    tri_x, tri_u = tri_x.reshape(-1, 3, 2), tri_u.reshape(-1, 3, 2)
-    segs_x, segs_u = segs_x.reshape(-1, 2, 2), segs_u.reshape(-1, 2, 2)
+    segs_x, segs_u = (np.concatenate(p).reshape(-1, 2, 2) for p in parts)
     magnitude = np.linalg.norm(tri_u, axis=2).ravel() * 1e3
     scale = 0.05 * 60.0 / max(np.abs(segs_u).max(), 1e-300)               # largest shift = 3 m
     fig, ax = plt.subplots(figsize=(11, 5.2))

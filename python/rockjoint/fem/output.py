@@ -66,3 +66,27 @@ def write_xdmf(model, path: str) -> list:
         write_joint_points(joints_path, state, model.gdim)
     comm.barrier()
     return [path, joints_path]
+
+
+def gather_triangles(u: fem.Function, cell_values=None, root: int = 0):
+    """The owned cells of a 2D P1 displacement u, gathered on rank `root` for pictures drawn on
+    the mesh (matplotlib tripcolor, deformed outlines): (vertex coordinates (cells, 3, 2) [m],
+    u at those vertices (cells, 3, 2) [m]) and, with `cell_values` (one row per owned cell),
+    those rows too. Other ranks get None for each. Collective."""
+    V = u.function_space
+    mesh = V.mesh
+    if mesh.geometry.dim != 2 or V.ufl_element().degree() != 1:
+        raise ValueError("gather_triangles: a P1 displacement on a 2D triangle mesh is needed, got "
+                         f"gdim {mesh.geometry.dim}, degree {V.ufl_element().degree()}")
+    n_cells = mesh.topology.index_map(2).size_local
+    vertices = mesh.geometry.x[:, :2][mesh.geometry.dofmap.array.reshape(-1, 3)[:n_cells]]
+    # P1: the cell's dof i sits on its vertex i.
+    at_vertices = u.x.array.reshape(-1, 2)[V.dofmap.list.array.reshape(-1, 3)[:n_cells]]
+    parts = [vertices, at_vertices] + ([] if cell_values is None else [np.asarray(cell_values)])
+    if len(parts) == 3 and parts[2].shape[0] != n_cells:
+        raise ValueError(f"gather_triangles: cell_values has {parts[2].shape[0]} rows, the rank owns "
+                         f"{n_cells} cells")
+    gathered = [mesh.comm.gather(p, root=root) for p in parts]
+    if mesh.comm.rank != root:
+        return tuple(None for _ in parts)
+    return tuple(np.concatenate(g) for g in gathered)
