@@ -1,9 +1,13 @@
 #!/usr/bin/env bash
-# Install missing Debian packages, configure and build rockjoint into ./build (or $ROCKJOINT_BUILD_DIR).
+# Install what is missing (Debian 13 packages; on a Debian 12 host, a Debian 13 root first:
+# scripts/host.sh), then configure and build rockjoint into ./build (or $ROCKJOINT_BUILD_DIR).
 set -euo pipefail
-root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-build="${ROCKJOINT_BUILD_DIR:-$root/build}"
-"$root/scripts/install_deps.sh"
-cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DPython3_EXECUTABLE=/usr/bin/python3 >/dev/null
-cmake --build "$build" -j "$(nproc)"
-echo "build: done in $build (Python: PYTHONPATH=$root/python:$build/python)"
+source "$(dirname "${BASH_SOURCE[0]}")/host.sh"
+build="${ROCKJOINT_BUILD_DIR:-$rj_repo/build}"
+rj_setup
+rj_build() {
+  rj_run cmake -S "$rj_repo" -B "$build" -DCMAKE_BUILD_TYPE=Release -DPython3_EXECUTABLE=/usr/bin/python3 >/dev/null
+  rj_run cmake --build "$build" -j "${ROCKJOINT_JOBS:-$(nproc)}"
+}
+rj_build
+echo "build: done in $build (Python: PYTHONPATH=$rj_repo/python:$build/python)"

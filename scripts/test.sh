@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # Build (installing what is missing) and run every test: C++ (GoogleTest), Python (pytest),
-# and the MPI suites (mpirun -n 2), all driven by ctest.
+# and the MPI suites (mpirun -n 2 and 3), all driven by ctest, in the Debian 13 userland.
 set -euo pipefail
-root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-build="${ROCKJOINT_BUILD_DIR:-$root/build}"
-"$root/scripts/build.sh"
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+source "$(dirname "${BASH_SOURCE[0]}")/host.sh"
+build="${ROCKJOINT_BUILD_DIR:-$rj_repo/build}"
+bash "$rj_repo/scripts/build.sh"
+rj_setup
 cd "$build"
-ctest --output-on-failure -j 2 "$@"
+rj_run ctest --output-on-failure -j 2 "$@"
