@@ -155,9 +155,9 @@ def cell_hoop_stress(model, stress):
     mesh = model.mesh
     n = mesh.topology.index_map(2).size_local
     x = mesh.geometry.x[:, :2]
-    tri = x[mesh.geometry.dofmap.array.reshape(-1, 3)[:n]]
+    tri = x[mesh.geometry.dofmap[:n]]
     centroid = tri.mean(axis=1)
-    sig = stress.x.array.reshape(-1, 2, 2)[stress.function_space.dofmap.list.array.reshape(-1)[:n]]
+    sig = stress.x.array.reshape(-1, 2, 2)[stress.function_space.dofmap.list.ravel().reshape(-1)[:n]]
     th = np.arctan2(centroid[:, 1] - CENTRE[1], centroid[:, 0] - CENTRE[0])
     hoop = radial_hoop(sig, th)[1]
     tri, _, hoop = gather_triangles(model.u, cell_values=hoop)

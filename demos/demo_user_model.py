@@ -119,11 +119,11 @@ def joint_tables(out) -> dict:
 # %% The user's own DOLFINx model ----------------------------------------------------------------
 def youngs_modulus(dmesh, graded: bool):
     """E per block (DG0) and, if graded, softened near the crest level: E · (0.4 + 0.6 min(1, depth/20 m))."""
-    Q = fem.FunctionSpace(dmesh.mesh, ("DG", 0))
+    Q = fem.functionspace(dmesh.mesh, ("DG", 0))
     E_block = fem.Function(Q, name="E_block")
     tags = dmesh.cell_blocks
     for name, E in E_BLOCK.items():
-        E_block.x.array[Q.dofmap.list.array[tags.indices[tags.values == dmesh.block_tag(name)]]] = E
+        E_block.x.array[Q.dofmap.list.ravel()[tags.indices[tags.values == dmesh.block_tag(name)]]] = E
     if not graded:
         return E_block
     y = ufl.SpatialCoordinate(dmesh.mesh)[1]
@@ -134,7 +134,7 @@ def youngs_modulus(dmesh, graded: bool):
 def user_problem(dmesh, tables, graded: bool):
     """Plane-strain elasticity with E(x), gravity and the crest surcharge, plus the joints."""
     mesh = dmesh.mesh
-    V = fem.VectorFunctionSpace(mesh, ("Lagrange", 1))
+    V = fem.functionspace(mesh, ("Lagrange", 1, (mesh.geometry.dim,)))
     u, v = fem.Function(V, name="displacement"), ufl.TestFunction(V)
     E = youngs_modulus(dmesh, graded)
     mu, lam = E / (2 * (1 + POISSON)), E * POISSON / ((1 + POISSON) * (1 - 2 * POISSON))
@@ -190,11 +190,11 @@ def solve_with_snes(problem):
         "snes_type": "newtonls", "snes_linesearch_type": "basic", "snes_rtol": 0.0,
         "snes_atol": 1e-10 * problem.load_norm(), "snes_stol": 0.0,
         "snes_max_it": 30, "ksp_type": "preonly", "pc_type": "lu", "pc_factor_mat_solver_type": "mumps"})
-    x = problem.u.vector.copy()
+    x = problem.u.x.petsc_vec.copy()
     snes.solve(None, x)
     if snes.getConvergedReason() <= 0:
         raise RuntimeError(f"SNES did not converge (reason {snes.getConvergedReason()})")
-    x.copy(problem.u.vector)
+    x.copy(problem.u.x.petsc_vec)
     problem.u.x.scatter_forward()
     return snes.getIterationNumber()
 
@@ -287,7 +287,7 @@ def main():
             f.write("\n".join(lines) + "\n")
 
     # %% 5. Output: XDMF for ParaView, a picture drawn on the mesh -----------------------------------
-    Q = fem.FunctionSpace(dmesh.mesh, ("DG", 0))
+    Q = fem.functionspace(dmesh.mesh, ("DG", 0))
     E_cells = fem.Function(Q, name="youngs_modulus_Pa")
     E_cells.interpolate(fem.Expression(E, Q.element.interpolation_points()))
     with XDMFFile(COMM, out("user_model.xdmf"), "w") as f:

@@ -1,5 +1,6 @@
 // Interface assembler kernels (plain arrays, no PETSc objects): local frame, quadrature,
 // residual balance, and the consistent pair Jacobian against central finite differences.
+#include <algorithm>
 #include <rockjoint/fem_coupling/facet_quadrature.hpp>
 #include <rockjoint/fem_coupling/interface_assembler.hpp>
 #include <rockjoint/fem_coupling/local_frame.hpp>

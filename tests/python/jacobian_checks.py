@@ -39,7 +39,7 @@ def assert_jacobian_matches_fd(model, u0, relative_step, seed=0, draws=3, tol=1e
     rng = np.random.default_rng(seed)
     u_max = comm.allreduce(np.abs(u0).max(), op=MPI.MAX)
     for _ in range(draws):
-        v = model.u.vector.duplicate()
+        v = model.u.x.petsc_vec.duplicate()
         with v.localForm() as loc:
             loc.array[:] = rng.uniform(-1, 1, loc.array.size) * free
         v.ghostUpdate(addv=PETSc.InsertMode.INSERT, mode=PETSc.ScatterMode.FORWARD)

@@ -14,7 +14,7 @@ def facet_coordinates(mesh, cells, local_facets):
     mesh.topology.create_connectivity(tdim, tdim - 1)
     c2f = mesh.topology.connectivity(tdim, tdim - 1)
     facets = np.array([c2f.links(c)[f] for c, f in zip(cells, local_facets)], dtype=np.int32)
-    nodes = dolfinx.cpp.mesh.entities_to_geometry(mesh._mesh, tdim - 1, facets, False)
+    nodes = dolfinx.mesh.entities_to_geometry(mesh, tdim - 1, facets, False)
     return mesh.geometry.x[nodes][..., :mesh.geometry.dim]
 
 
@@ -29,7 +29,7 @@ def owned_block_measures(d):
     tdim = mesh.topology.dim
     n_owned = mesh.topology.index_map(tdim).size_local
     x = mesh.geometry.x[:, :mesh.geometry.dim]
-    dofs = mesh.geometry.dofmap.array.reshape(-1, tdim + 1)[:n_owned]
+    dofs = mesh.geometry.dofmap[:n_owned]
     e = x[dofs[:, 1:]] - x[dofs[:, :1]]
     if tdim == 2:
         m = 0.5 * np.abs(e[:, 0, 0] * e[:, 1, 1] - e[:, 0, 1] * e[:, 1, 0])

@@ -102,7 +102,7 @@ def test_intact_deformation_is_removed_from_the_specimen_displacement(tmp_path):
     with open(path, "w") as f:
         f.write("normal_stress [MPa],displacement [um]\n")
         for s, u in zip(STRESS, closure + STRESS * length / young):
-            f.write(f"{s * 1e-6!r},{u * 1e6!r}\n")
+            f.write(f"{float(s * 1e-6)!r},{float(u * 1e6)!r}\n")
     curve = read_closure_curve(path, intact_length=length, young_modulus=young)
     np.testing.assert_allclose(curve.closure, closure, rtol=1e-12, atol=1e-18)
     result = calibrate(curve, "barton_bandis")
@@ -139,7 +139,7 @@ def test_closure_std_column_weights_the_fit(tmp_path):
     with open(path, "w") as f:
         f.write("closure [mm], normal_stress [kPa], closure_std [mm]\n")
         for d, s, e in zip(closure, STRESS, std):
-            f.write(f"{d * 1e3!r}, {s * 1e-3!r}, {e * 1e3!r}\n")
+            f.write(f"{float(d * 1e3)!r}, {float(s * 1e-3)!r}, {float(e * 1e3)!r}\n")
     curve = read_closure_curve(path)
     assert curve.closure_std is not None
     weighted = calibrate(curve, "exponential")
@@ -198,7 +198,7 @@ def test_cli_runs_end_to_end_and_writes_plot_and_table(tmp_path, capsys):
     with open(path, "w") as f:
         f.write("# granite-like joint, loading branch\nnormal_stress [MPa], closure [mm]\n")
         for s, d in zip(curve.normal_stress, curve.closure):
-            f.write(f"{s * 1e-6!r}, {d * 1e3!r}\n")
+            f.write(f"{float(s * 1e-6)!r}, {float(d * 1e3)!r}\n")
     png, rjt = tmp_path / "fit.png", tmp_path / "fit.rjt"
     rc = main(["calibrate", str(path), "--law", "greenwood_williamson", "--young", "50",
                "--poisson", "0.25", "--summit-radius", "2.5", "--plot", str(png),

@@ -36,7 +36,7 @@ def check_pairs_against_jointed_mesh(d, jm):
     # the pair's cells lie on opposite sides of the facet plane
     tdim = d.mesh.topology.dim
     x = d.mesh.geometry.x[:, :d.mesh.geometry.dim]
-    dofs = d.mesh.geometry.dofmap.array.reshape(-1, tdim + 1)
+    dofs = d.mesh.geometry.dofmap
     cm, cp = x[dofs[p.minus_cells]].mean(axis=1), x[dofs[p.plus_cells]].mean(axis=1)
     if tdim == 2:
         t = xm[:, 1] - xm[:, 0]
@@ -60,7 +60,7 @@ def test_serial_column_pairs_tags_and_volumes(dim):
     assert np.array_equal(np.unique(d.pairs.joint_tags), [100, 101])
     # boundary facets: the bottom face has measure width^(dim-1)
     bottom = d.boundary("bottom")
-    nodes = dolfinx.cpp.mesh.entities_to_geometry(d.mesh._mesh, dim - 1, bottom, False)
+    nodes = dolfinx.mesh.entities_to_geometry(d.mesh, dim - 1, bottom, False)
     xb = d.mesh.geometry.x[nodes][..., :dim]
     assert np.allclose(xb[..., -1], 0.0)
     if dim == 2:
@@ -104,7 +104,7 @@ def test_pair_vertex_positions_match_and_orient(dim):
     p = d.pairs
     pm, pp = pair_vertex_positions(d)
     x = d.mesh.geometry.x[:, :dim]
-    dofs = d.mesh.geometry.dofmap.array.reshape(-1, dim + 1)
+    dofs = d.mesh.geometry.dofmap
     xm = x[np.take_along_axis(dofs[p.minus_cells], pm, axis=1)]
     xp = x[np.take_along_axis(dofs[p.plus_cells], pp, axis=1)]
     assert np.array_equal(xm, xp)  # entrywise coincident

@@ -32,7 +32,7 @@ def _interface(dim, degree, comm, law, shear_stiffness=1e9):
     jm = meshes.jointed_block((1.0,) * dim, [joint], dim=dim, mesh_size=0.3 if dim == 2 else 0.45,
                               comm=comm)
     dmesh = distribute(jm, comm)
-    V = fem.VectorFunctionSpace(dmesh.mesh, ("CG", degree))
+    V = fem.functionspace(dmesh.mesh, ("CG", degree, (dmesh.mesh.geometry.dim,)))
     tags = {int(t) for t in comm.allgather(set(np.asarray(dmesh.pairs.joint_tags).tolist())) for t in t}
     behaviours = {t: JointBehaviour(law, shear_stiffness=shear_stiffness) for t in tags}
     return V, JointInterface(V, dmesh.pairs, behaviours), dmesh
@@ -62,7 +62,7 @@ def test_pair_dofs_come_from_the_dofmap_and_pair_coincident_nodes(dim, degree, c
     np.testing.assert_allclose(X[nodes[:, :nn]], X[nodes[:, nn:]], atol=1e-12)  # plus permuted to minus
     assert np.all(nodes[:, :nn] != nodes[:, nn:])  # split nodes
     # every pair dof belongs to its cells in V.dofmap
-    cell_dofs = V.dofmap.list.array.reshape(-1, V.dofmap.dof_layout.num_dofs)
+    cell_dofs = V.dofmap.list
     for side, cells in ((0, dmesh.pairs.minus_cells), (1, dmesh.pairs.plus_cells)):
         side_nodes = nodes[:, side * nn:(side + 1) * nn]
         assert all(set(side_nodes[p]) <= set(cell_dofs[cells[p]]) for p in range(ji.num_pairs))

@@ -335,7 +335,7 @@ def test_public_coupling_takes_the_strength_and_reports_an_unsymmetric_tangent()
     from rockjoint.fem import StrengthModel
     from rockjoint.fem.coupling import JointCoupling
     dmesh = _block()
-    V = fem.VectorFunctionSpace(dmesh.mesh, ("Lagrange", 1))
+    V = fem.functionspace(dmesh.mesh, ("Lagrange", 1, (dmesh.mesh.geometry.dim,)))
     law = {"j": rockjoint.BartonBandis(KNI, VM)}
     assert JointCoupling(V, dmesh, law, shear_stiffness=KS).symmetric
     coupling = JointCoupling(V, dmesh, law, shear_stiffness=KS, strength={"friction_angle": PHI})

@@ -18,7 +18,7 @@ WIDTH, HEIGHT = 2.0, 3.0
 def _check_gathered_triangles():
     comm = MPI.COMM_WORLD
     dmesh = distribute(meshes.column(WIDTH, HEIGHT, [1.0, 2.0], dim=2, mesh_size=0.4, comm=comm), comm)
-    V = fem.VectorFunctionSpace(dmesh.mesh, ("Lagrange", 1))
+    V = fem.functionspace(dmesh.mesh, ("Lagrange", 1, (dmesh.mesh.geometry.dim,)))
     u = fem.Function(V)
     u.interpolate(lambda x: np.stack([1e-3 * x[0] - 2e-3 * x[1], 5e-4 * x[0] * x[1]]))  # P1 exact at nodes
     owned = dmesh.mesh.topology.index_map(2).size_local
@@ -49,9 +49,9 @@ def test_gather_triangles_on_two_ranks():
 def test_gather_triangles_refuses_3d_and_wrong_cell_values():
     comm = MPI.COMM_WORLD
     dmesh = distribute(meshes.column(1.0, 1.0, [], dim=2, mesh_size=0.5, comm=comm), comm)
-    u = fem.Function(fem.VectorFunctionSpace(dmesh.mesh, ("Lagrange", 2)))
+    u = fem.Function(fem.functionspace(dmesh.mesh, ("Lagrange", 2, (dmesh.mesh.geometry.dim,))))
     with pytest.raises(ValueError, match="P1 displacement on a 2D triangle mesh"):
         gather_triangles(u)
-    u1 = fem.Function(fem.VectorFunctionSpace(dmesh.mesh, ("Lagrange", 1)))
+    u1 = fem.Function(fem.functionspace(dmesh.mesh, ("Lagrange", 1, (dmesh.mesh.geometry.dim,))))
     with pytest.raises(ValueError, match="cell_values has 1 rows"):
         gather_triangles(u1, cell_values=np.zeros(1))

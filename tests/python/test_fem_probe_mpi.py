@@ -22,7 +22,7 @@ def linear_function():
                                meshes.joint_set(3.0, 0.0, 90.0, origin=(10.0, 6.5), count=2, name="bed"),
                                mesh_size=2.0, opening_mesh_size=0.5, comm=comm)
     dmesh = distribute(jm, comm)
-    V = fem.VectorFunctionSpace(dmesh.mesh, ("Lagrange", 1))
+    V = fem.functionspace(dmesh.mesh, ("Lagrange", 1, (dmesh.mesh.geometry.dim,)))
     u = fem.Function(V)
     u.interpolate(lambda x: np.stack([2 + 3 * x[0] - 5 * x[1], x[0] * 0 + 7.0]))
     return u

@@ -211,7 +211,7 @@ def test_snes_and_the_problem_object_agree_with_newton():
     assert np.abs(snes.u.x.array - newton.u.x.array).max() < 1e-9 * scale
     # F(x) = 0 at the converged x; J(x) is the model's Jacobian there
     problem = newton.problem()
-    x = newton.u.vector.copy()
+    x = newton.u.x.petsc_vec.copy()
     b, A = problem.vector(), problem.matrix()
     newton.load_factor = 1.0
     problem.F(x, b)

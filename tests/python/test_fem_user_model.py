@@ -111,7 +111,7 @@ def test_supported_rows_and_columns_stay_out_of_the_joint_blocks(dmesh2):
 
 
 def test_supported_dofs_of_whole_space_and_component_bcs(dmesh2):
-    V = fem.VectorFunctionSpace(dmesh2.mesh, ("Lagrange", 1))
+    V = fem.functionspace(dmesh2.mesh, ("Lagrange", 1, (dmesh2.mesh.geometry.dim,)))
     bottom = fem.locate_dofs_topological(V, 1, dmesh2.boundary("bottom"))          # block dofs
     left = fem.locate_dofs_topological(V.sub(0), 1, dmesh2.boundary("left"))       # unrolled
     bcs = [fem.dirichletbc(np.zeros(2, dtype=PETSc.ScalarType), bottom, V),
@@ -132,7 +132,7 @@ def test_admissible_step_is_the_fraction_to_the_boundary_of_a_uniform_closure():
     Δ ≤ 0.95 V_m is α = 0.95 V_m / d (d > V_m); α = 1 when d stays inside."""
     jm = meshes.column(1.0, 2.0, (1.0,), dim=2, mesh_size=0.5, comm=COMM)
     dmesh = distribute(jm, COMM)
-    V = fem.VectorFunctionSpace(dmesh.mesh, ("Lagrange", 1))
+    V = fem.functionspace(dmesh.mesh, ("Lagrange", 1, (dmesh.mesh.geometry.dim,)))
     vm = case.LAW.maximum_closure
     coupling = JointCoupling(V, dmesh, {"joint_1": case.LAW}, shear_stiffness=1e9)
     u, du = fem.Function(V), fem.Function(V)
@@ -144,7 +144,7 @@ def test_admissible_step_is_the_fraction_to_the_boundary_of_a_uniform_closure():
     for d, expected in ((2.0 * vm, 0.95 * vm / (2.0 * vm)), (0.5 * vm, 1.0)):
         du.x.array.reshape(-1, 2)[:, 1] = np.where(moving, -d, 0.0)
         assert coupling.admissible_step(u, du) == pytest.approx(expected, rel=1e-12)
-    assert coupling.admissible_step(u, du.vector) == pytest.approx(1.0)
+    assert coupling.admissible_step(u, du.x.petsc_vec) == pytest.approx(1.0)
 
 
 # ---- malformed input -------------------------------------------------------------------------
@@ -159,9 +159,10 @@ def test_wrong_array_sizes_name_the_sizes(dmesh2):
         c.add_residual(np.zeros(n + 2), np.zeros(n))
     with pytest.raises(ValueError, match=r"du: expected a float64 array"):
         c.admissible_step(u, np.zeros((n, 1)))
-    other = fem.VectorFunctionSpace(dmesh2.mesh, ("Lagrange", 2))
+    other = fem.functionspace(dmesh2.mesh, ("Lagrange", 2, (dmesh2.mesh.geometry.dim,)))
+    w = fem.Function(other)  # kept alive: in DOLFINx 0.9 x.petsc_vec borrows the Function's memory
     with pytest.raises(ValueError, match=r"u: a PETSc Vec with \d+ owned entries on this rank; V has"):
-        c.add_residual(fem.Function(other).vector, np.zeros(n))
+        c.add_residual(w.x.petsc_vec, np.zeros(n))
     with pytest.raises(ValueError, match="u must be a Function of the coupling's space V"):
         c.add_residual(fem.Function(other), np.zeros(n))
     A = fem_petsc.create_matrix(fem.form(ufl.inner(ufl.TrialFunction(other), ufl.TestFunction(other)) * ufl.dx))
@@ -172,7 +173,7 @@ def test_wrong_array_sizes_name_the_sizes(dmesh2):
 
 
 def test_unknown_or_missing_joint_names_and_bad_laws(dmesh2, tmp_path):
-    V = fem.VectorFunctionSpace(dmesh2.mesh, ("Lagrange", 1))
+    V = fem.functionspace(dmesh2.mesh, ("Lagrange", 1, (dmesh2.mesh.geometry.dim,)))
     with pytest.raises(ValueError, match=r"unknown joint\(s\) \['bedding'\]; available joints: \['fault'\]"):
         JointCoupling(V, dmesh2, {"fault": case.LAW, "bedding": case.LAW})
     with pytest.raises(ValueError, match=r"no law for joint\(s\) \['fault'\]"):
@@ -191,10 +192,10 @@ def test_unknown_or_missing_joint_names_and_bad_laws(dmesh2, tmp_path):
 
 def test_wrong_spaces_and_conditions(dmesh2):
     mesh = dmesh2.mesh
-    scalar = fem.FunctionSpace(mesh, ("Lagrange", 1))
+    scalar = fem.functionspace(mesh, ("Lagrange", 1))
     with pytest.raises(ValueError, match=r"V must be a vector Lagrange space of degree 1 or 2 with 2 components"):
         JointCoupling(scalar, dmesh2, {"fault": case.LAW})
-    V = fem.VectorFunctionSpace(mesh, ("Lagrange", 1))
+    V = fem.functionspace(mesh, ("Lagrange", 1, (mesh.geometry.dim,)))
     foreign = fem.dirichletbc(PETSc.ScalarType(0.0), np.array([0], dtype=np.int32), scalar)
     with pytest.raises(ValueError, match=r"bcs\[0\] constrains a function space that is not the displacement space"):
         JointCoupling(V, dmesh2, {"fault": case.LAW}, bcs=[foreign])
@@ -203,7 +204,7 @@ def test_wrong_spaces_and_conditions(dmesh2):
     with pytest.raises(ValueError, match=r"the pairs carry tags \[\d+\] that no name maps to"):
         JointCoupling(V, dmesh2.pairs, {"fault": case.LAW}, joint_tags={"fault": 999})
     coupling = JointCoupling(V, dmesh2, {"fault": case.LAW})
-    P2 = fem.VectorFunctionSpace(mesh, ("Lagrange", 2))
+    P2 = fem.functionspace(mesh, ("Lagrange", 2, (mesh.geometry.dim,)))
     with pytest.raises(ValueError, match=r"a must be a bilinear form on V × V"):
         coupling.create_matrix(fem.form(ufl.inner(ufl.TrialFunction(P2), ufl.TestFunction(P2)) * ufl.dx))
     F = ufl.inner(ufl.grad(fem.Function(P2)), ufl.grad(ufl.TestFunction(P2))) * ufl.dx
@@ -240,7 +241,7 @@ def test_closure_limiter_lets_newton_and_snes_pass_a_stiffening_law():
     closure = stress * vm / (kni * vm + stress)
 
     def problem():
-        V = fem.VectorFunctionSpace(dmesh.mesh, ("Lagrange", 1))
+        V = fem.functionspace(dmesh.mesh, ("Lagrange", 1, (dmesh.mesh.geometry.dim,)))
         u, v = fem.Function(V), ufl.TestFunction(V)
         eps = ufl.sym(ufl.grad(u))
         mu, lam = 20e9 / 2.5, 20e9 * 0.25 / (1.25 * 0.5)

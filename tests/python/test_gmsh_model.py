@@ -119,7 +119,8 @@ def test_a_joint_that_is_not_between_two_blocks():
     gmsh.model.setPhysicalName(2, gmsh.model.addPhysicalGroup(2, [t for _, t in pieces[0]]), "rock")
     gmsh.model.setPhysicalName(1, gmsh.model.addPhysicalGroup(1, [t for _, t in pieces[1]]), "crack")
     gmsh.model.mesh.generate(2)
-    with pytest.raises(ValueError, match=r"joint 'crack': entity \(1, \d+\) bounds 1 block volume\(s\), not 2: "
+    # gmsh 4.13 reports an embedded (dangling) curve with no upward adjacency (0), 4.6 with its surface (1)
+    with pytest.raises(ValueError, match=r"joint 'crack': entity \(1, \d+\) bounds [01] block volume\(s\), not 2: "
                                          r"a joint must lie between two blocks .*occ.fragment"):
         meshes.from_gmsh_model(joints=["crack"])
 

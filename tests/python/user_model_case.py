@@ -39,13 +39,13 @@ def user_problem(dmesh, degree=1, law=LAW):
     """The user's UFL model + the joint; returns the JointedNonlinearProblem."""
     mesh = dmesh.mesh
     dim = mesh.geometry.dim
-    V = fem.VectorFunctionSpace(mesh, ("Lagrange", degree))
+    V = fem.functionspace(mesh, ("Lagrange", degree, (mesh.geometry.dim,)))
     u, v = fem.Function(V), ufl.TestFunction(V)
-    Q = fem.FunctionSpace(mesh, ("DG", 0))
+    Q = fem.functionspace(mesh, ("DG", 0))
     E = fem.Function(Q)
     tags = dmesh.cell_blocks
     for name, value in E_BLOCK.items():
-        E.x.array[Q.dofmap.list.array[tags.indices[tags.values == dmesh.block_tag(name)]]] = value
+        E.x.array[Q.dofmap.list.ravel()[tags.indices[tags.values == dmesh.block_tag(name)]]] = value
     mu, lam = E / (2 * (1 + POISSON)), E * POISSON / ((1 + POISSON) * (1 - 2 * POISSON))
     eps = ufl.sym(ufl.grad(u))
     sigma = 2 * mu * eps + lam * ufl.tr(eps) * ufl.Identity(dim)
@@ -84,10 +84,10 @@ def solve_snes(problem):
         "snes_rtol": 0.0, "snes_atol": 1e-10 * problem.load_norm(), "snes_stol": 0.0, "snes_max_it": 30,
         "snes_linesearch_type": "basic",
         "ksp_type": "preonly", "pc_type": "lu", "pc_factor_mat_solver_type": "mumps"})
-    x = problem.u.vector.copy()
+    x = problem.u.x.petsc_vec.copy()
     snes.solve(None, x)
     assert snes.getConvergedReason() > 0, snes.getConvergedReason()
-    x.copy(problem.u.vector)
+    x.copy(problem.u.x.petsc_vec)
     problem.u.x.scatter_forward()
     return snes.getIterationNumber()
 

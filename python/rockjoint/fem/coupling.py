@@ -44,14 +44,14 @@ log = logging.getLogger(__name__)
 __all__ = ["JointCoupling", "JointedNonlinearProblem", "joint_behaviours", "supported_dofs"]
 
 
-def supported_dofs(V: fem.FunctionSpace, bcs: Iterable[fem.DirichletBCMetaClass]) -> np.ndarray:
+def supported_dofs(V: fem.FunctionSpace, bcs: Iterable[fem.DirichletBC]) -> np.ndarray:
     """Mask (int8, 1 = supported) over the local unrolled dofs of V, ghosts included, of every dof
     a DirichletBC in `bcs` prescribes (whole-space or component bcs, V.sub(i))."""
     imap, bs = V.dofmap.index_map, V.dofmap.index_map_bs
     n = (imap.size_local + imap.num_ghosts) * bs
     mask = np.zeros(n, dtype=np.int8)
     for i, bc in enumerate(bcs):
-        if not isinstance(bc, fem.DirichletBCMetaClass):
+        if not isinstance(bc, fem.DirichletBC):
             raise TypeError(f"bcs[{i}] must be a dolfinx.fem.DirichletBC, got {type(bc).__name__}")
         if not _same_space(bc.function_space, V):
             raise ValueError(f"bcs[{i}] constrains a function space that is not the displacement space "
@@ -87,13 +87,13 @@ class JointCoupling:
     def __init__(self, V: fem.FunctionSpace, joints: DistributedJointMesh | JointPairs,
                  laws: Mapping[str, object], *, joint_tags: Mapping[str, int] | None = None,
                  shear_stiffness=0.0, shear_stiffness_ratio=None, residual_stiffness=0.0,
-                 strength=None, quadrature: str = "nodal", bcs: Sequence[fem.DirichletBCMetaClass] = ()):
+                 strength=None, quadrature: str = "nodal", bcs: Sequence[fem.DirichletBC] = ()):
         gdim = V.mesh.geometry.dim
         element = V.ufl_element()
-        if V.dofmap.index_map_bs != gdim or element.family() not in ("Lagrange", "Q", "P") \
-                or element.degree() not in (1, 2):
+        if V.dofmap.index_map_bs != gdim or element.family_name not in ("P", "Q") \
+                or element.discontinuous or element.embedded_superdegree not in (1, 2):
             raise ValueError(f"V must be a vector Lagrange space of degree 1 or 2 with {gdim} components "
-                             f"(fem.VectorFunctionSpace(mesh, ('Lagrange', 1))), got {element} with block "
+                             f"(fem.functionspace(mesh, ('Lagrange', 1, (gdim,)))), got {element} with block "
                              f"size {V.dofmap.index_map_bs}")
         if isinstance(joints, DistributedJointMesh):
             if joints.mesh is not V.mesh:
@@ -120,7 +120,7 @@ class JointCoupling:
             if c.size and (c.min() < 0 or c.max() >= num_cells):
                 raise ValueError(f"joints: pair {what} in [{c.min()}, {c.max()}] outside the {num_cells} "
                                  "local cells of V's mesh")
-        if quadrature == "gauss" and element.degree() != 1:
+        if quadrature == "gauss" and element.embedded_superdegree != 1:
             raise ValueError("quadrature='gauss' is for P1 only; use 'nodal' with P2")
         self.V = V
         self.joint_tags = names
@@ -136,7 +136,7 @@ class JointCoupling:
         self.set_supports(bcs)
 
     # ---- supports ------------------------------------------------------------------------
-    def set_supports(self, bcs: Sequence[fem.DirichletBCMetaClass]) -> None:
+    def set_supports(self, bcs: Sequence[fem.DirichletBC]) -> None:
         """Take the supported dofs from a list of DirichletBC (replacing earlier ones)."""
         self.supported = supported_dofs(self.V, bcs)
 
@@ -151,17 +151,17 @@ class JointCoupling:
         """Insert the cross-joint couplings into an unassembled sparsity pattern of V × V."""
         self.interface.insert_sparsity(pattern)
 
-    def create_matrix(self, a: fem.FormMetaClass) -> PETSc.Mat:
+    def create_matrix(self, a: fem.Form) -> PETSc.Mat:
         """A PETSc matrix with the sparsity of the bilinear form `a` (on V × V) plus the cross-joint
         couplings, reserved with explicit zeros (docs/fem.md, pitfall 4). Use it in place of
         dolfinx.fem.petsc.create_matrix(a)."""
-        if not isinstance(a, fem.FormMetaClass):
+        if not isinstance(a, fem.Form):
             raise TypeError(f"a must be a compiled bilinear form (dolfinx.fem.form(...)), got {type(a).__name__}")
         if a.rank != 2 or any(W.component() or not _same_space(W, self.V) for W in a.function_spaces):
             raise ValueError("a must be a bilinear form on V × V (the coupling's displacement space)")
         pattern = fem.create_sparsity_pattern(a)
         self.insert_sparsity(pattern)
-        pattern.assemble()
+        pattern.finalize()
         return self.interface.create_matrix(pattern)
 
     # ---- residual and Jacobian -----------------------------------------------------------
@@ -287,13 +287,13 @@ class JointedNonlinearProblem:
     NewtonSolver:   solver = problem.newton_solver()      (or, by hand:
                     solver = NewtonSolver(comm, problem); solver.setJ(problem.J, problem.matrix());
                     solver.set_update(problem.coupling.newton_update()))
-    SNES:           snes = problem.snes_solver(); snes.solve(None, x) with x = u.vector.copy()
+    SNES:           snes = problem.snes_solver(); snes.solve(None, x) with x = u.x.petsc_vec.copy()
                     (the callbacks copy x into u before assembling: field notes, recipe 6)
     """
 
-    def __init__(self, F: ufl.Form, u: fem.Function, bcs: Sequence[fem.DirichletBCMetaClass],
+    def __init__(self, F: ufl.Form, u: fem.Function, bcs: Sequence[fem.DirichletBC],
                  coupling: JointCoupling, J: ufl.Form | None = None, closure_fraction: float = 0.95,
-                 form_compiler_params: dict | None = None, jit_params: dict | None = None):
+                 form_compiler_options: dict | None = None, jit_options: dict | None = None):
         if not isinstance(coupling, JointCoupling):
             raise TypeError(f"coupling must be a JointCoupling, got {type(coupling).__name__}")
         if not isinstance(u, fem.Function) or u.function_space.component() \
@@ -304,7 +304,7 @@ class JointedNonlinearProblem:
         self.u, self.coupling, self.bcs = u, coupling, list(bcs)
         self.closure_fraction = closure_fraction
         coupling.set_supports(self.bcs)
-        params = dict(form_compiler_params=form_compiler_params or {}, jit_params=jit_params or {})
+        params = dict(form_compiler_options=form_compiler_options or {}, jit_options=jit_options or {})
         self._L = fem.form(F, **params)
         if J is None:
             J = ufl.derivative(F, u, ufl.TrialFunction(u.function_space))
@@ -314,12 +314,12 @@ class JointedNonlinearProblem:
         self.nonfinite = False
 
     @property
-    def L(self) -> fem.FormMetaClass:
+    def L(self) -> fem.Form:
         """The compiled residual form."""
         return self._L
 
     @property
-    def a(self) -> fem.FormMetaClass:
+    def a(self) -> fem.Form:
         """The compiled Jacobian form."""
         return self._a
 
@@ -342,8 +342,8 @@ class JointedNonlinearProblem:
         self.u.x.array[:] = 0.0
         b = self.vector()
         try:
-            self.form(self.u.vector)
-            self.F(self.u.vector, b)
+            self.form(self.u.x.petsc_vec)
+            self.F(self.u.x.petsc_vec, b)
             return b.norm()
         finally:
             self.u.x.array[:] = saved
@@ -355,14 +355,14 @@ class JointedNonlinearProblem:
         x.ghostUpdate(addv=PETSc.InsertMode.INSERT, mode=PETSc.ScatterMode.FORWARD)
 
     def F(self, x: PETSc.Vec, b: PETSc.Vec) -> None:
-        """Residual at x = u.vector: bulk form, joints (before lifting and the reverse ghost
+        """Residual at x = u.x.petsc_vec: bulk form, joints (before lifting and the reverse ghost
         update), Dirichlet rows. A non-finite joint traction makes b infinite (Newton then fails
         instead of continuing from garbage)."""
         with b.localForm() as loc:
             loc.set(0.0)
         fem_petsc.assemble_vector(b, self._L)
         finite = self.coupling.add_residual(self.u, b)
-        fem_petsc.apply_lifting(b, [self._a], bcs=[self.bcs], x0=[x], scale=-1.0)
+        fem_petsc.apply_lifting(b, [self._a], bcs=[self.bcs], x0=[x], alpha=-1.0)
         b.ghostUpdate(addv=PETSc.InsertMode.ADD, mode=PETSc.ScatterMode.REVERSE)
         fem_petsc.set_bc(b, self.bcs, x, -1.0)
         self.nonfinite = not finite
@@ -373,7 +373,7 @@ class JointedNonlinearProblem:
             b.set(np.inf)
 
     def J(self, x: PETSc.Vec, A: PETSc.Mat) -> None:
-        """Jacobian at x = u.vector: joint blocks first, then the bulk form and the Dirichlet rows."""
+        """Jacobian at x = u.x.petsc_vec: joint blocks first, then the bulk form and the Dirichlet rows."""
         A.zeroEntries()
         self.coupling.add_jacobian(self.u, A)
         fem_petsc.assemble_matrix(A, self._a, self.bcs)
@@ -391,13 +391,13 @@ class JointedNonlinearProblem:
 
     def _snes_F(self, snes, x: PETSc.Vec, b: PETSc.Vec) -> None:
         self._copy_into_u(x)
-        self.F(self.u.vector, b)
+        self.F(self.u.x.petsc_vec, b)
         if self.nonfinite:
             snes.setFunctionDomainError()
 
     def _snes_J(self, snes, x: PETSc.Vec, A: PETSc.Mat, P: PETSc.Mat) -> None:
         self._copy_into_u(x)
-        self.J(self.u.vector, A)
+        self.J(self.u.x.petsc_vec, A)
 
     def _snes_precheck(self, x: PETSc.Vec, y: PETSc.Vec) -> None:
         # SNES steps x ← x - λ y: limit -y.
@@ -409,8 +409,8 @@ class JointedNonlinearProblem:
             y.scale(alpha)
 
     def _copy_into_u(self, x: PETSc.Vec) -> None:
-        """SNES evaluates at trial vectors, not u.vector: copy first (field notes, recipe 6)."""
-        x.copy(self.u.vector)
+        """SNES evaluates at trial vectors, not u.x.petsc_vec: copy first (field notes, recipe 6)."""
+        x.copy(self.u.x.petsc_vec)
         self.u.x.scatter_forward()
 
     def snes_solver(self, comm=None, petsc_options: Mapping[str, object] | None = None,
@@ -420,7 +420,7 @@ class JointedNonlinearProblem:
         `options_prefix` (default: a prefix of its own, "rockjoint_snes_<n>_", so options never leak
         between problems; pass one to reach it from the command line) and read by setFromOptions, e.g.
         {"snes_rtol": 1e-10, "ksp_type": "preonly", "pc_type": "lu"}. Solve with
-        snes.solve(None, x), x = u.vector.copy(); then x.copy(u.vector) and u.x.scatter_forward()."""
+        snes.solve(None, x), x = u.x.petsc_vec.copy(); then x.copy(u.x.petsc_vec) and u.x.scatter_forward()."""
         comm = comm or self.u.function_space.mesh.comm
         options_prefix = check_options_prefix(options_prefix)
         petsc_options = check_petsc_options(petsc_options)

@@ -1,4 +1,4 @@
-"""Distribute a JointedMesh over MPI as a DOLFINx 0.5 mesh and pair the joint facets on every rank.
+"""Distribute a JointedMesh over MPI as a DOLFINx 0.9 mesh and pair the joint facets on every rank.
 
 Partitioning (docs/fem.md, pitfalls 1-2):
 1. owners from DOLFINx's default partitioner run on the *glued* cells (the split mesh has no facet
@@ -23,7 +23,9 @@ import numpy as np
 
 import dolfinx
 import dolfinx.cpp as _cpp
+from dolfinx.graph import adjacencylist
 from dolfinx.io.gmshio import cell_perm_array, ufl_mesh
+from dolfinx.io.utils import distribute_entity_data
 from dolfinx.mesh import GhostMode, create_mesh, meshtags, meshtags_from_entities
 
 from ..meshes.jointed_mesh import JointedMesh
@@ -131,7 +133,7 @@ def distribute(jointed_mesh: JointedMesh | None, comm) -> DistributedJointMesh:
     if "error" in header:
         raise ValueError(header["error"])
     cell_type, gdim, names = header["cell_type"], header["gdim"], header["names"]
-    domain = ufl_mesh(_GMSH_CELL_ID[cell_type], gdim)
+    domain = ufl_mesh(_GMSH_CELL_ID[cell_type], gdim, dtype=np.float64)
     dolfinx_cell = _cpp.mesh.to_type(str(domain.ufl_cell()))
     nv = 3 if cell_type == "triangle" else 4
     perm = cell_perm_array(dolfinx_cell, nv)
@@ -146,7 +148,7 @@ def distribute(jointed_mesh: JointedMesh | None, comm) -> DistributedJointMesh:
         cells = np.empty((0, nv), dtype=np.int64)
         x = np.empty((0, gdim))
         partitioner = _JointPartitioner(None, cells)
-    mesh = create_mesh(comm, cells, x, domain, GhostMode.shared_facet, partitioner)
+    mesh = create_mesh(comm, cells, x, domain, partitioner)
     topology = mesh.topology
     tdim = topology.dim
 
@@ -170,7 +172,7 @@ def distribute(jointed_mesh: JointedMesh | None, comm) -> DistributedJointMesh:
     node_glue = _fetch(comm, np.asarray(mesh.geometry.input_global_indices, dtype=np.int64),
                        jm.glue if rank == _ROOT else None)
     c2v = topology.connectivity(tdim, 0).array.reshape(-1, nv)
-    x_dofmap = mesh.geometry.dofmap.array.reshape(-1, nv)  # P1: geometry dof i of a cell = vertex i
+    x_dofmap = mesh.geometry.dofmap  # P1: geometry dof i of a cell = vertex i
     vertex_glue = np.empty(topology.index_map(0).size_local + topology.index_map(0).num_ghosts, dtype=np.int64)
     vertex_glue[c2v] = node_glue[x_dofmap]
 
@@ -196,11 +198,12 @@ def _fetch(comm, indices: np.ndarray, values_on_root: np.ndarray | None) -> np.n
 
 
 def _facet_tags(mesh, facets: np.ndarray, values: np.ndarray):
+    """Facet MeshTags from facets given by input node indices (gmshio's model_to_mesh route)."""
     tdim = mesh.topology.dim
-    local_entities, local_values = _cpp.io.distribute_entity_data(mesh._mesh, tdim - 1,
-                                                                  np.ascontiguousarray(facets, dtype=np.int64),
-                                                                  np.ascontiguousarray(values, dtype=np.int32))
-    adj = _cpp.graph.AdjacencyList_int32(np.ascontiguousarray(local_entities, dtype=np.int32).reshape(-1, tdim))
+    local_entities, local_values = distribute_entity_data(mesh, tdim - 1,
+                                                          np.ascontiguousarray(facets, dtype=np.int64),
+                                                          np.ascontiguousarray(values, dtype=np.int32))
+    adj = adjacencylist(np.ascontiguousarray(local_entities, dtype=np.int32).reshape(-1, tdim))
     return meshtags_from_entities(mesh, tdim - 1, adj, np.asarray(local_values, dtype=np.int32))
 
 
@@ -246,24 +249,27 @@ def _pair_facets(mesh, vertex_glue: np.ndarray, blocks: np.ndarray, joint_facets
 
 
 class _JointPartitioner:
-    """Cell partitioner callable for dolfinx.mesh.create_mesh (see the module docstring)."""
+    """Cell partitioner callable for dolfinx.mesh.create_mesh (see the module docstring).
+
+    DOLFINx 0.9 calls it as (comm, nparts, cell_types, cells) with one flat int64 array of cell
+    vertices per cell type; the ghost mode is the default partitioner's (shared_facet here)."""
 
     def __init__(self, jm: JointedMesh | None, cells: np.ndarray):
         self._jm = jm
         self._cells = cells
-        self._default = _cpp.mesh.create_cell_partitioner()
+        self._default = _cpp.mesh.create_cell_partitioner(GhostMode.shared_facet)
 
-    def __call__(self, comm, nparts, tdim, cells, ghost_mode):
+    def __call__(self, comm, nparts, cell_types, cells):
         jm = self._jm
-        mine = np.asarray(cells.array, dtype=np.int64)
+        mine = np.asarray(cells[0], dtype=np.int64)
         if jm is not None:
             nv = jm.cells.shape[1]
             if mine.size != self._cells.size or not np.array_equal(mine.reshape(-1, nv), self._cells):
                 raise RuntimeError("distribute: the partitioner did not receive the input cells in input order")
-            glued = _cpp.graph.AdjacencyList_int64(np.ascontiguousarray(jm.glue[self._cells]))
+            glued = [np.ascontiguousarray(jm.glue[self._cells], dtype=np.int64).ravel()]
         else:
             glued = cells
-        dest = self._default(comm, nparts, tdim, glued, ghost_mode)
+        dest = self._default(comm, nparts, cell_types, glued)
         if jm is None:
             return dest
         offsets = np.asarray(dest.offsets)
@@ -305,7 +311,7 @@ def _joint_destinations(jm: JointedMesh, owners: np.ndarray, nparts: int):
     # ghost ranks after the owner, in the order of np.unique (sorted by cell then rank)
     start = np.searchsorted(ghost_cell, ghost_cell)  # first ghost entry of each cell
     data[offsets[ghost_cell] + 1 + (np.arange(ghost_cell.size) - start)] = ghost_rank
-    return _cpp.graph.AdjacencyList_int32(data, offsets)
+    return adjacencylist(data, offsets)
 
 
 def pair_vertex_positions(dmesh: DistributedJointMesh) -> tuple[np.ndarray, np.ndarray]:
@@ -321,7 +327,7 @@ def pair_vertex_positions(dmesh: DistributedJointMesh) -> tuple[np.ndarray, np.n
     tdim = mesh.topology.dim
     nv = tdim + 1
     x = mesh.geometry.x[:, :mesh.geometry.dim]
-    dofs = mesh.geometry.dofmap.array.reshape(-1, nv)
+    dofs = mesh.geometry.dofmap
     others = np.array([[j for j in range(nv) if j != i] for i in range(nv)], dtype=np.int32)
     pos_m = others[p.minus_local_facets]  # facet i of a simplex: the other vertices
     pos_p = others[p.plus_local_facets]

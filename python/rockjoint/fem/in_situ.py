@@ -119,7 +119,7 @@ class InSituStress:
             sv = d["density"] * d["gravity"] * (d["surface"] - x[gdim - 1])
             k0 = list(self._k0(gdim)) + [1.0]
             return -sv * ufl.as_matrix([[k0[i] if i == j else 0.0 for j in range(gdim)] for i in range(gdim)])
-        T = fem.TensorFunctionSpace(mesh, ("Lagrange", degree))
+        T = fem.functionspace(mesh, ("Lagrange", degree, (mesh.geometry.dim, mesh.geometry.dim)))
         sigma0 = fem.Function(T, name="in_situ_stress")
         fn = self.data["function"]
 

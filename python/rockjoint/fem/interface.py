@@ -35,7 +35,7 @@ def _facet_nodes(V, cells: np.ndarray, local_facets: np.ndarray) -> np.ndarray:
     num_facets = tdim + 1  # simplices
     closure = np.array([layout.entity_closure_dofs(tdim - 1, f) for f in range(num_facets)],
                        dtype=np.int32)
-    cell_dofs = V.dofmap.list.array.reshape(-1, layout.num_dofs)
+    cell_dofs = V.dofmap.list
     return cell_dofs[cells[:, None], closure[local_facets]]
 
 
@@ -102,7 +102,7 @@ class JointInterface:
         self.V = V
         gdim = mesh.geometry.dim
         tdim = mesh.topology.dim
-        degree = V.ufl_element().degree()
+        degree = V.ufl_element().embedded_superdegree
         self.gdim, self.degree = gdim, degree
         bs = V.dofmap.index_map_bs
         if bs != gdim:
@@ -121,7 +121,7 @@ class JointInterface:
 
         verts = X[minus[:, :gdim], :gdim]  # (n, gdim, gdim)
         geo = mesh.geometry
-        cell_geom = geo.dofmap.array.reshape(-1, tdim + 1)  # affine simplices
+        cell_geom = geo.dofmap  # affine simplices
         interior = geo.x[cell_geom[minus_cells]][:, :, :gdim].mean(axis=1)
         self.tags = np.asarray(pairs.joint_tags, dtype=np.int32)
         self._cpp = _cpp.InterfaceAssembler(
@@ -155,14 +155,14 @@ class JointInterface:
     def add_jacobian(self, A, u_local: np.ndarray, constrained: np.ndarray, scale: float = 1.0) -> None:
         """MatSetValuesLocal/ADD_VALUES of `scale` × the joint tangent (no flush); rows/columns
         with constrained != 0 are left out. scale=0 reserves the couplings with explicit zeros."""
-        self._cpp.assemble_matrix(A, u_local, constrained, scale)
+        self._cpp.assemble_matrix(A.handle, u_local, constrained, scale)
 
     def create_matrix(self, pattern):
         """A PETSc matrix of an assembled sparsity pattern that holds the pairs' couplings
         (insert_sparsity), with those couplings reserved by explicit zeros and flushed: PETSc
         drops preallocated entries never set at a final assembly (docs/fem.md, pitfall 4), and a
         Jacobian refreshed with SAME_NONZERO_PATTERN needs them."""
-        A = _dcpp.la.petsc.create_matrix(self.V.mesh.comm, pattern)
+        A = _dcpp.la.petsc.create_matrix(self.V.mesh.comm, pattern)  # an AIJ (block-free) Mat
         imap, bs = self.V.dofmap.index_map, self.V.dofmap.index_map_bs
         n_local = (imap.size_local + imap.num_ghosts) * bs
         self.add_jacobian(A, np.zeros(n_local), np.zeros(n_local, dtype=np.int8), scale=0.0)

@@ -25,7 +25,6 @@ import time
 
 import numpy as np
 import ufl
-from dolfinx import cpp as _dcpp
 from dolfinx import fem, la
 from dolfinx.fem import petsc as fem_petsc
 from mpi4py import MPI
@@ -220,14 +219,14 @@ class JointedRockModel(StagedLoading):
     def _setup_space(self) -> None:
         t0 = time.perf_counter()
         mesh, gdim, tdim = self.mesh, self.gdim, self.mesh.topology.dim
-        V = fem.VectorFunctionSpace(mesh, ("Lagrange", self.degree))
+        V = fem.functionspace(mesh, ("Lagrange", self.degree, (mesh.geometry.dim,)))
         self.V = V
         self.u = fem.Function(V, name="displacement")
         self.du = fem.Function(V)
         self._w = fem.Function(V)  # a displacement whose internal force is wanted (lift, reactions)
 
         # Lamé parameters and density per cell from the block tags (DG0).
-        Q = fem.FunctionSpace(mesh, ("DG", 0))
+        Q = fem.functionspace(mesh, ("DG", 0))
         lam, mu, rho = fem.Function(Q), fem.Function(Q), fem.Function(Q)
         tags = self.dmesh.cell_blocks
         ncells = mesh.topology.index_map(tdim).size_local + mesh.topology.index_map(tdim).num_ghosts
@@ -247,7 +246,7 @@ class JointedRockModel(StagedLoading):
             rho_a[cell_tag == blocks[name]] = value
         if np.isnan(mu_a).any():
             raise ValueError("some cells carry no block tag with rock properties")
-        dofs = Q.dofmap.list.array
+        dofs = Q.dofmap.list.ravel()
         lam.x.array[dofs] = lam_a
         mu.x.array[dofs] = mu_a
         rho.x.array[dofs] = rho_a
@@ -270,10 +269,9 @@ class JointedRockModel(StagedLoading):
 
         # Joints and the sparsity pattern with the cross-joint couplings (docs/fem.md, pitfall 4).
         self.interface = JointInterface(V, self.dmesh.pairs, self.behaviours, self.quadrature)
-        sp = _dcpp.fem.create_sparsity_pattern(mesh.topology, [V.dofmap._cpp_object] * 2,
-                                               {_dcpp.fem.IntegralType.cell})
+        sp = fem.create_sparsity_pattern(self.a_form)
         self.interface.insert_sparsity(sp)
-        sp.assemble()
+        sp.finalize()
         self._sparsity = sp
         imap, bs = V.dofmap.index_map, V.dofmap.index_map_bs
         self._n_local = (imap.size_local + imap.num_ghosts) * bs
@@ -364,7 +362,7 @@ class JointedRockModel(StagedLoading):
         if not self._joint_forces():
             return np.inf
         r = self.r
-        self.K.mult(self.u.vector, r)
+        self.K.mult(self.u.x.petsc_vec, r)
         if self._any_prescribed:
             r.axpy(1.0, self._lift)
         if self._r_sigma0 is not None:
@@ -402,7 +400,7 @@ class JointedRockModel(StagedLoading):
         t0 = time.perf_counter()
         self.r.scale(-1.0)
         try:
-            its = self.linear_solver.solve(self.J, self.r, self.du.vector, rtol=rtol)
+            its = self.linear_solver.solve(self.J, self.r, self.du.x.petsc_vec, rtol=rtol)
         finally:
             self.r.scale(-1.0)
             self.timings["linear_solve"] += time.perf_counter() - t0
@@ -410,20 +408,20 @@ class JointedRockModel(StagedLoading):
         # Supported rows are identity rows with a zero right-hand side, so du = 0 there only if
         # the solve is exact; a loose (inexact Newton) solve leaves an error the zeroed residual
         # would never see: the supports would drift.
-        with self.du.vector.localForm() as loc:
+        with self.du.x.petsc_vec.localForm() as loc:
             loc.array[self._constrained_owned] = 0.0
         self.du.x.scatter_forward()
         return its
 
     def increment_norms(self) -> tuple:
         """(||du||, ||u||) of the last Newton increment and the current displacement [m]."""
-        return self.du.vector.norm(), self.u.vector.norm()
+        return self.du.x.petsc_vec.norm(), self.u.x.petsc_vec.norm()
 
     def admissible_step(self, fraction: float) -> float:
         return self.interface.admissible_step(self.u.x.array, self.du.x.array, fraction)
 
     def apply_increment(self, alpha: float) -> None:
-        self.u.vector.axpy(alpha, self.du.vector)
+        self.u.x.petsc_vec.axpy(alpha, self.du.x.petsc_vec)
         self.u.x.scatter_forward()
 
     def save_state(self) -> None:
@@ -552,7 +550,7 @@ class JointedRockModel(StagedLoading):
         space of `degree` (default: element degree - 1, exact for σ(u))."""
         self._prepare()
         degree = self.degree - 1 if degree is None else degree
-        T = fem.TensorFunctionSpace(self.mesh, ("DG", degree))
+        T = fem.functionspace(self.mesh, ("DG", degree, (self.mesh.geometry.dim, self.mesh.geometry.dim)))
         stress = self.sigma(self.u)
         if self.in_situ is not None:
             stress = stress + self._sigma0

@@ -50,7 +50,7 @@ def write_xdmf(model, path: str) -> list:
     mesh, comm = model.mesh, model.comm
     u = model.solution.displacement
     if model.degree != 1:
-        V1 = fem.VectorFunctionSpace(mesh, ("Lagrange", 1))
+        V1 = fem.functionspace(mesh, ("Lagrange", 1, (mesh.geometry.dim,)))
         u1 = fem.Function(V1, name="displacement")
         u1.interpolate(u)
         u = u1
@@ -75,13 +75,13 @@ def gather_triangles(u: fem.Function, cell_values=None, root: int = 0):
     those rows too. Other ranks get None for each. Collective."""
     V = u.function_space
     mesh = V.mesh
-    if mesh.geometry.dim != 2 or V.ufl_element().degree() != 1:
+    if mesh.geometry.dim != 2 or V.ufl_element().embedded_superdegree != 1:
         raise ValueError("gather_triangles: a P1 displacement on a 2D triangle mesh is needed, got "
-                         f"gdim {mesh.geometry.dim}, degree {V.ufl_element().degree()}")
+                         f"gdim {mesh.geometry.dim}, degree {V.ufl_element().embedded_superdegree}")
     n_cells = mesh.topology.index_map(2).size_local
-    vertices = mesh.geometry.x[:, :2][mesh.geometry.dofmap.array.reshape(-1, 3)[:n_cells]]
+    vertices = mesh.geometry.x[:, :2][mesh.geometry.dofmap[:n_cells]]
     # P1: the cell's dof i sits on its vertex i.
-    at_vertices = u.x.array.reshape(-1, 2)[V.dofmap.list.array.reshape(-1, 3)[:n_cells]]
+    at_vertices = u.x.array.reshape(-1, 2)[V.dofmap.list[:n_cells]]
     parts = [vertices, at_vertices] + ([] if cell_values is None else [np.asarray(cell_values)])
     if len(parts) == 3 and parts[2].shape[0] != n_cells:
         raise ValueError(f"gather_triangles: cell_values has {parts[2].shape[0]} rows, the rank owns "

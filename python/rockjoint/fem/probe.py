@@ -25,8 +25,8 @@ def probe(function, points) -> np.ndarray:
     x[:, :pts.shape[1]] = pts
     tdim = mesh.topology.dim
     n_owned = mesh.topology.index_map(tdim).size_local
-    tree = geometry.BoundingBoxTree(mesh, tdim)
-    candidates = geometry.compute_collisions(tree, x)
+    tree = geometry.bb_tree(mesh, tdim)
+    candidates = geometry.compute_collisions_points(tree, x)
     colliding = geometry.compute_colliding_cells(mesh, candidates, x)
     found = np.full(x.shape[0], -1, dtype=np.int32)
     for i in range(x.shape[0]):
@@ -58,7 +58,7 @@ def stress_function(model, u=None, degree: int | None = None) -> fem.Function:
     u = model.u if u is None else u
     mesh = model.mesh
     degree = model.degree - 1 if degree is None else int(degree)
-    T = fem.TensorFunctionSpace(mesh, ("DG", degree))
+    T = fem.functionspace(mesh, ("DG", degree, (mesh.geometry.dim, mesh.geometry.dim)))
     s = fem.Function(T, name="stress")
     s.interpolate(fem.Expression(model.sigma(u), T.element.interpolation_points()))
     return s

@@ -88,8 +88,8 @@ class JointedProblem:
 
     def _copy_in(self, x) -> None:
         u = self.model.u
-        if x.handle != u.vector.handle:
-            x.copy(u.vector)
+        if x.handle != u.x.petsc_vec.handle:
+            x.copy(u.x.petsc_vec)
         u.x.scatter_forward()
 
     def form(self, x) -> None:
@@ -136,7 +136,7 @@ def snes_load_path(model, load_steps: int, options) -> list:
     _flag_matrix(model.linear_solver, A)
     norms = []
     snes.setMonitor(lambda s, it, rnorm: norms.append(rnorm))
-    x = model.u.vector.copy()
+    x = model.u.x.petsc_vec.copy()
 
     def solve_step(_, target, step, start):
         model.load_factor = target
@@ -145,7 +145,7 @@ def snes_load_path(model, load_steps: int, options) -> list:
         snes.setTolerances(atol=max(options.atol + options.rtol * scale, 1e-300), rtol=1e-14,
                            stol=0.0, max_it=options.max_iterations)
         snes.setFromOptions()  # user options (petsc_options, command line) win
-        model.u.vector.copy(x)
+        model.u.x.petsc_vec.copy(x)
         norms.clear()
         snes.solve(None, x)
         reason = snes.getConvergedReason()

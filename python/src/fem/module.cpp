@@ -8,7 +8,8 @@
 #include <rockjoint/fem_coupling/local_frame.hpp>
 #include <rockjoint/fem_coupling/petsc_assembly.hpp>
 
-#include <caster_petsc.h> // DOLFINx's petsc4py <-> PETSc caster
+#include <petscmat.h>
+#include <cstdint>
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -293,13 +294,19 @@ PYBIND11_MODULE(_rockjoint_fem, m)
           "False if a traction is not finite")
       .def(
           "assemble_matrix",
-          [](const InterfaceAssembler& a, Mat A, const Array<double>& u,
+          [](const InterfaceAssembler& a, std::uintptr_t A_handle, const Array<double>& u,
              const Array<std::int8_t>& constrained, double scale)
           {
+            // The matrix arrives as its PETSc handle (petsc4py's Mat.handle), not as a typed
+            // object: DOLFINx 0.9's Python layer is nanobind and exports no pybind11 caster, so
+            // the two binding systems meet through petsc4py handles and numpy arrays only.
+            if (A_handle == 0)
+              throw py::value_error("assemble_matrix: the PETSc Mat handle is null");
+            Mat A = reinterpret_cast<Mat>(A_handle);
             py::gil_scoped_release release;
             assemble_interface_matrix(A, a, span_of(u), span_of(constrained), scale);
           },
-          py::arg("A"), py::arg("u"), py::arg("constrained"), py::arg("scale") = 1.0,
+          py::arg("A_handle"), py::arg("u"), py::arg("constrained"), py::arg("scale") = 1.0,
           "MatSetValuesLocal/ADD_VALUES of the joint Jacobian; rows/cols with constrained != 0 "
           "are skipped. Call before the bulk assemble_matrix(A, a, bcs).")
       .def(
