@@ -320,7 +320,7 @@ def plot(u, dmesh, path):
         c = f2c.links(f)[0]
         local = int(np.flatnonzero(c2f.links(c) == f)[0])
         verts = [i for i in range(3) if i != local]                      # facet i is opposite vertex i
-        segs_x.append(x[mesh.geometry.dofmap.links(c)[verts]])
+        segs_x.append(x[mesh.geometry.dofmap[c][verts]])
         segs_u.append(values[u.function_space.dofmap.cell_dofs(c)[verts]])
     parts = [COMM.gather(np.asarray(a).reshape(-1, 4), root=0) for a in (segs_x, segs_u)]
     if COMM.rank != 0:

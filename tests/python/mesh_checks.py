@@ -14,6 +14,8 @@ def facet_coordinates(mesh, cells, local_facets):
     mesh.topology.create_connectivity(tdim, tdim - 1)
     c2f = mesh.topology.connectivity(tdim, tdim - 1)
     facets = np.array([c2f.links(c)[f] for c, f in zip(cells, local_facets)], dtype=np.int32)
+    if facets.size == 0:  # DOLFINx 0.9's entities_to_geometry divides by zero on an empty list
+        return np.empty((0, tdim, mesh.geometry.dim))
     nodes = dolfinx.mesh.entities_to_geometry(mesh, tdim - 1, facets, False)
     return mesh.geometry.x[nodes][..., :mesh.geometry.dim]
 

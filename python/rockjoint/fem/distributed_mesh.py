@@ -321,7 +321,7 @@ def pair_vertex_positions(dmesh: DistributedJointMesh) -> tuple[np.ndarray, np.n
     the same point of the joint (coincident copies); the minus order is oriented so that its right-hand
     normal (3D: (x1-x0) x (x2-x0); 2D: (t_y, -t_x), t = x1-x0) points from the minus into the plus cell.
     For P1 spaces position p of a cell is its p-th cell dof (P1 dof p sits on vertex p), and for the
-    geometry ``mesh.geometry.dofmap.links(cell)[p]``. A convenience on top of JointPairs; optional.
+    geometry ``mesh.geometry.dofmap[cell, p]``. A convenience on top of JointPairs; optional.
     """
     mesh, p = dmesh.mesh, dmesh.pairs
     tdim = mesh.topology.dim

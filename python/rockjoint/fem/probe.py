@@ -44,7 +44,7 @@ def probe(function, points) -> np.ndarray:
     comm.Allreduce(rank_of, owner, op=_min())
     missing = np.flatnonzero(owner == comm.size)
     if missing.size:
-        raise ValueError(f"probe: point {tuple(pts[missing[0]])} lies outside the mesh "
+        raise ValueError(f"probe: point {tuple(pts[missing[0]].tolist())} lies outside the mesh "
                          f"({missing.size} of {pts.shape[0]} points)")
     local[owner != comm.rank] = 0.0
     values = np.empty_like(local)
