@@ -16,4 +16,8 @@ def run_demo(name, out, ranks=1, extra=()):
         cmd = ["mpirun", "-n", str(ranks)] + cmd
     r = subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=600)
     assert r.returncode == 0, r.stdout + r.stderr
+    # A clean run warns about nothing: logging warnings, Python warnings, PETSc's unused options.
+    warned = [line for line in (r.stdout + r.stderr).splitlines()
+              if "WARNING" in line or "Warning" in line or "warning:" in line]
+    assert not warned, f"demos/{name} warned on a clean run:\n" + "\n".join(warned[:20])
     return r

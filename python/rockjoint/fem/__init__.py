@@ -14,7 +14,7 @@ try:  # the joint elements need the compiled _rockjoint_fem (built with -DROCKJO
     from .in_situ import InSituStress  # noqa: F401
     from .loads import Load, Support  # noqa: F401
     from .model import JointedRockModel  # noqa: F401
-    from .stages import JointedProblem, JointedSolution, Stage, StageResult  # noqa: F401
+    from .stages import JointedProblem, Stage, StageResult  # noqa: F401
     from .newton import ConvergenceError, NewtonOptions  # noqa: F401
     from .strength import (JointPointState, JointStrength, ShearState, StrengthModel,  # noqa: F401
                            barton_bandis_shear_stiffness, joint_response, make_strength)

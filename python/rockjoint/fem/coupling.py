@@ -37,7 +37,7 @@ from petsc4py import PETSc
 from .behaviours import joint_behaviours, symmetric_tangent
 from .distributed_mesh import DistributedJointMesh, JointPairs, names_of
 from .interface import JointInterface
-from .petsc_options import check_options_prefix, check_petsc_options
+from .snes_problem import JointedSNESProblem
 
 log = logging.getLogger(__name__)
 
@@ -240,6 +240,10 @@ class JointCoupling:
         """Discard the joints' trial state after a failed solve."""
         self.interface.revert_state()
 
+    def reset_state(self) -> None:
+        """Virgin point state everywhere (no slip, no dilation, bonds intact): a new analysis."""
+        self.interface.reset_state()
+
     def state(self, u) -> dict:
         """Joint point state at u on this rank: coordinates, tag, closure [m], normal_stress [Pa,
         compression +], shear_traction [Pa], status, normal (see JointInterface.state)."""
@@ -272,10 +276,7 @@ class JointCoupling:
         return self._check_size(v, what)
 
 
-_SNES_COUNT = [0]  # default SNES options prefixes, numbered per process (the same on every rank)
-
-
-class JointedNonlinearProblem:
+class JointedNonlinearProblem(JointedSNESProblem):
     """The user's nonlinear problem F(u; v) = 0 plus the joints, in the shape of
     dolfinx.fem.petsc.NonlinearProblem (form, F, J, L, a) with the joint-aware matrix().
 
@@ -349,15 +350,10 @@ class JointedNonlinearProblem:
             self.u.x.array[:] = saved
             b.destroy()
 
-    # ---- NonlinearProblem interface ------------------------------------------------------
-    def form(self, x: PETSc.Vec) -> None:
-        """Called before F and J: refresh the ghosts of x."""
-        x.ghostUpdate(addv=PETSc.InsertMode.INSERT, mode=PETSc.ScatterMode.FORWARD)
-
-    def F(self, x: PETSc.Vec, b: PETSc.Vec) -> None:
-        """Residual at x = u.x.petsc_vec: bulk form, joints (before lifting and the reverse ghost
-        update), Dirichlet rows. A non-finite joint traction makes b infinite (Newton then fails
-        instead of continuing from garbage)."""
+    # ---- assembly (JointedSNESProblem) ----------------------------------------------------
+    def assemble_residual(self, b: PETSc.Vec) -> bool:
+        """Bulk form, joints (before lifting and the reverse ghost update), Dirichlet rows."""
+        x = self.u.x.petsc_vec
         with b.localForm() as loc:
             loc.set(0.0)
         fem_petsc.assemble_vector(b, self._L)
@@ -365,76 +361,14 @@ class JointedNonlinearProblem:
         fem_petsc.apply_lifting(b, [self._a], bcs=[self.bcs], x0=[x], alpha=-1.0)
         b.ghostUpdate(addv=PETSc.InsertMode.ADD, mode=PETSc.ScatterMode.REVERSE)
         fem_petsc.set_bc(b, self.bcs, x, -1.0)
-        self.nonfinite = not finite
-        if not finite:
-            if self.u.function_space.mesh.comm.rank == 0:
-                log.warning("joint traction not finite: a closure reached a law's maximum closure; "
-                            "limit the Newton step (problem.newton_solver() / snes_solver() do)")
-            b.set(np.inf)
+        if not finite and self.u.function_space.mesh.comm.rank == 0:
+            log.info("joint traction not finite: a closure reached a law's maximum closure; the "
+                     "step is cut (SNES function-domain error)")
+        return finite
 
-    def J(self, x: PETSc.Vec, A: PETSc.Mat) -> None:
-        """Jacobian at x = u.x.petsc_vec: joint blocks first, then the bulk form and the Dirichlet rows."""
+    def assemble_jacobian(self, A: PETSc.Mat) -> None:
+        """Joint blocks first, then the bulk form and the Dirichlet rows."""
         A.zeroEntries()
         self.coupling.add_jacobian(self.u, A)
         fem_petsc.assemble_matrix(A, self._a, self.bcs)
         A.assemble()
-
-    # ---- solvers -------------------------------------------------------------------------
-    def newton_solver(self, comm=None):
-        """A dolfinx.nls.petsc.NewtonSolver on this problem with the joint-aware matrix and the
-        closure-limited update. Set its tolerances and KSP as usual (solver.rtol, solver.krylov_solver)."""
-        from dolfinx.nls.petsc import NewtonSolver
-        solver = NewtonSolver(comm or self.u.function_space.mesh.comm, self)
-        solver.setJ(self.J, self.matrix())
-        solver.set_update(self.coupling.newton_update(self.closure_fraction))
-        return solver
-
-    def _snes_F(self, snes, x: PETSc.Vec, b: PETSc.Vec) -> None:
-        self._copy_into_u(x)
-        self.F(self.u.x.petsc_vec, b)
-        if self.nonfinite:
-            snes.setFunctionDomainError()
-
-    def _snes_J(self, snes, x: PETSc.Vec, A: PETSc.Mat, P: PETSc.Mat) -> None:
-        self._copy_into_u(x)
-        self.J(self.u.x.petsc_vec, A)
-
-    def _snes_precheck(self, x: PETSc.Vec, y: PETSc.Vec) -> None:
-        # SNES steps x ← x - λ y: limit -y.
-        minus_y = y.copy()
-        minus_y.scale(-1.0)
-        alpha = self.coupling.admissible_step(x, minus_y, self.closure_fraction)
-        minus_y.destroy()
-        if alpha < 1.0:
-            y.scale(alpha)
-
-    def _copy_into_u(self, x: PETSc.Vec) -> None:
-        """SNES evaluates at trial vectors, not u.x.petsc_vec: copy first (field notes, recipe 6)."""
-        x.copy(self.u.x.petsc_vec)
-        self.u.x.scatter_forward()
-
-    def snes_solver(self, comm=None, petsc_options: Mapping[str, object] | None = None,
-                    options_prefix: str | None = None) -> PETSc.SNES:
-        """A PETSc SNES on this problem: residual, joint-aware Jacobian, and the closure limiter as
-        a line-search pre-check. petsc_options: {option: value} without the leading dash, set under
-        `options_prefix` (default: a prefix of its own, "rockjoint_snes_<n>_", so options never leak
-        between problems; pass one to reach it from the command line) and read by setFromOptions, e.g.
-        {"snes_rtol": 1e-10, "ksp_type": "preonly", "pc_type": "lu"}. Solve with
-        snes.solve(None, x), x = u.x.petsc_vec.copy(); then x.copy(u.x.petsc_vec) and u.x.scatter_forward()."""
-        comm = comm or self.u.function_space.mesh.comm
-        options_prefix = check_options_prefix(options_prefix)
-        petsc_options = check_petsc_options(petsc_options)
-        if options_prefix is None:
-            _SNES_COUNT[0] += 1
-            options_prefix = f"rockjoint_snes_{_SNES_COUNT[0]}_"
-        prefix = options_prefix
-        snes = PETSc.SNES().create(comm)
-        snes.setOptionsPrefix(prefix)
-        opts = PETSc.Options()
-        for key, value in petsc_options.items():
-            opts[prefix + key] = value
-        snes.setFunction(self._snes_F, self.vector())
-        snes.setJacobian(self._snes_J, self.matrix())
-        snes.setLineSearchPreCheck(self._snes_precheck)
-        snes.setFromOptions()
-        return snes

@@ -259,10 +259,9 @@ class StagedLoading:
     def _pre_close_joints(self) -> None:
         """Joints carry the in-situ traction at u = 0: initial jump j0 = (-Δ0, τ0/k_s) with
         Δ0 = law.closure_at_stress(σ_n0), σ_n0 = -n·σ0·n (compression positive), τ0 = t·σ0·n."""
-        iface = self.interface
         vertex_rule = self.quadrature == "nodal" and self.degree == 1
-        iface.set_initial_jump(initial_jump(iface, self.in_situ, self.behaviours, self.gdim,
-                                            names_of(self.dmesh, "joints"), vertex_rule))
+        self.coupling.set_initial_jump(initial_jump(self.coupling.interface, self.in_situ, self.behaviours,
+                                                    self.gdim, names_of(self.dmesh, "joints"), vertex_rule))
 
     # ---- stages ------------------------------------------------------------------------------
     def _begin_stage(self, next_loads: PETSc.Vec | None = None) -> None:

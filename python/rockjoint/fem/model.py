@@ -33,14 +33,13 @@ from petsc4py import PETSc
 from .behaviours import joint_behaviours, symmetric_tangent
 from .distributed_mesh import lookup, names_of
 from .in_situ import STANDARD_GRAVITY, InSituStress
-from .interface import JointInterface
+from .coupling import JointCoupling
 from .linear_solver import LinearSolver, LinearSolveError, resolve_kind, rigid_body_modes  # noqa: F401
 from .load_path import StagedLoading
 from .loads import Load, Support
 from .newton import ConvergenceError, NewtonOptions, solve_load_path  # noqa: F401
 from .petsc_options import check_options_prefix, check_petsc_options
-from .stages import (JointedProblem, JointedSolution, Stage, StageClock, StageResult,  # noqa: F401
-                     snes_load_path)
+from .stages import JointedProblem, Stage, StageClock, StageResult, snes_load_path  # noqa: F401
 from .validation import positive_number
 
 log = logging.getLogger(__name__)
@@ -267,12 +266,11 @@ class JointedRockModel(StagedLoading):
         self._normal = ufl.FacetNormal(mesh)
         mesh.topology.create_connectivity(tdim - 1, tdim)
 
-        # Joints and the sparsity pattern with the cross-joint couplings (docs/fem.md, pitfall 4).
-        self.interface = JointInterface(V, self.dmesh.pairs, self.behaviours, self.quadrature)
-        sp = fem.create_sparsity_pattern(self.a_form)
-        self.interface.insert_sparsity(sp)
-        sp.finalize()
-        self._sparsity = sp
+        # The joints, through the public API a user's own model uses (docs/user-model.md): the
+        # model is a client of JointCoupling like any DOLFINx model.
+        names = names_of(self.dmesh, "joints")
+        self.coupling = JointCoupling(V, self.dmesh, {n: self.behaviours[t] for n, t in names.items()},
+                                      quadrature=self.quadrature)
         imap, bs = V.dofmap.index_map, V.dofmap.index_map_bs
         self._n_local = (imap.size_local + imap.num_ghosts) * bs
         self.r = la.create_petsc_vector(imap, bs)
@@ -328,12 +326,19 @@ class JointedRockModel(StagedLoading):
         for A in (self.K, self.J):
             if A is not None:
                 A.destroy()
-        K = self.interface.create_matrix(self._sparsity)  # joint couplings reserved (pitfall 4)
+        self.coupling.set_supports(bcs)
+        K = self.coupling.create_matrix(self.a_form)  # joint couplings reserved (pitfall 4)
         fem_petsc.assemble_matrix(K, self.a_form, bcs)
         K.assemble()
         self.K, self.J = K, K.duplicate(copy=True)
         self.timings["bulk_assembly"] += time.perf_counter() - t0
         self._supports_dirty = False
+
+    @property
+    def interface(self):
+        """The joints' JointInterface (owned by the model's JointCoupling): point state and
+        geometry for inspection."""
+        return self.coupling.interface
 
     # ---- the problem interface used by newton.py ------------------------------------------
     def load_norm(self, load_factor: float) -> float:
@@ -350,18 +355,21 @@ class JointedRockModel(StagedLoading):
         rj = self._r_joint
         with rj.localForm() as loc:
             loc.set(0.0)
-            finite = self.interface.add_residual(self.u.x.array, loc.array)
+            finite = self.coupling.add_residual(self.u, loc.array)  # collective
         # Ghost contributions go to their owners (docs/fem.md, pitfall 5).
         rj.ghostUpdate(addv=PETSc.InsertMode.ADD, mode=PETSc.ScatterMode.REVERSE)
         self.timings["interface_residual"] += time.perf_counter() - t0
         self.counts["interface_residual"] += 1
-        return self.comm.allreduce(bool(finite), op=MPI.MIN)
+        return finite
 
     def residual(self) -> float:
         self._apply_load_factor()
-        if not self._joint_forces():
-            return np.inf
         r = self.r
+        if not self._joint_forces():
+            # Never hand on a stale residual: SNES (through JointedProblem) and our Newton both
+            # see an infinite one and cut the step.
+            r.set(np.inf)
+            return np.inf
         self.K.mult(self.u.x.petsc_vec, r)
         if self._any_prescribed:
             r.axpy(1.0, self._lift)
@@ -383,7 +391,7 @@ class JointedRockModel(StagedLoading):
         self.K.copy(A, structure=PETSc.Mat.Structure.SAME_NONZERO_PATTERN)  # bulk, constant
         t1 = time.perf_counter()
         self.timings["matrix_copy"] += t1 - t0
-        self.interface.add_jacobian(A, self.u.x.array, self._constrained)
+        self.coupling.add_jacobian(self.u, A)
         A.assemble()
         self.timings["interface_jacobian"] += time.perf_counter() - t1
         self.counts["interface_jacobian"] += 1
@@ -418,7 +426,7 @@ class JointedRockModel(StagedLoading):
         return self.du.x.petsc_vec.norm(), self.u.x.petsc_vec.norm()
 
     def admissible_step(self, fraction: float) -> float:
-        return self.interface.admissible_step(self.u.x.array, self.du.x.array, fraction)
+        return self.coupling.admissible_step(self.u, self.du, fraction)
 
     def apply_increment(self, alpha: float) -> None:
         self.u.x.petsc_vec.axpy(alpha, self.du.x.petsc_vec)
@@ -432,11 +440,11 @@ class JointedRockModel(StagedLoading):
         arr, self.load_factor = self._saved
         self.u.x.array[:] = arr
         self._applied = None
-        self.interface.revert_state()
+        self.coupling.revert_state()
 
     def commit_state(self) -> None:
         """A load step converged: the joints' trial state becomes their converged state."""
-        self.interface.commit_state()
+        self.coupling.commit_state()
         if self._clock is not None:
             self._clock.step(self.load_factor, self._step_iterations)
         self._step_iterations = 0
@@ -461,7 +469,7 @@ class JointedRockModel(StagedLoading):
         if solver not in ("newton", "snes"):
             raise ValueError(f"solver must be 'newton' or 'snes', got {solver!r}")
         if restart and self._space_ready:
-            self.interface.reset_state()  # path-dependent point state
+            self.coupling.reset_state()  # path-dependent point state
             self._initialised = False
             self._advancing = False
         self._prepare()
@@ -530,10 +538,9 @@ class JointedRockModel(StagedLoading):
     def _stage_result(self, name: str, reports: list, elapsed: float) -> StageResult:
         # Re-evaluated from the state just committed: a point that slid in the last step sits on
         # its strength and reads "slip" (joint_slip.cpp labels by where τ is).
-        self.interface.update_state(self.u.x.array)
+        state = self.coupling.state(self.u)
         disp = fem.Function(self.V, name="displacement")
         disp.x.array[:] = self.u.x.array
-        state = self.interface.state()
         result = StageResult(disp, state, reports, self, name, self._reactions(), elapsed)
         self.stages.append(result)
         self.solution = result

@@ -47,7 +47,9 @@ class NewtonOptions:
     rtol: float = 1e-10              #: ||r|| <= rtol · ||λ f_ext|| (+ atol) → converged
     atol: float = 0.0                #: absolute residual tolerance [N]
     max_iterations: int = 30
-    closure_limit: float = 0.95      #: a step may close at most this fraction of Δ_max - Δ
+    #: a step may close at most this fraction of Δ_max - Δ (None: no limiter; a step past a law's
+    #: maximum closure then gives a non-finite residual and is cut)
+    closure_limit: float | None = 0.95
     min_load_increment: float = 1e-6  #: smallest load-factor increment before giving up
     growth: float = 1.5
     easy_iterations: int = 5
@@ -77,6 +79,8 @@ class NewtonOptions:
     forcing_alpha: float = 2.0       #: α of choice 2
 
     def __post_init__(self):
+        if self.closure_limit is not None and not 0.0 < self.closure_limit < 1.0:
+            raise ValueError(f"NewtonOptions.closure_limit must be in (0, 1) or None, got {self.closure_limit!r}")
         if self.forcing not in ("eisenstat_walker", "fixed"):
             raise ValueError(f"NewtonOptions.forcing must be 'eisenstat_walker' or 'fixed', got "
                              f"{self.forcing!r}")
@@ -204,7 +208,7 @@ def newton(problem, load_factor: float, options: NewtonOptions, step: int = 1,
         report.linear_iterations.append(its)
         # Closure-limiting step: no closure may move more than `closure_limit` of its remaining
         # room to the law's maximum closure (Δ is linear in α, so α is exact, not halved).
-        alpha = problem.admissible_step(options.closure_limit)
+        alpha = 1.0 if options.closure_limit is None else problem.admissible_step(options.closure_limit)
         if not alpha > 1e-12:
             report.reason = f"closure-limiting step length {alpha:.3g} (no admissible step)"
             return report

@@ -2,10 +2,9 @@
 
 A stage is one JointedRockModel.solve(): the loads go linearly from the previous stage's values
 (load factor λ = 0) to the values set now (λ = 1). `Stage` is the declarative form used by
-`JointedRockModel.run`. `JointedProblem` exposes the model's residual F and Jacobian J in the shape
-of dolfinx.fem.petsc.NonlinearProblem (form(x), F(x, b), J(x, A)) and as PETSc.SNES callbacks;
-SNES evaluates at trial vectors that are not the model's displacement, so every callback first
-copies x into u (docs/fem.md, field notes recipe 6).
+`JointedRockModel.run`. `JointedProblem` exposes the model's residual F and Jacobian J through the
+one SNES adapter of the package (snes_problem.JointedSNESProblem), which the user's problems use
+too.
 """
 from __future__ import annotations
 
@@ -21,6 +20,7 @@ from petsc4py import PETSc
 from .. import _rockjoint
 from .distributed_mesh import names_of
 from .newton import StepReport, solve_load_path
+from .snes_problem import JointedSNESProblem
 
 log = logging.getLogger(__name__)
 
@@ -62,10 +62,6 @@ class StageResult:
         return out
 
 
-#: the former name of a stage's result (one solve from zero was the only stage)
-JointedSolution = StageResult
-
-
 @dataclass
 class Stage:
     """A declarative stage for JointedRockModel.run: `actions(model)` changes loads and supports
@@ -76,41 +72,29 @@ class Stage:
     solver: str = "newton"
 
 
-class JointedProblem:
-    """The model's nonlinear problem F(u) = 0 for PETSc SNES or a user's Newton.
+class JointedProblem(JointedSNESProblem):
+    """The model's nonlinear problem F(u) = 0 for PETSc SNES, DOLFINx's NewtonSolver or a user's
+    Newton, through the one adapter the user's problems use too (snes_problem.JointedSNESProblem).
 
     F = bulk internal force + joint forces - external loads at the model's current load factor,
     zero at supported dofs (whose values the model sets to the prescribed displacement); J the
-    consistent Jacobian with identity rows and columns at supported dofs."""
+    consistent Jacobian with identity rows and columns at supported dofs. A non-finite joint
+    traction gives an infinite residual and a SNES function-domain error."""
 
     def __init__(self, model):
         self.model = model
+        self.u = model.u
+        self.coupling = model.coupling
+        limit = model.newton_options.closure_limit
+        self.closure_fraction = None if limit is None else float(limit)
 
-    def _copy_in(self, x) -> None:
-        u = self.model.u
-        if x.handle != u.x.petsc_vec.handle:
-            x.copy(u.x.petsc_vec)
-        u.x.scatter_forward()
-
-    def form(self, x) -> None:
-        self._copy_in(x)
-
-    def F(self, x, b) -> None:
-        self._copy_in(x)
-        self.model.residual()
+    def assemble_residual(self, b) -> bool:
+        finite = np.isfinite(self.model.residual())
         self.model.r.copy(b)
+        return bool(finite)
 
-    def J(self, x, A) -> None:
-        self._copy_in(x)
+    def assemble_jacobian(self, A) -> None:
         self.model.jacobian_into(A)
-
-    def snes_F(self, snes, x, b) -> None:
-        self.F(x, b)
-
-    def snes_J(self, snes, x, A, P) -> None:
-        self.J(x, A)
-        if P.handle != A.handle:
-            self.model.jacobian_into(P)
 
     def matrix(self):
         """A matrix with the joint-aware sparsity (the bulk pattern plus cross-joint couplings)."""
@@ -122,18 +106,14 @@ class JointedProblem:
 
 def snes_load_path(model, load_steps: int, options) -> list:
     """Drive the model's load factor from 0 to 1 with PETSc SNES solving each load step, the
-    steps controlled as for the project's Newton (newton.solve_load_path: halved on failure, grown
-    after easy ones, the joint state committed after every converged step and reverted after a
-    failed one). Returns the StepReports."""
+    steps controlled as for the project's Newton (newton.solve_load_path: halved on failure, a
+    function-domain error (non-finite joint traction) included, grown after easy ones, the joint
+    state committed after every converged step and reverted after a failed one). Returns the
+    StepReports."""
     problem = JointedProblem(model)
-    snes = PETSc.SNES().create(model.comm)
     prefix = model.linear_solver.ksp.getOptionsPrefix()
-    snes.setOptionsPrefix(prefix)
-    b, A = problem.vector(), problem.matrix()
-    snes.setFunction(problem.snes_F, b)
-    snes.setJacobian(problem.snes_J, A, A)
-    snes.setKSP(model.linear_solver.ksp)
-    _flag_matrix(model.linear_solver, A)
+    snes = problem.snes_solver(options_prefix=prefix, ksp=model.linear_solver.ksp)
+    _flag_matrix(model.linear_solver, snes.getJacobian()[0])
     norms = []
     snes.setMonitor(lambda s, it, rnorm: norms.append(rnorm))
     x = model.u.x.petsc_vec.copy()
@@ -152,7 +132,7 @@ def snes_load_path(model, load_steps: int, options) -> list:
         if reason > 0:
             problem.form(x)  # the converged x into u before the state is committed
         return StepReport(target, residual_norms=list(norms), step_lengths=[1.0] * snes.getIterationNumber(),
-                          converged=reason > 0, reason=f"SNES reason {reason}")
+                          converged=reason > 0, reason=f"SNES reason {_snes_reason(reason)}")
 
     try:
         return solve_load_path(model, load_steps, options, solve_step=solve_step)
@@ -160,6 +140,12 @@ def snes_load_path(model, load_steps: int, options) -> list:
         snes.setKSP(PETSc.KSP().create(model.comm))  # the model keeps its own KSP alive
         snes.destroy()
         x.destroy()
+
+
+def _snes_reason(reason: int) -> str:
+    """'DIVERGED_FUNCTION_DOMAIN (-2)' for a SNES converged reason."""
+    names = {v: k for k, v in vars(PETSc.SNES.ConvergedReason).items() if isinstance(v, int)}
+    return f"{names.get(reason, '?')} ({reason})"
 
 
 def _flag_matrix(solver, A) -> None:
