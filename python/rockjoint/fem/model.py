@@ -141,7 +141,8 @@ class JointedRockModel(StagedLoading):
         self.timings = {"bulk_assembly": 0.0, "interface_residual": 0.0, "interface_jacobian": 0.0,
                         "matrix_copy": 0.0, "linear_solve": 0.0, "newton": 0.0, "setup": 0.0}
         #: number of calls behind the timings
-        self.counts = {"interface_residual": 0, "interface_jacobian": 0, "linear_solve": 0}
+        self.counts = {"interface_residual": 0, "interface_jacobian": 0, "linear_solve": 0,
+                       "nonfinite_residuals": 0}
         self._space_ready = False    # function space, joints, linear solver
         self._supports_dirty = True  # bulk matrix K (depends on the supports)
         self._forms_dirty = True     # load forms (depend on the set of loads)
@@ -369,6 +370,7 @@ class JointedRockModel(StagedLoading):
             # Never hand on a stale residual: SNES (through JointedProblem) and our Newton both
             # see an infinite one and cut the step.
             r.set(np.inf)
+            self.counts["nonfinite_residuals"] += 1
             return np.inf
         self.K.mult(self.u.x.petsc_vec, r)
         if self._any_prescribed:

@@ -89,9 +89,9 @@ class JointedProblem(JointedSNESProblem):
         self.closure_fraction = None if limit is None else float(limit)
 
     def assemble_residual(self, b) -> bool:
-        finite = np.isfinite(self.model.residual())
+        finite = bool(np.isfinite(self.model.residual()))
         self.model.r.copy(b)
-        return bool(finite)
+        return finite
 
     def assemble_jacobian(self, A) -> None:
         self.model.jacobian_into(A)

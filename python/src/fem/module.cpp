@@ -9,6 +9,7 @@
 #include <rockjoint/fem_coupling/petsc_assembly.hpp>
 
 #include <petscmat.h>
+#include <petscsnes.h>
 #include <cstdint>
 
 #include <pybind11/numpy.h>
@@ -148,6 +149,20 @@ PYBIND11_MODULE(_rockjoint_fem, m)
       .def_property_readonly("law", [](const JointBehaviour& b)
                              { return std::const_pointer_cast<rockjoint::constitutive::ClosureLaw>(b.law); });
 
+  m.def(
+      "snes_set_function_domain_error",
+      [](std::uintptr_t snes_handle)
+      {
+        // petsc4py 3.22 does not bind SNESSetFunctionDomainError; the SNES arrives as its handle
+        // (petsc4py's SNES.handle), as matrices do.
+        if (snes_handle == 0)
+          throw py::value_error("snes_set_function_domain_error: the SNES handle is null");
+        if (SNESSetFunctionDomainError(reinterpret_cast<SNES>(snes_handle)) != PETSC_SUCCESS)
+          throw std::runtime_error("SNESSetFunctionDomainError failed");
+      },
+      py::arg("snes_handle"),
+      "Tell a SNES that the function was evaluated outside its domain (SNESSetFunctionDomainError): "
+      "the line search or solve then fails with SNES_DIVERGED_FUNCTION_DOMAIN.");
   m.def(
       "closure_at_normal_stress",
       [](const JointBehaviour& b, const rockjoint::python::DoubleArray& stress) -> py::object
