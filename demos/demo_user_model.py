@@ -9,9 +9,9 @@ Everything here is the user's own FEniCSx model except the joints: the geometry 
 (a 60 m wide section through a 20 m high slope, cut by a horizontal bedding joint at 5 m and an
 inclined sliding plane that daylights on the slope face), the rock stiffness varies with depth
 (a UFL expression), the loads are gravity and a surcharge on the crest, and the problem is solved
-by DOLFINx's NewtonSolver (and PETSc SNES with --snes). rockjoint only reads the physical groups,
-splits the joint nodes, and adds the joints (JointCoupling, JointedNonlinearProblem) with their
-laws taken from saved .rjt tables.
+by DOLFINx's NewtonSolver (and PETSc SNES with --snes). The mesh is read by DOLFINx's own
+gmshio.model_to_mesh; rockjoint only splits the joint nodes (split_joints) and adds the joints
+(JointCoupling, JointedNonlinearProblem) with their laws taken from saved .rjt tables.
 
 As a check, the same model with a piecewise-constant E (one value per block) is solved both ways,
 by the user's forms + JointCoupling and by rockjoint's JointedRockModel, and the difference is
@@ -29,15 +29,14 @@ import gmsh
 import numpy as np
 import ufl
 from dolfinx import fem
-from dolfinx.io import XDMFFile
+from dolfinx.io import XDMFFile, gmshio
 from mpi4py import MPI
 from petsc4py import PETSc
 
 import rockjoint
 from rockjoint.console import quiet_compiler_logging, say
-from rockjoint import meshes
 from rockjoint.fem import (JointCoupling, JointedNonlinearProblem, JointedRockModel, NewtonOptions,
-                           distribute)
+                           split_joints)
 from rockjoint.fem.output import gather_triangles, write_joint_points
 
 COMM = MPI.COMM_WORLD
@@ -58,8 +57,10 @@ E_BLOCK = {"foundation": 40e9, "mass": 20e9, "wedge": 20e9}   # [Pa]
 SHEAR_STIFFNESS = 1e9                             # joint k_s [Pa/m]
 
 
-def build_slope(mesh_size: float) -> None:
-    """The user's gmsh model (rank 0): OCC surface, joints fragmented in, physical groups named."""
+def build_slope(mesh_size: float) -> dict:
+    """The user's gmsh model (rank 0): OCC surface, joints fragmented in, physical groups named.
+    Returns {group name: physical tag}."""
+    groups = {}
     gmsh.initialize()
     gmsh.option.setNumber("General.Terminal", 0)
     gmsh.model.add("slope")
@@ -85,9 +86,11 @@ def build_slope(mesh_size: float) -> None:
 
     for name in E_BLOCK:
         surfaces = [t for _, t in gmsh.model.getEntities(2) if block_of(*centre(2, t)) == name]
-        gmsh.model.setPhysicalName(2, gmsh.model.addPhysicalGroup(2, surfaces), name)
+        groups[name] = gmsh.model.addPhysicalGroup(2, surfaces)
+        gmsh.model.setPhysicalName(2, groups[name], name)
     for name, entities in (("bedding", pieces[1]), ("sliding_plane", pieces[2])):
-        gmsh.model.setPhysicalName(1, gmsh.model.addPhysicalGroup(1, [t for _, t in entities]), name)
+        groups[name] = gmsh.model.addPhysicalGroup(1, [t for _, t in entities])
+        gmsh.model.setPhysicalName(1, groups[name], name)
 
     # Named boundaries: supports and the loaded crest (the slope face stays free).
     sides = {"bottom": lambda x, y: abs(y) < 1e-6, "left": lambda x, y: abs(x) < 1e-6,
@@ -96,10 +99,12 @@ def build_slope(mesh_size: float) -> None:
     outer = gmsh.model.getBoundary(gmsh.model.getEntities(2), combined=True, oriented=False)
     for name, on in sides.items():
         curves = [abs(t) for _, t in outer if on(*centre(1, abs(t)))]
-        gmsh.model.setPhysicalName(1, gmsh.model.addPhysicalGroup(1, curves), name)
+        groups[name] = gmsh.model.addPhysicalGroup(1, curves)
+        gmsh.model.setPhysicalName(1, groups[name], name)
 
     gmsh.option.setNumber("Mesh.MeshSizeMax", mesh_size)
     gmsh.model.mesh.generate(2)
+    return groups
 
 
 def joint_tables(out) -> dict:
@@ -222,11 +227,17 @@ def main():
     os.makedirs(args.output, exist_ok=True)
     out = lambda name: os.path.join(args.output, name)  # noqa: E731
 
-    # %% 1. The user's geometry and mesh in gmsh, read by rockjoint and distributed ---------------
+    # %% 1. The user's geometry and mesh in gmsh, read by DOLFINx's gmshio ---------------------------
+    groups = COMM.bcast(build_slope(args.mesh_size) if COMM.rank == 0 else None, root=0)
+    mesh, cell_tags, facet_tags = gmshio.model_to_mesh(gmsh.model if COMM.rank == 0 else None, COMM, 0, gdim=2)
     if COMM.rank == 0:
-        build_slope(args.mesh_size)
-    jm = meshes.from_gmsh_model(joints=["bedding", "sliding_plane"], comm=COMM)
-    dmesh = distribute(jm, COMM)
+        gmsh.finalize()
+    # rockjoint splits the nodes along the joints (one copy per side) and redistributes the mesh so
+    # that both cells of every joint facet live on one rank.
+    dmesh = split_joints(mesh, cell_tags, facet_tags,
+                         joints={n: groups[n] for n in ("bedding", "sliding_plane")},
+                         blocks={n: groups[n] for n in E_BLOCK},
+                         boundaries={n: groups[n] for n in ("bottom", "left", "right", "crest")})
     say(f"slope: blocks {sorted(dmesh.names['blocks'].values())}, joints "
         f"{sorted(dmesh.names['joints'].values())}, {COMM.allreduce(len(dmesh.pairs))} joint facet pairs")
 

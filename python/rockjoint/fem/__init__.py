@@ -4,6 +4,7 @@
 """
 from .distributed_mesh import (DistributedJointMesh, JointPairs, distribute,  # noqa: F401
                                pair_vertex_positions)
+from .split_joints import split_joints  # noqa: F401
 
 try:  # the joint elements need the compiled _rockjoint_fem (built with -DROCKJOINT_FEM=ON)
     from .behaviours import joint_behaviours  # noqa: F401
