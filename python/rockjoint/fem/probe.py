@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 from dolfinx import fem, geometry
+from mpi4py import MPI
 
 
 
@@ -25,7 +26,11 @@ def probe(function, points) -> np.ndarray:
     x[:, :pts.shape[1]] = pts
     tdim = mesh.topology.dim
     n_owned = mesh.topology.index_map(tdim).size_local
-    tree = geometry.bb_tree(mesh, tdim)
+    # Boxes padded by round-off of the mesh's size: a point on the outer boundary (a joint's end)
+    # computed 1e-13 outside must still be found (DOLFINx 0.9's bb_tree pads by 0 by default).
+    extent = comm.allreduce(float(np.ptp(mesh.geometry.x, axis=0).max()) if mesh.geometry.x.size else 0.0,
+                            op=MPI.MAX)
+    tree = geometry.bb_tree(mesh, tdim, padding=1e-10 * extent)
     candidates = geometry.compute_collisions_points(tree, x)
     colliding = geometry.compute_colliding_cells(mesh, candidates, x)
     found = np.full(x.shape[0], -1, dtype=np.int32)
@@ -41,14 +46,14 @@ def probe(function, points) -> np.ndarray:
         local[mine] = function.eval(x[mine], found[mine]).reshape(mine.size, size)
     rank_of = np.where(found >= 0, comm.rank, comm.size).astype(np.int64)
     owner = np.empty_like(rank_of)
-    comm.Allreduce(rank_of, owner, op=_min())
+    comm.Allreduce(rank_of, owner, op=MPI.MIN)
     missing = np.flatnonzero(owner == comm.size)
     if missing.size:
         raise ValueError(f"probe: point {tuple(pts[missing[0]].tolist())} lies outside the mesh "
                          f"({missing.size} of {pts.shape[0]} points)")
     local[owner != comm.rank] = 0.0
     values = np.empty_like(local)
-    comm.Allreduce(local, values, op=_sum())
+    comm.Allreduce(local, values, op=MPI.SUM)
     return values
 
 
@@ -64,14 +69,6 @@ def stress_function(model, u=None, degree: int | None = None) -> fem.Function:
     return s
 
 
-def _min():
-    from mpi4py import MPI
-    return MPI.MIN
-
-
-def _sum():
-    from mpi4py import MPI
-    return MPI.SUM
 
 
 __all__ = ["probe", "stress_function"]
