@@ -6,7 +6,7 @@ source "$(dirname "${BASH_SOURCE[0]}")/host.sh"
 build="${ROCKJOINT_BUILD_DIR:-$rj_repo/build}"
 rj_setup
 rj_build() {
-  rj_run cmake -S "$rj_repo" -B "$build" -DCMAKE_BUILD_TYPE=Release -DPython3_EXECUTABLE=/usr/bin/python3 >/dev/null
+  rj_run cmake -S "$rj_repo" -B "$build" -DCMAKE_BUILD_TYPE=Release -DPython3_EXECUTABLE="$rj_python" >/dev/null
   rj_run cmake --build "$build" -j "${ROCKJOINT_JOBS:-$(nproc)}"
 }
 rj_build

@@ -9,4 +9,4 @@ rj_setup
 export PYTHONPATH="$rj_repo/python:$build/python${PYTHONPATH:+:$PYTHONPATH}" MPLBACKEND=Agg
 mkdir -p "$rj_repo/out"
 cd "$rj_repo/out"
-rj_run /usr/bin/python3 "$rj_repo/demos/demo_lab_closure_test.py" "$@"
+rj_run "$rj_python" "$rj_repo/demos/demo_lab_closure_test.py" "$@"

@@ -9,7 +9,8 @@
 # The target is DOLFINx 0.9 as Debian 13 packages it (docs/install.md). Variables:
 #   ROCKJOINT_DEBIAN13_ROOT  where the root lives (default <repo>/.debian13, git-ignored)
 #   ROCKJOINT_MIRROR         Debian mirror for debootstrap (default: the host's apt mirror)
-#   ROCKJOINT_NATIVE=1       skip the root even on Debian 12 (DOLFINx 0.9 installed another way)
+#   ROCKJOINT_NATIVE=1       use the DOLFINx 0.9 already installed (conda-forge, the official
+#                            container image): no root, no apt; python3 from PATH (or ROCKJOINT_PYTHON)
 
 rj_repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 rj_chroot="${ROCKJOINT_DEBIAN13_ROOT:-$rj_repo/.debian13}"
@@ -128,12 +129,22 @@ rj_run() {
 }
 
 rj_setup() {
+  if [ "${ROCKJOINT_NATIVE:-0}" = 1 ]; then
+    return 0  # the user's own DOLFINx 0.9 (conda-forge, container image): nothing to install
+  fi
   if ! rj_native; then
     rj_bootstrap
     trap rj_umount EXIT
   fi
   rj_install_packages
 }
+
+# The Python that imports DOLFINx: Debian's /usr/bin/python3, or the user's with ROCKJOINT_NATIVE=1.
+if [ "${ROCKJOINT_NATIVE:-0}" = 1 ]; then
+  rj_python="${ROCKJOINT_PYTHON:-$(command -v python3)}"
+else
+  rj_python="${ROCKJOINT_PYTHON:-/usr/bin/python3}"
+fi
 
 # Open MPI as root, on shared memory only (the TCP transport warns about unreachable interface
 # pairs inside the root and is not needed on one machine).
