@@ -1,6 +1,6 @@
 #include "interface_assembler.hpp"
 
-#include "joint_slip.hpp"
+#include <rockjoint/joint/joint_slip.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -16,7 +16,7 @@ InterfaceAssembler::InterfaceAssembler(int gdim, int degree, QuadratureRule rule
                                        std::span<const double> vertex_coordinates,
                                        std::span<const double> minus_interior_points,
                                        std::span<const std::int32_t> joint_tags,
-                                       std::map<std::int32_t, JointBehaviour> behaviours)
+                                       std::map<std::int32_t, joint::JointBehaviour> behaviours)
     : _gdim(gdim), _quadrature(make_facet_quadrature(rule, gdim, degree)),
       _pair_dofs(pair_dofs.begin(), pair_dofs.end()), _tags(joint_tags.begin(), joint_tags.end()),
       _behaviours(std::move(behaviours))
@@ -91,11 +91,11 @@ InterfaceAssembler::InterfaceAssembler(int gdim, int degree, QuadratureRule rule
   _normal_stress.assign(np * nq, 0.0);
   _shear_traction.assign(np * nq * (gdim - 1), 0.0);
   _status.assign(np * nq, static_cast<std::int32_t>(constitutive::Status::open));
-  _shear_state.assign(np * nq, static_cast<std::int32_t>(ShearState::stick));
+  _shear_state.assign(np * nq, static_cast<std::int32_t>(joint::ShearState::stick));
   _initial_jump.assign(np * nq * gdim, 0.0);
-  _converged.assign(np * nq, JointPointState{});
+  _converged.assign(np * nq, joint::JointPointState{});
   _trial = _converged;
-  _cached_response.assign(np * nq, LocalResponse{});
+  _cached_response.assign(np * nq, joint::LocalResponse{});
   _cached_jump.assign(np * nq, std::array<double, 3>{});
 }
 
@@ -159,8 +159,8 @@ bool InterfaceAssembler::assemble_residual(std::span<const double> u, std::span<
     {
       const std::size_t point = point_index(p, q);
       const std::array<double, 3> jump = local_jump(p, q, u);
-      const LocalResponse& r = _cached_response[point]
-          = joint_response(behaviour(p), _gdim, jump, _converged[point], _trial[point]);
+      const joint::LocalResponse& r = _cached_response[point]
+          = joint::joint_response(behaviour(p), _gdim, jump, _converged[point], _trial[point]);
       _cached_jump[point] = jump;
       ++_num_law_evaluations;
       _closure[point] = r.closure;
@@ -222,14 +222,14 @@ void InterfaceAssembler::pair_matrix(std::int32_t p, std::span<const double> u,
     const std::size_t point = point_index(p, q);
     const std::array<double, 3> jump = local_jump(p, q, u);
     const bool cached = _cache_valid && jump == _cached_jump[point];
-    LocalResponse evaluated;
+    joint::LocalResponse evaluated;
     if (!cached)
     {
-      JointPointState trial;
-      evaluated = joint_response(behaviour(p), g, jump, _converged[point], trial);
+      joint::JointPointState trial;
+      evaluated = joint::joint_response(behaviour(p), g, jump, _converged[point], trial);
       ++_num_law_evaluations;
     }
-    const LocalResponse& r = cached ? _cached_response[point] : evaluated;
+    const joint::LocalResponse& r = cached ? _cached_response[point] : evaluated;
     // D = Qᵀ (∂t/∂j) Q: global traction derivative w.r.t. the global jump.
     double D[3][3] = {};
     for (int c = 0; c < g; ++c)
@@ -349,7 +349,7 @@ void InterfaceAssembler::revert_state()
 
 void InterfaceAssembler::reset_state()
 {
-  std::fill(_converged.begin(), _converged.end(), JointPointState{});
+  std::fill(_converged.begin(), _converged.end(), joint::JointPointState{});
   revert_state();
 }
 

@@ -16,12 +16,12 @@
 /// Frames: n per pair (minus → plus), t1 from the joint's reference direction (one per joint
 /// tag, see set_tangents / joint_reference_direction in local_frame.hpp), t2 = n × t1.
 ///
-/// Point state: a converged and a trial JointPointState per point; every evaluation computes
+/// Point state: a converged and a trial joint::JointPointState per point; every evaluation computes
 /// the trial state from the converged one; commit_state() / revert_state() move between them.
 
 #include "facet_quadrature.hpp"
-#include "joint_behaviour.hpp"
-#include "joint_point_state.hpp"
+#include <rockjoint/joint/joint_behaviour.hpp>
+#include <rockjoint/joint/joint_point_state.hpp>
 #include "local_frame.hpp"
 
 #include <cmath>
@@ -54,7 +54,7 @@ public:
                      std::span<const double> vertex_coordinates,
                      std::span<const double> minus_interior_points,
                      std::span<const std::int32_t> joint_tags,
-                     std::map<std::int32_t, JointBehaviour> behaviours);
+                     std::map<std::int32_t, joint::JointBehaviour> behaviours);
 
   int gdim() const { return _gdim; }
   std::int32_t num_pairs() const { return static_cast<std::int32_t>(_tags.size()); }
@@ -120,8 +120,8 @@ public:
   /// analysis from zero displacement.
   void reset_state();
   /// Point states (num_points), pair-major.
-  const std::vector<JointPointState>& converged_state() const { return _converged; }
-  const std::vector<JointPointState>& trial_state() const { return _trial; }
+  const std::vector<joint::JointPointState>& converged_state() const { return _converged; }
+  const std::vector<joint::JointPointState>& trial_state() const { return _trial; }
   /// Law evaluations (joint_response calls) since construction: one per point per residual,
   /// none more for the Jacobian at the u of the last residual.
   std::size_t num_law_evaluations() const { return _num_law_evaluations; }
@@ -132,7 +132,7 @@ public:
   /// (points, gdim-1) shear traction components along t1[, t2] [Pa]
   const std::vector<double>& shear_traction() const { return _shear_traction; }
   const std::vector<std::int32_t>& status() const { return _status; } ///< constitutive::Status
-  /// ShearState (stick 0, slip 1, open 2) of every point at the last residual.
+  /// joint::ShearState (stick 0, slip 1, open 2) of every point at the last residual.
   const std::vector<std::int32_t>& shear_state() const { return _shear_state; }
   /// (points, gdim) quadrature point coordinates [m]
   const std::vector<double>& point_coordinates() const { return _point_coordinates; }
@@ -152,7 +152,7 @@ private:
   {
     return static_cast<std::size_t>(p) * _quadrature.num_points() + q;
   }
-  const JointBehaviour& behaviour(std::int32_t p) const { return *_pair_behaviour[p]; }
+  const joint::JointBehaviour& behaviour(std::int32_t p) const { return *_pair_behaviour[p]; }
   /// Call f(p, q, Δ_max) at every point of the pairs whose law has a finite maximum closure
   /// Δ_max (the points the closure limit of Newton's step concerns).
   template <typename F>
@@ -173,15 +173,15 @@ private:
   FacetQuadrature _quadrature;
   std::vector<std::int32_t> _pair_dofs, _tags;
   std::vector<LocalFrame> _frames;
-  std::map<std::int32_t, JointBehaviour> _behaviours;
-  std::vector<const JointBehaviour*> _pair_behaviour;
+  std::map<std::int32_t, joint::JointBehaviour> _behaviours;
+  std::vector<const joint::JointBehaviour*> _pair_behaviour;
 
   std::vector<double> _closure, _normal_stress, _shear_traction, _point_coordinates;
   std::vector<std::int32_t> _status, _shear_state;
   std::vector<double> _initial_jump;                ///< (points, gdim) j0 [m]
-  std::vector<JointPointState> _converged, _trial;  ///< per point
+  std::vector<joint::JointPointState> _converged, _trial;  ///< per point
   // Responses and jumps of the last residual (one law evaluation per point per iteration).
-  std::vector<LocalResponse> _cached_response;
+  std::vector<joint::LocalResponse> _cached_response;
   std::vector<std::array<double, 3>> _cached_jump;
   bool _cache_valid = false;
   mutable std::size_t _num_law_evaluations = 0;

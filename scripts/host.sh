@@ -54,6 +54,10 @@ rj_host_mirror() {  # the mirror the host's apt already uses
 
 rj_is_mounted() { mountpoint -q "$1" 2>/dev/null; }
 
+rj_mounts_inside() {  # any mount point below the root (bind mounts of the host)
+  awk -v r="$rj_chroot/" 'index($2, r) == 1 {found = 1} END {exit !found}' /proc/mounts
+}
+
 rj_mount() {  # /proc, /sys, /dev (MPI needs them) and the repository at its own path
   rj_is_mounted "$rj_chroot/proc" || rj_sudo mount -t proc proc "$rj_chroot/proc"
   rj_is_mounted "$rj_chroot/sys" || { rj_sudo mount --rbind /sys "$rj_chroot/sys"; rj_sudo mount --make-rslave "$rj_chroot/sys"; }
@@ -92,7 +96,14 @@ rj_bootstrap() {  # the Debian 13 root, once per machine (reused while its stamp
     DEBIAN_FRONTEND=noninteractive rj_sudo apt-get install -y -qq --no-install-recommends debootstrap >/dev/null
   }
   rj_log "bootstrapping a Debian 13 root in $rj_chroot from $mirror (once per machine)"
-  rj_sudo rm -rf "$rj_chroot"
+  # A half-built root may still have /dev, /sys, /proc or this repository bound inside it:
+  # deleting through a bind mount would delete the host's files. Unmount, and refuse otherwise.
+  rj_umount
+  if rj_mounts_inside; then
+    rj_log "refusing to delete $rj_chroot: something is still mounted inside it (see /proc/mounts)"
+    return 1
+  fi
+  rj_sudo rm -rf --one-file-system "$rj_chroot"
   rj_sudo debootstrap --variant=minbase trixie "$rj_chroot" "$mirror" >"$rj_repo/.debian13.log" 2>&1 || {
     rj_log "debootstrap failed; see $rj_repo/.debian13.log"; tail -5 "$rj_repo/.debian13.log" >&2; return 1; }
   echo "deb $mirror trixie main" | rj_sudo tee "$rj_chroot/etc/apt/sources.list" >/dev/null

@@ -12,6 +12,7 @@ void declare_tabulation(py::module_& m);
 void declare_topography(py::module_& m);
 void declare_calibration(py::module_& m);
 void declare_contact(py::module_& m);
+void declare_joint(py::module_& m);
 } // namespace rockjoint::python
 
 PYBIND11_MODULE(_rockjoint, m)
@@ -31,4 +32,7 @@ PYBIND11_MODULE(_rockjoint, m)
   py::module_ contact = m.def_submodule(
       "contact", "Boundary-element contact reference of the composite topography (SI units)");
   rockjoint::python::declare_contact(contact);
+  py::module_ joint = m.def_submodule(
+      "joint", "Per-point joint behaviour: normal law, shear stiffness, strength, slip (SI units)");
+  rockjoint::python::declare_joint(joint);
 }

@@ -17,6 +17,7 @@
 
 using namespace rockjoint;
 using namespace rockjoint::fem;
+using namespace rockjoint::joint;
 
 namespace
 {

@@ -25,7 +25,7 @@ import demo_runner  # noqa: E402
 E, NU, W, H, SH = 50e9, 0.25, 12.0, 8.0, 5e6
 STAGE_SV = (10e6, 20e6)                       # vertical stress at the end of stages 1, 2 [Pa]
 PHI, COHESION = math.radians(30.0), 0.0       # the stated joint strength
-STICK, SLIP, OPEN = 0, 1, 2                   # ShearState values (fem_coupling/joint_behaviour.hpp)
+STICK, SLIP, OPEN = 0, 1, 2                   # ShearState values (joint/joint_behaviour.hpp)
 MM = 1.5e-9                                   # the demo prints 6 decimals of mm [m]
 
 

@@ -12,8 +12,7 @@ import os
 from typing import Mapping
 
 from .. import _rockjoint
-from .interface import JointBehaviour, ShearModel
-from .strength import StrengthModel, strength_per_joint
+from ..joint import JointBehaviour, ShearModel, StrengthModel, strength_per_joint
 
 __all__ = ["LawTypeError", "joint_behaviours", "per_joint", "symmetric_tangent"]
 

@@ -15,14 +15,10 @@ from dolfinx import cpp as _dcpp
 from mpi4py import MPI
 from petsc4py import PETSc
 
-from .. import _rockjoint  # noqa: F401  (registers the ClosureLaw types used by _rockjoint_fem)
+from .. import _rockjoint  # noqa: F401  (registers the ClosureLaw and JointBehaviour types used by _rockjoint_fem)
 from .. import _rockjoint_fem as _cpp
 
 QuadratureRule = _cpp.QuadratureRule
-ShearModel = _cpp.ShearModel
-JointBehaviour = _cpp.JointBehaviour
-#: Δ >= 0 [m] with σ(Δ) + k_r Δ = σ_t [Pa] per entry (fem_coupling/joint_behaviour.hpp)
-closure_at_normal_stress = _cpp.closure_at_normal_stress
 
 #: quadrature rule names accepted by the Python API
 QUADRATURE_RULES = {"nodal": QuadratureRule.nodal, "gauss": QuadratureRule.gauss}

@@ -2,10 +2,10 @@
 
 At a joint point with local frame F (rows n, t1[, t2]; n from the minus to the plus side), the
 in-situ traction in local components is t = F σ0 n. The joint element's local traction is
-(-σ_n(Δ), k_s j_s) with Δ = -j_n (fem_coupling/joint_behaviour.cpp), so the joint carries t at
+(-σ_n(Δ), k_s j_s) with Δ = -j_n (joint/joint_behaviour.cpp), so the joint carries t at
 u = 0 when its initial jump j0 (CONTRACTS A.3) is
     j0_n = -Δ0,  σ_n(Δ0) = σ_n0 = -t_n  (compression positive; σ_n = law + k_r Δ, solved by
-                                         closure_at_normal_stress, fem_coupling/joint_behaviour.hpp),
+                                         closure_at_normal_stress, joint/joint_behaviour.hpp),
     j0_s = t_s / k_s,  k_s constant or ratio × (k_n(Δ0) + k_r).
 With the nodal (vertex) rule on P1 facets, the joint's force at vertex a of a facet is
 w_a t_a = |f|/gdim · t_a, while the bulk's in-situ stress pulls on that vertex with the consistent
@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .interface import ShearModel, closure_at_normal_stress
+from ..joint import ShearModel, closure_at_normal_stress
 
 
 def initial_jump(interface, in_situ, behaviours: dict, gdim: int, joint_names: dict,

@@ -40,7 +40,7 @@ from .loads import Load, Support
 from .newton import ConvergenceError, NewtonOptions, solve_load_path  # noqa: F401
 from .petsc_options import check_options_prefix, check_petsc_options
 from .stages import JointedProblem, Stage, StageClock, StageResult, snes_load_path  # noqa: F401
-from .validation import positive_number
+from ..validation import positive_number
 
 log = logging.getLogger(__name__)
 

@@ -1,10 +1,10 @@
 // The _rockjoint_fem extension: bindings of rockjoint::fem (interface assembler). Separate
-// from _rockjoint so that the closure-law module never needs PETSc/DOLFINx. Closure laws
-// come in as the shared_ptr<ClosureLaw> objects of rockjoint._rockjoint (import it first).
+// from _rockjoint so that the closure laws and the per-point joint behaviour never need PETSc.
+// Closure laws and JointBehaviour come in as the objects bound by rockjoint._rockjoint (import
+// it first: pybind11 shares the registered types between the two modules).
 #include "../array_helpers.hpp"
 
 #include <rockjoint/fem_coupling/interface_assembler.hpp>
-#include <rockjoint/fem_coupling/joint_slip.hpp>
 #include <rockjoint/fem_coupling/local_frame.hpp>
 #include <rockjoint/fem_coupling/petsc_assembly.hpp>
 
@@ -54,101 +54,6 @@ PYBIND11_MODULE(_rockjoint_fem, m)
       .value("nodal", QuadratureRule::nodal)
       .value("gauss", QuadratureRule::gauss);
 
-  py::enum_<ShearModel>(m, "ShearModel", "Definition of the joint shear stiffness")
-      .value("constant", ShearModel::constant)
-      .value("proportional", ShearModel::proportional);
-
-  py::enum_<StrengthModel>(m, "StrengthModel", "Peak shear strength of a joint")
-      .value("none", StrengthModel::none)
-      .value("coulomb", StrengthModel::coulomb)
-      .value("barton", StrengthModel::barton);
-
-  py::enum_<ShearState>(m, "ShearState", "Stick, slip or open, per joint point")
-      .value("stick", ShearState::stick)
-      .value("slip", ShearState::slip)
-      .value("open", ShearState::open);
-
-  py::class_<JointStrength>(m, "JointStrength",
-                            "Shear strength of a joint (docs/joint-strength.md); SI units, "
-                            "angles in radians")
-      .def(py::init(
-               [](StrengthModel model, double phi, double c, double t, double psi,
-                  double limit, double jrc, double jcs, double cap)
-               {
-                 JointStrength s{model, phi, c, t, psi, limit, jrc, jcs, cap};
-                 validate(s, "JointStrength");
-                 return s;
-               }),
-           py::arg("model") = StrengthModel::coulomb, py::kw_only(),
-           py::arg("friction_angle") = 0.0, py::arg("cohesion") = 0.0,
-           py::arg("tensile_strength") = 0.0, py::arg("dilation_angle") = 0.0,
-           py::arg("dilation_limit") = std::numeric_limits<double>::infinity(),
-           py::arg("jrc") = 0.0, py::arg("jcs") = 0.0,
-           py::arg("maximum_friction_angle") = JointStrength{}.maximum_friction_angle,
-           "model: StrengthModel; friction_angle φ (Barton: φ_r) [rad]; cohesion c [Pa]; "
-           "tensile_strength T [Pa] (bonded joint, <= c / tan φ); dilation_angle ψ [rad] "
-           "(<= φ); dilation_limit: slip after which dilation stops [m]; jrc [-], jcs [Pa] "
-           "(Barton); maximum_friction_angle: cap of Barton's angle [rad]")
-      .def_readonly("model", &JointStrength::model)
-      .def_readonly("friction_angle", &JointStrength::friction_angle)
-      .def_readonly("cohesion", &JointStrength::cohesion)
-      .def_readonly("tensile_strength", &JointStrength::tensile_strength)
-      .def_readonly("dilation_angle", &JointStrength::dilation_angle)
-      .def_readonly("dilation_limit", &JointStrength::dilation_limit)
-      .def_readonly("jrc", &JointStrength::jrc)
-      .def_readonly("jcs", &JointStrength::jcs)
-      .def_readonly("maximum_friction_angle", &JointStrength::maximum_friction_angle)
-      .def("shear_strength",
-           [](const JointStrength& s, double normal_stress)
-           { return shear_strength(s, normal_stress, true).strength; },
-           py::arg("normal_stress"), "τ_y [Pa] at σ_n [Pa] (compression +), bond intact");
-
-  py::class_<JointPointState>(m, "JointPointState", "Path-dependent state of one joint point")
-      .def(py::init(
-               [](const std::vector<double>& slip, double dilation, double accumulated,
-                  bool broken)
-               {
-                 if (slip.size() > 2)
-                   throw py::value_error("JointPointState: slip has " + std::to_string(slip.size())
-                                         + " components; at most 2 (t1, t2)");
-                 JointPointState s;
-                 std::copy(slip.begin(), slip.end(), s.slip.begin());
-                 s.dilation = dilation;
-                 s.accumulated_slip = accumulated;
-                 s.bond_broken = broken;
-                 return s;
-               }),
-           py::arg("slip") = std::vector<double>{}, py::arg("dilation") = 0.0,
-           py::arg("accumulated_slip") = 0.0, py::arg("bond_broken") = false)
-      .def_property_readonly("slip", [](const JointPointState& s)
-                             { return std::vector<double>(s.slip.begin(), s.slip.end()); })
-      .def_readonly("dilation", &JointPointState::dilation)
-      .def_readonly("accumulated_slip", &JointPointState::accumulated_slip)
-      .def_readonly("bond_broken", &JointPointState::bond_broken);
-
-  py::class_<JointBehaviour>(m, "JointBehaviour",
-                             "Closure law + shear stiffness + residual stiffness + strength of "
-                             "a joint")
-      .def(py::init(
-               [](std::shared_ptr<const rockjoint::constitutive::ClosureLaw> law,
-                  ShearModel model, double ks, double ratio, double kr,
-                  std::optional<JointStrength> strength)
-               {
-                 JointBehaviour b{law, model, ks, ratio, kr, strength.value_or(JointStrength{})};
-                 validate(b, law ? law->name() : std::string("?"));
-                 return b;
-               }),
-           py::arg("law"), py::arg("shear_model") = ShearModel::constant,
-           py::arg("shear_stiffness") = 0.0, py::arg("shear_stiffness_ratio") = 0.0,
-           py::arg("residual_stiffness") = 0.0, py::arg("strength") = py::none())
-      .def_readonly("shear_model", &JointBehaviour::shear_model)
-      .def_readonly("shear_stiffness", &JointBehaviour::shear_stiffness)
-      .def_readonly("shear_stiffness_ratio", &JointBehaviour::shear_stiffness_ratio)
-      .def_readonly("residual_stiffness", &JointBehaviour::residual_stiffness)
-      .def_readonly("strength", &JointBehaviour::strength)
-      .def_property_readonly("law", [](const JointBehaviour& b)
-                             { return std::const_pointer_cast<rockjoint::constitutive::ClosureLaw>(b.law); });
-
   m.def(
       "snes_set_function_domain_error",
       [](std::uintptr_t snes_handle)
@@ -163,90 +68,6 @@ PYBIND11_MODULE(_rockjoint_fem, m)
       py::arg("snes_handle"),
       "Tell a SNES that the function was evaluated outside its domain (SNESSetFunctionDomainError): "
       "the line search or solve then fails with SNES_DIVERGED_FUNCTION_DOMAIN.");
-  m.def(
-      "closure_at_normal_stress",
-      [](const JointBehaviour& b, const rockjoint::python::DoubleArray& stress) -> py::object
-      {
-        rockjoint::python::DoubleArray out = rockjoint::python::empty_like(stress);
-        const double* in = stress.data();
-        double* o = out.mutable_data();
-        for (py::ssize_t i = 0; i < stress.size(); ++i)
-        {
-          try
-          {
-            o[i] = closure_at_normal_stress(b, in[i]);
-          }
-          catch (const std::exception& e)
-          {
-            throw py::value_error("closure_at_normal_stress: entry " + std::to_string(i) + ": "
-                                  + e.what());
-          }
-        }
-        if (stress.ndim() == 0)
-          return out.attr("item")();
-        return out;
-      },
-      py::arg("behaviour"), py::arg("normal_stress"),
-      "Closure Δ >= 0 [m] with σ(Δ) + k_r Δ = σ_t for total normal stresses σ_t [Pa] "
-      "(compression +), shaped like the input (a scalar gives a float). ValueError naming the "
-      "entry for a NaN, infinite or negative σ_t or one beyond the law's range");
-
-  m.def(
-      "joint_response",
-      [](const JointBehaviour& b, const Array<double>& jump, const JointPointState& converged)
-      {
-        const int gdim = static_cast<int>(jump.size());
-        if (gdim != 2 && gdim != 3)
-          throw py::value_error("joint_response: jump must have 2 or 3 components, got "
-                                + std::to_string(gdim));
-        std::array<double, 3> j{};
-        std::copy_n(jump.data(), gdim, j.begin());
-        JointPointState trial;
-        const LocalResponse r = joint_response(b, gdim, j, converged, trial);
-        py::array_t<double> t(gdim), D({gdim, gdim});
-        for (int i = 0; i < gdim; ++i)
-        {
-          t.mutable_at(i) = r.traction[i];
-          for (int k = 0; k < gdim; ++k)
-            D.mutable_at(i, k) = r.tangent[i][k];
-        }
-        py::dict out;
-        out["traction"] = t;
-        out["tangent"] = D;
-        out["closure"] = r.closure;
-        out["normal_stress"] = r.normal_stress;
-        out["status"] = static_cast<int>(r.status);
-        out["shear_state"] = r.shear_state;
-        out["state"] = trial;
-        return out;
-      },
-      py::arg("behaviour"), py::arg("local_jump"), py::arg("converged") = JointPointState{},
-      "{traction [Pa], tangent ∂t/∂j [Pa/m], closure [m], normal_stress [Pa], status, "
-      "shear_state, state (trial JointPointState)} at local jump (n, t1[, t2]) [m] from the "
-      "converged state");
-
-  m.def(
-      "local_response",
-      [](const JointBehaviour& b, const Array<double>& jump)
-      {
-        const int gdim = static_cast<int>(jump.size());
-        if (gdim != 2 && gdim != 3)
-          throw py::value_error("local_response: jump must have 2 or 3 components");
-        std::array<double, 3> j{};
-        std::copy_n(jump.data(), gdim, j.begin());
-        const LocalResponse r = local_response(b, gdim, j);
-        py::array_t<double> t(gdim), D({gdim, gdim});
-        for (int i = 0; i < gdim; ++i)
-        {
-          t.mutable_at(i) = r.traction[i];
-          for (int k = 0; k < gdim; ++k)
-            D.mutable_at(i, k) = r.tangent[i][k];
-        }
-        return py::make_tuple(t, D, r.closure, r.normal_stress, static_cast<int>(r.status));
-      },
-      py::arg("behaviour"), py::arg("local_jump"),
-      "(local traction [Pa], tangent ∂t/∂j [Pa/m], closure [m], normal stress [Pa], status)");
-
   m.def(
       "joint_reference_direction",
       [](const Array<double>& moment)
@@ -267,7 +88,7 @@ PYBIND11_MODULE(_rockjoint_fem, m)
       .def(py::init(
                [](int gdim, int degree, QuadratureRule rule, const Array<std::int32_t>& pair_dofs,
                   const Array<double>& vertices, const Array<double>& interior,
-                  const Array<std::int32_t>& tags, std::map<std::int32_t, JointBehaviour> behaviours)
+                  const Array<std::int32_t>& tags, std::map<std::int32_t, rockjoint::joint::JointBehaviour> behaviours)
                {
                  return InterfaceAssembler(gdim, degree, rule, span_of(pair_dofs),
                                            span_of(vertices), span_of(interior), span_of(tags),

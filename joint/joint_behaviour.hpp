@@ -30,7 +30,7 @@
 #include <memory>
 #include <string>
 
-namespace rockjoint::fem
+namespace rockjoint::joint
 {
 
 /// How the shear stiffness of a joint in contact is defined.
@@ -113,11 +113,4 @@ struct ShearStiffness
 ShearStiffness shear_stiffness(const JointBehaviour& behaviour, const NormalResponse& normal,
                                double elastic_closure);
 
-/// Response at local jump `jump` (gdim components) from the virgin state (no slip, no
-/// dilation): joint_response() with a default JointPointState. Never throws; past the law's
-/// maximum closure the traction is infinite (status beyond_maximum_closure), which the Newton
-/// solver treats as a failed trial.
-LocalResponse local_response(const JointBehaviour& behaviour, int gdim,
-                             const std::array<double, 3>& jump);
-
-} // namespace rockjoint::fem
+} // namespace rockjoint::joint

@@ -17,7 +17,7 @@
 #include <limits>
 #include <string>
 
-namespace rockjoint::fem
+namespace rockjoint::joint
 {
 
 /// Which peak strength bounds the shear stress.
@@ -67,4 +67,4 @@ struct DilationIncrement
 DilationIncrement dilation_increment(const JointStrength& strength, double accumulated_slip,
                                      double slip_increment);
 
-} // namespace rockjoint::fem
+} // namespace rockjoint::joint

@@ -10,7 +10,7 @@
 
 #include <array>
 
-namespace rockjoint::fem
+namespace rockjoint::joint
 {
 
 /// Traction, consistent tangent and trial state at local jump `jump` (gdim components:
@@ -28,4 +28,11 @@ LocalResponse joint_response(const JointBehaviour& behaviour, int gdim,
                              const std::array<double, 3>& jump,
                              const JointPointState& converged, JointPointState& trial);
 
-} // namespace rockjoint::fem
+/// Response at local jump `jump` (gdim components) from the virgin state (no slip, no
+/// dilation): joint_response() with a default JointPointState. Never throws; past the law's
+/// maximum closure the traction is infinite (status beyond_maximum_closure), which the Newton
+/// solver treats as a failed trial.
+LocalResponse local_response(const JointBehaviour& behaviour, int gdim,
+                             const std::array<double, 3>& jump);
+
+} // namespace rockjoint::joint

@@ -1,21 +1,37 @@
-"""Joint shear strength (docs/joint-strength.md): Coulomb or Barton slip, dilation, tension
-cut-off. The law and its return mapping are C++ (fem_coupling/joint_slip.hpp); this module
-turns the user's description of a strength into a validated `JointStrength`.
+"""The per-point joint behaviour, without the FE stack: closure law + shear stiffness + residual
+stiffness + shear strength of a joint, its traction and consistent tangent at a local jump, and
+its path-dependent state (C++ `joint/`, bound as `rockjoint._rockjoint.joint`; needs neither
+PETSc nor DOLFINx). The FE joints (`rockjoint.fem`) evaluate every quadrature point through it,
+and so can a point driver: direct-shear curves, a calibration, an equivalent-continuum material.
 
     from math import radians
-    from rockjoint.fem import make_strength
-    s = make_strength({"friction_angle": radians(30), "cohesion": 0.1e6})
+    from rockjoint import BartonBandis
+    from rockjoint.joint import JointBehaviour, joint_response, make_strength
+    b = JointBehaviour(BartonBandis(1e10, 1e-3), shear_stiffness=1e9,
+                       strength=make_strength({"friction_angle": radians(30)}))
+    r = joint_response(b, [-0.2e-3, 1e-3])   # local jump (normal, t1) [m]: traction, tangent, state
+
+Strength (docs/joint-strength.md): Coulomb or Barton slip, dilation, tension cut-off; the return
+mapping is C++ (joint/joint_slip.hpp). `make_strength` turns the user's description of a strength
+into a validated `JointStrength`.
 """
 from __future__ import annotations
 
-from .. import _rockjoint_fem as _cpp
+from ._rockjoint import joint as _cpp
 from .validation import positive_number
 
-JointStrength = _cpp.JointStrength
+ShearModel = _cpp.ShearModel
 StrengthModel = _cpp.StrengthModel
 ShearState = _cpp.ShearState
+JointStrength = _cpp.JointStrength
 JointPointState = _cpp.JointPointState
+JointBehaviour = _cpp.JointBehaviour
+#: {traction, tangent, closure, normal_stress, status, shear_state, state} at a local jump
 joint_response = _cpp.joint_response
+#: (traction, tangent, closure, normal stress, status) from the virgin state
+local_response = _cpp.local_response
+#: Δ >= 0 [m] with σ(Δ) + k_r Δ = σ_t [Pa] per entry (joint/joint_behaviour.hpp)
+closure_at_normal_stress = _cpp.closure_at_normal_stress
 
 #: keywords of a strength description besides "model" (SI units, angles in radians)
 STRENGTH_PARAMETERS = ("friction_angle", "cohesion", "tensile_strength", "dilation_angle",

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <numbers>
 
-namespace rockjoint::fem
+namespace rockjoint::joint
 {
 
 namespace
@@ -105,4 +105,4 @@ DilationIncrement dilation_increment(const JointStrength& s, double accumulated_
   return {tan_psi * (after - before), accumulated_slip + slip_increment < limit ? tan_psi : 0.0};
 }
 
-} // namespace rockjoint::fem
+} // namespace rockjoint::joint

@@ -8,7 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
-namespace rockjoint::fem
+namespace rockjoint::joint
 {
 
 void validate(const JointBehaviour& behaviour, const std::string& label)
@@ -136,4 +136,4 @@ double closure_at_normal_stress(const JointBehaviour& b, double target)
   return root.x;
 }
 
-} // namespace rockjoint::fem
+} // namespace rockjoint::joint

@@ -1,12 +1,12 @@
-// Joint strength: Coulomb/Barton slip with dilation and tension cut-off (fem_coupling/
-// joint_slip.hpp). Reference values are hand-worked closed forms of the return mapping
-// (docs/joint-strength.md) and central finite differences of the traction. Also the closure at
+// Joint strength: Coulomb/Barton slip with dilation and tension cut-off (joint/joint_slip.hpp),
+// linked against the joint library alone (no PETSc, no MPI). Reference values are hand-worked
+// closed forms of the return mapping (docs/joint-strength.md) and central finite differences of the traction. Also the closure at
 // a total normal stress (pre-closure, joint_behaviour.hpp) against the series spring of a linear
 // law and the root of Barton-Bandis's quadratic.
 #include "expect_error.hpp"
 
-#include <rockjoint/fem_coupling/interface_assembler.hpp>
-#include <rockjoint/fem_coupling/joint_slip.hpp>
+#include "joint_test_laws.hpp"
+#include <rockjoint/joint/joint_slip.hpp>
 
 #include <rockjoint/constitutive/barton_bandis.hpp>
 
@@ -18,48 +18,11 @@
 #include <numbers>
 
 using namespace rockjoint;
-using namespace rockjoint::fem;
+using namespace rockjoint::joint;
+using namespace rockjoint::test;
 
 namespace
 {
-constexpr double deg = std::numbers::pi / 180.0;
-
-/// σ = k_n Δ: a linear closure law, so that the return mapping has closed forms.
-class LinearLaw : public constitutive::ClosureLaw
-{
-public:
-  explicit LinearLaw(double stiffness) : _k(stiffness) {}
-  std::string name() const override { return "linear_test_law"; }
-  std::vector<constitutive::Parameter> parameters() const override
-  {
-    return {{"stiffness", _k, "Pa/m"}};
-  }
-
-protected:
-  constitutive::ClosureResponse evaluate_contact(double d) const override
-  {
-    return {_k * d, _k, 0.0, 0.0, constitutive::Status::contact};
-  }
-
-private:
-  double _k;
-};
-
-constexpr double kn = 1e10, ks = 4e9; // [Pa/m]
-
-JointBehaviour coulomb(double phi, double c, double psi = 0.0,
-                       std::shared_ptr<const constitutive::ClosureLaw> law = nullptr)
-{
-  JointBehaviour b;
-  b.law = law ? law : std::make_shared<LinearLaw>(kn);
-  b.shear_stiffness = ks;
-  b.strength.model = StrengthModel::coulomb;
-  b.strength.friction_angle = phi;
-  b.strength.cohesion = c;
-  b.strength.dilation_angle = psi;
-  return b;
-}
-
 LocalResponse respond(const JointBehaviour& b, int gdim, std::array<double, 3> jump,
                       const JointPointState& converged, JointPointState* out = nullptr)
 {
@@ -100,7 +63,7 @@ void expect_tangent_matches_fd(const JointBehaviour& b, int gdim, std::array<dou
 }
 } // namespace
 
-TEST(FemJointSlip, ElasticInsideTheConeIsTheLinearSpring)
+TEST(JointSlip, ElasticInsideTheConeIsTheLinearSpring)
 {
   const JointBehaviour b = coulomb(30 * deg, 1e5);
   JointPointState trial;
@@ -113,7 +76,7 @@ TEST(FemJointSlip, ElasticInsideTheConeIsTheLinearSpring)
   EXPECT_EQ(trial.accumulated_slip, 0.0);
 }
 
-TEST(FemJointSlip, ReturnMappingReachesTheCoulombStrengthWithTheClosedFormSlip)
+TEST(JointSlip, ReturnMappingReachesTheCoulombStrengthWithTheClosedFormSlip)
 {
   const double phi = 30 * deg, c = 1e5, closure = 1e-4, js = 5e-4;
   const JointBehaviour b = coulomb(phi, c);
@@ -132,7 +95,7 @@ TEST(FemJointSlip, ReturnMappingReachesTheCoulombStrengthWithTheClosedFormSlip)
   EXPECT_NEAR(trial.slip[0], -(tau_trial - tau_y) / ks, 1e-12 * js);
 }
 
-TEST(FemJointSlip, ReevaluatingACommittedSlipStepReadsSlipWithoutMovingTheSlip)
+TEST(JointSlip, ReevaluatingACommittedSlipStepReadsSlipWithoutMovingTheSlip)
 {
   // The step slid: committed state = its trial state. Re-evaluated at the same jump (stage
   // results, output) the elastic predictor sits on the strength with a zero increment: still
@@ -155,7 +118,7 @@ TEST(FemJointSlip, ReevaluatingACommittedSlipStepReadsSlipWithoutMovingTheSlip)
   }
 }
 
-TEST(FemJointSlip, AJointWithoutStrengthSticksAtAnyShear)
+TEST(JointSlip, AJointWithoutStrengthSticksAtAnyShear)
 {
   // No strength model: τ_y = +∞, so a closed joint is elastic and reads "stick" however far it
   // is sheared (re-evaluated from a committed state too).
@@ -172,7 +135,7 @@ TEST(FemJointSlip, AJointWithoutStrengthSticksAtAnyShear)
   }
 }
 
-TEST(FemJointSlip, DilationGivesTheClosedFormSlipIncrementAndNormalStress)
+TEST(JointSlip, DilationGivesTheClosedFormSlipIncrementAndNormalStress)
 {
   // Linear law: G(Δλ) = c + tanφ k_n (Δ + tanψ Δλ) - k_s (e - Δλ) = 0
   //   ⇒ Δλ = f_trial / (k_s + k_n tanφ tanψ).
@@ -191,7 +154,7 @@ TEST(FemJointSlip, DilationGivesTheClosedFormSlipIncrementAndNormalStress)
   EXPECT_NEAR(r.traction[1], ks * (js - dl), 1e-9 * sigma);
 }
 
-TEST(FemJointSlip, DilationStopsAtTheLimitingSlip)
+TEST(JointSlip, DilationStopsAtTheLimitingSlip)
 {
   // Converged accumulated slip 0.9 ℓ: the increment passes the limit, so the opening is
   // tanψ (ℓ - κ_n) and then Δλ = (k_s e - c - tanφ k_n (Δ + opening)) / k_s.
@@ -216,7 +179,7 @@ TEST(FemJointSlip, DilationStopsAtTheLimitingSlip)
   expect_tangent_matches_fd(b, 2, {-closure, js, 0.0}, converged, ShearState::slip);
 }
 
-TEST(FemJointSlip, BartonPeakStrength)
+TEST(JointSlip, BartonPeakStrength)
 {
   // τ = σ_n tan(φ_r + JRC log10(JCS/σ_n)), JRC 10, JCS 100 MPa, φ_r 28°, σ_n = 2 MPa:
   // angle = 28 + 10 log10(50) = 44.99°.
@@ -238,7 +201,7 @@ TEST(FemJointSlip, BartonPeakStrength)
   expect_tangent_matches_fd(b, 3, {-closure, 2e-3, -1e-3}, {}, ShearState::slip);
 }
 
-TEST(FemJointSlip, TangentMatchesFiniteDifferencesInStickSlipAndOpenStates)
+TEST(JointSlip, TangentMatchesFiniteDifferencesInStickSlipAndOpenStates)
 {
   const auto bb = std::make_shared<constitutive::BartonBandis>(2e10, 1e-3);
   for (int g : {2, 3})
@@ -268,7 +231,7 @@ TEST(FemJointSlip, TangentMatchesFiniteDifferencesInStickSlipAndOpenStates)
   }
 }
 
-TEST(FemJointSlip, OpenJointTransmitsNoTractionAndKeepsItsSlip)
+TEST(JointSlip, OpenJointTransmitsNoTractionAndKeepsItsSlip)
 {
   JointPointState converged;
   converged.slip = {3e-4, 1e-4};
@@ -302,7 +265,7 @@ TEST(FemJointSlip, OpenJointTransmitsNoTractionAndKeepsItsSlip)
   EXPECT_DOUBLE_EQ(k.traction[2], 1e6 * (-2e-3 - 1e-4));
 }
 
-TEST(FemJointSlip, FrictionAngleTowardsZeroLeavesCohesionOnly)
+TEST(JointSlip, FrictionAngleTowardsZeroLeavesCohesionOnly)
 {
   const double c = 3e5;
   for (double phi : {0.0, 1e-10})
@@ -316,7 +279,7 @@ TEST(FemJointSlip, FrictionAngleTowardsZeroLeavesCohesionOnly)
   }
 }
 
-TEST(FemJointSlip, NoCohesionAtVanishingNormalStressSlipsFreely)
+TEST(JointSlip, NoCohesionAtVanishingNormalStressSlipsFreely)
 {
   const JointBehaviour b = coulomb(30 * deg, 0.0);
   for (double closure : {1e-6, 1e-12, 1e-300, 0.0})
@@ -335,7 +298,7 @@ TEST(FemJointSlip, NoCohesionAtVanishingNormalStressSlipsFreely)
   }
 }
 
-TEST(FemJointSlip, LoadReversalSlipsBackOnlyAtTheStrengthAndKeepsThePermanentSlip)
+TEST(JointSlip, LoadReversalSlipsBackOnlyAtTheStrengthAndKeepsThePermanentSlip)
 {
   const double phi = 30 * deg, closure = 1e-4;
   const JointBehaviour b = coulomb(phi, 0.0);
@@ -364,7 +327,7 @@ TEST(FemJointSlip, LoadReversalSlipsBackOnlyAtTheStrengthAndKeepsThePermanentSli
   EXPECT_NEAR(s3.accumulated_slip, slip1 + 2e-4, 1e-15);
 }
 
-TEST(FemJointSlip, SlipIsIrreversibleAndTheTrialDependsOnlyOnConvergedStateAndJump)
+TEST(JointSlip, SlipIsIrreversibleAndTheTrialDependsOnlyOnConvergedStateAndJump)
 {
   const JointBehaviour b = coulomb(30 * deg, 1e5, 5 * deg);
   JointPointState converged;
@@ -388,7 +351,7 @@ TEST(FemJointSlip, SlipIsIrreversibleAndTheTrialDependsOnlyOnConvergedStateAndJu
   EXPECT_EQ(first.dilation, second.dilation);
 }
 
-TEST(FemJointSlip, RotatingTheShearPlaneLeavesShearAndSlipMagnitudesUnchanged)
+TEST(JointSlip, RotatingTheShearPlaneLeavesShearAndSlipMagnitudesUnchanged)
 {
   const JointBehaviour b = coulomb(32 * deg, 5e4, 8 * deg);
   const std::array<double, 2> shear{7e-4, -3e-4};
@@ -414,7 +377,7 @@ TEST(FemJointSlip, RotatingTheShearPlaneLeavesShearAndSlipMagnitudesUnchanged)
   }
 }
 
-TEST(FemJointSlip, TensileStrengthHoldsABondedJointUntilItBreaks)
+TEST(JointSlip, TensileStrengthHoldsABondedJointUntilItBreaks)
 {
   JointBehaviour b = coulomb(30 * deg, 1e6);
   b.strength.tensile_strength = 5e5; // <= c / tan 30° = 1.73 MPa
@@ -439,7 +402,7 @@ TEST(FemJointSlip, TensileStrengthHoldsABondedJointUntilItBreaks)
   EXPECT_NEAR(sheared.traction[1], kn * 1e-4 * std::tan(30 * deg), 1e-3);
 }
 
-TEST(FemJointSlip, BadParametersGiveNamedErrors)
+TEST(JointSlip, BadParametersGiveNamedErrors)
 {
   using rockjoint::testing::expect_error;
   auto check = [](JointBehaviour b) { validate(b, "set A"); };
@@ -467,49 +430,6 @@ TEST(FemJointSlip, BadParametersGiveNamedErrors)
   JointBehaviour elastic = coulomb(95 * deg, -1.0);
   elastic.strength.model = StrengthModel::none;
   EXPECT_NO_THROW(check(elastic));
-}
-
-TEST(FemJointSlip, AssemblerKeepsTheSlipOnlyWhenCommitted)
-{
-  // One 2D pair on the segment (0,0)-(1,0), minus cell below: n = (0, 1). The plus side moves
-  // by (a, -b): closure b at both nodal points, shear j_s = a t1_x.
-  const double phi = 30 * deg, c = 1e5, b_closure = 1e-4, a = 1e-3;
-  InterfaceAssembler asm_(2, 1, QuadratureRule::nodal, std::vector<std::int32_t>{0, 1, 2, 3, 4, 5, 6, 7},
-                          std::vector<double>{0.0, 0.0, 1.0, 0.0}, std::vector<double>{0.5, -0.5},
-                          std::vector<std::int32_t>{7}, {{7, coulomb(phi, c)}});
-  const auto& t1 = asm_.frame(0).axes[1];
-  const double js = a * t1[0] - b_closure * t1[1];
-  const double tau_y = c + kn * b_closure * std::tan(phi);
-  const double slip = std::copysign(std::abs(js) - tau_y / ks, js);
-  std::vector<double> u{0, 0, 0, 0, a, -b_closure, a, -b_closure}, r(8, 0.0);
-
-  ASSERT_TRUE(asm_.assemble_residual(u, r));
-  for (std::size_t q = 0; q < asm_.trial_state().size(); ++q)
-  {
-    EXPECT_NEAR(asm_.trial_state()[q].slip[0], slip, 1e-15) << q;
-    EXPECT_EQ(asm_.converged_state()[q].slip[0], 0.0);
-    EXPECT_EQ(asm_.shear_state()[q], static_cast<std::int32_t>(ShearState::slip));
-  }
-  // The joint force on the plus side along t1 is the strength times the length (1 m).
-  EXPECT_NEAR(r[4] * t1[0] + r[5] * t1[1] + r[6] * t1[0] + r[7] * t1[1], std::copysign(tau_y, js),
-              1e-9 * tau_y);
-  asm_.revert_state();
-  EXPECT_EQ(asm_.trial_state()[0].slip[0], 0.0);
-
-  asm_.assemble_residual(u, r);
-  asm_.commit_state();
-  EXPECT_NEAR(asm_.converged_state()[1].slip[0], slip, 1e-15);
-  // Back to a shear jump equal to the slip: zero shear traction, the slip stays.
-  const double back = slip / t1[0] + b_closure * t1[1] / t1[0]; // plus-side x giving j_s = slip
-  std::vector<double> u_back{0, 0, 0, 0, back, -b_closure, back, -b_closure};
-  std::fill(r.begin(), r.end(), 0.0);
-  asm_.assemble_residual(u_back, r);
-  EXPECT_NEAR(asm_.shear_traction()[0], 0.0, 1e-6 * tau_y);
-  EXPECT_NEAR(asm_.trial_state()[0].slip[0], slip, 1e-15);
-  EXPECT_EQ(asm_.shear_state()[0], static_cast<std::int32_t>(ShearState::stick));
-  asm_.reset_state();
-  EXPECT_EQ(asm_.converged_state()[0].slip[0], 0.0);
-  EXPECT_EQ(asm_.trial_state()[0].slip[0], 0.0);
 }
 
 // ---- Pre-closure: the closure at a total normal stress σ(Δ) + k_r Δ = σ_t -------------------

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <limits>
 
-namespace rockjoint::fem
+namespace rockjoint::joint
 {
 
 namespace
@@ -164,4 +164,4 @@ LocalResponse local_response(const JointBehaviour& behaviour, int gdim,
   return joint_response(behaviour, gdim, jump, JointPointState{}, trial);
 }
 
-} // namespace rockjoint::fem
+} // namespace rockjoint::joint

@@ -6,7 +6,7 @@
 
 #include <array>
 
-namespace rockjoint::fem
+namespace rockjoint::joint
 {
 
 struct JointPointState
@@ -17,4 +17,4 @@ struct JointPointState
   bool bond_broken = false;      ///< tensile strength exceeded once: bond (c, T) lost for good
 };
 
-} // namespace rockjoint::fem
+} // namespace rockjoint::joint
