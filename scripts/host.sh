@@ -77,11 +77,12 @@ rj_root_in_use() {  # another process (a concurrent build or test) runs inside t
   return 1
 }
 
-rj_umount() {  # reverse order, and only when no other run still works inside the root
-  local m
+rj_umount() {  # every mount below the root, deepest first, once no other run works inside it
   rj_root_in_use && return 0
-  for m in "$rj_chroot$rj_repo" "$rj_chroot/dev" "$rj_chroot/sys" "$rj_chroot/proc"; do
-    rj_is_mounted "$m" && rj_sudo umount -R -l "$m" 2>/dev/null
+  local m
+  # (other checkouts sharing the root through ROCKJOINT_DEBIAN13_ROOT bind their own paths too)
+  awk -v r="$rj_chroot/" 'index($2, r) == 1 {print $2}' /proc/mounts | sort -r | while read -r m; do
+    rj_sudo umount -l "$m" 2>/dev/null || true
   done
   return 0
 }
