@@ -23,14 +23,14 @@ class Load:
     ρ g), excavation (fraction of the in-situ traction σ0·n still carried by the boundary: 1 before,
     0 after the excavation; intermediate values release part of it)."""
 
-    def __init__(self, model, kind: str, boundary: str | None, value):
+    def __init__(self, owner, kind: str, boundary: str | None, value):
         if kind not in LOAD_KINDS:
             raise ValueError(f"load kind {kind!r} unknown; kinds: {LOAD_KINDS}")
-        self._model = model
+        self._owner = owner
         self.kind = kind
         self.boundary = boundary
         self._value = None
-        self.coefficient = None  #: the DOLFINx Constant/Function carrying the value (set by the model)
+        self.coefficient = None  #: the DOLFINx Constant/Function carrying the value (set by the LoadPath that owns it)
         self.active = True
         self.value = value
 
@@ -42,14 +42,14 @@ class Load:
     def value(self, value) -> None:
         if not self.active:
             raise RuntimeError(f"this {self.kind} load was removed; add a new one instead")
-        self._value = self._model._check_load_value(self, value)
+        self._value = self._owner._check_load_value(self, value)
         if self.coefficient is not None:
-            self._model._set_load_coefficient(self)
+            self._owner._set_load_coefficient(self)
 
     def remove(self) -> None:
         """Remove the load: it is ramped to zero over the next stage."""
         if self.active:
-            self._model._remove_load(self)
+            self._owner._remove_load(self)
             self.active = False
 
     def __repr__(self) -> str:
@@ -63,8 +63,8 @@ class Support:
     value: one value for every component, or one per component (in the order given to fix), or
     None: hold the dofs where they are when the support is added."""
 
-    def __init__(self, model, boundary: str, components: list, block_tag, value):
-        self._model = model
+    def __init__(self, owner, boundary: str, components: list, block_tag, value):
+        self._owner = owner
         self.boundary = boundary
         self.components = components
         self.block_tag = block_tag
@@ -94,7 +94,7 @@ class Support:
     def remove(self) -> None:
         """Free the components (the bulk matrix is rebuilt at the next stage)."""
         if self.active:
-            self._model._remove_support(self)
+            self._owner._remove_support(self)
             self.active = False
 
     def __repr__(self) -> str:

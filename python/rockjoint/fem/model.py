@@ -32,10 +32,12 @@ from petsc4py import PETSc
 
 from .behaviours import joint_behaviours, symmetric_tangent
 from .distributed_mesh import lookup, names_of
+from .elastic_blocks import ElasticBlocks
 from .in_situ import STANDARD_GRAVITY, InSituStress
+from .joint_initial_state import initial_jump
 from .coupling import JointCoupling
 from .linear_solver import LinearSolver, LinearSolveError, resolve_kind, rigid_body_modes  # noqa: F401
-from .load_path import StagedLoading
+from .load_path import LoadPath
 from .loads import Load, Support
 from .newton import ConvergenceError, NewtonOptions, solve_load_path  # noqa: F401
 from .petsc_options import check_options_prefix, check_petsc_options
@@ -43,9 +45,6 @@ from .stages import JointedProblem, Stage, StageClock, StageResult, snes_load_pa
 from ..validation import positive_number
 
 log = logging.getLogger(__name__)
-
-_COMPONENTS = {"x": 0, "y": 1, "z": 2}
-
 
 def _per_block(blocks: dict, value, what: str, missing_message: str) -> dict:
     """{block name: value} from one value for every block or a dict that names them all."""
@@ -60,7 +59,7 @@ def _per_block(blocks: dict, value, what: str, missing_message: str) -> dict:
     return value
 
 
-class JointedRockModel(StagedLoading):
+class JointedRockModel:
     """A jointed rock mass: elastic blocks + joints with closure laws, loads, supports.
 
     dmesh: rockjoint.fem.distributed_mesh.DistributedJointMesh (mesh, cell_blocks, boundaries,
@@ -126,31 +125,34 @@ class JointedRockModel(StagedLoading):
         self.behaviours = self._check_joints(joints, shear_stiffness, shear_stiffness_ratio, residual_stiffness,
                                              strength)
         self.densities = self._check_density(density)  #: {block name: ρ [kg/m³]} ({} without gravity)
-        self._supports: list[Support] = []
-        self._loads: list[Load] = []
-        self._release: dict = {}   #: {boundary: excavation Load} of released in-situ tractions
-        self._multipliers: dict = {}  #: {boundary: Constant fraction of σ0·n it carries}
-        self._in_situ_compiled = None  # the InSituStress the in-situ forms were compiled for
-        self.in_situ: InSituStress | None = None
         self.stages: list[StageResult] = []  #: the result of every stage, in order
-        self.gravity: Load | None = None     #: gravity load handle (None without a density)
-        if self.densities:
-            self.gravity = self._add_load("gravity", None, self._gravity_vector(gravity))
+        # The parts, each with explicit inputs: the blocks' space and forms, the load path on
+        # them; the joints (JointCoupling) and the linear solver come with the first solve.
+        t0 = time.perf_counter()
+        self.blocks = ElasticBlocks(dmesh, self.rock, self.densities, self.degree, self.plane)
+        self.load_path = LoadPath(dmesh, self.blocks, self.densities, gravity)
+        self.V, self.u, self.du = self.blocks.V, self.blocks.u, self.blocks.du
+        self.sigma, self.eps = self.blocks.sigma, self.blocks.eps
+        self.coupling: JointCoupling | None = None
+        self.linear_solver: LinearSolver | None = None
         #: wall-clock seconds on this rank: bulk_assembly (K and f, once), interface_residual and
         #: interface_jacobian (all calls), linear_solve (all solves), newton (solve() total), setup
         self.timings = {"bulk_assembly": 0.0, "interface_residual": 0.0, "interface_jacobian": 0.0,
-                        "matrix_copy": 0.0, "linear_solve": 0.0, "newton": 0.0, "setup": 0.0}
+                        "matrix_copy": 0.0, "linear_solve": 0.0, "newton": 0.0,
+                        "setup": time.perf_counter() - t0}
         #: number of calls behind the timings
         self.counts = {"interface_residual": 0, "interface_jacobian": 0, "linear_solve": 0,
                        "nonfinite_residuals": 0}
-        self._space_ready = False    # function space, joints, linear solver
-        self._supports_dirty = True  # bulk matrix K (depends on the supports)
-        self._forms_dirty = True     # load forms (depend on the set of loads)
         self._initialised = False    # initial state (in-situ loads, joint pre-closure) set
         self._advancing = False      # a stage opened by advance() is in progress
-        self._f_prev = None          # load vector at the start of the current stage
         self._clock = None           # progress clock of the stage being solved
         self._stage_label = None     # "k/n" while run() drives the stages
+        self._step_iterations = 0    # Newton iterations of the load step being solved
+        self._saved = None           # (u, load factor) of the last converged load step
+        self.load_factor = 0.0
+        self.K = self.J = None       # bulk matrix with the supports, Jacobian
+        self.r = la.create_petsc_vector(self.V.dofmap.index_map, self.V.dofmap.index_map_bs)
+        self._r_joint = self.r.duplicate()
         self.solution = None
 
     # ---- input checks --------------------------------------------------------------------
@@ -177,26 +179,6 @@ class JointedRockModel(StagedLoading):
                                 shear_stiffness_ratio=ratio, residual_stiffness=kr, strength=strength,
                                 argument="joints", closure_laws_only=True)
 
-    def _component_indices(self, components) -> list:
-        if components in ("all", None):
-            return list(range(self.gdim))
-        if isinstance(components, (str, int)):
-            components = [components]
-        out = []
-        for c in components:
-            i = _COMPONENTS.get(c, c) if isinstance(c, str) else c
-            if not isinstance(i, (int, np.integer)) or not 0 <= i < self.gdim:
-                raise ValueError(f"support component {c!r} is invalid; use 'x', 'y'{', z' if self.gdim == 3 else ''}, "
-                                 f"an index < {self.gdim} or 'all'")
-            out.append(int(i))
-        return out
-
-    def _vector(self, value, what: str) -> np.ndarray:
-        v = np.asarray(value, dtype=float)
-        if v.shape != (self.gdim,) or not np.all(np.isfinite(v)):
-            raise ValueError(f"{what} must be {self.gdim} finite components, got {value!r}")
-        return v
-
     def _check_density(self, density) -> dict:
         if density is None:
             return {}
@@ -204,136 +186,153 @@ class JointedRockModel(StagedLoading):
                              "no value for block(s) {} (give one for every block)")
         return {name: positive_number(f"density[{name!r}]", rho, unit="kg/m³") for name, rho in density.items()}
 
+    @property
+    def gravity(self) -> Load | None:
+        """The gravity load handle (None without a density)."""
+        return self.load_path.gravity
+
+    @property
+    def in_situ(self) -> InSituStress | None:
+        return self.load_path.in_situ
+
+    # ---- loads and supports (handles; changes take effect at the next stage) --------------
+    def fix(self, boundary: str, components="all", block: str | None = None, value=0.0) -> Support:
+        """Prescribed displacement `value` [m] (0: a fixed support) of `components` ("x", "y",
+        "z", indices or "all") on a named boundary; one value or one per component. With `block`,
+        only on the part of the boundary that belongs to that block (e.g. a roller under one block
+        while the block above it, held by a joint, may slide). A non-zero or changed value is
+        ramped over the next stage from the displacement the dofs have then; value=None holds
+        the dofs where they are (a support installed in a later stage)."""
+        return self.load_path.fix(boundary, components, block, value)
+
+    def add_traction(self, boundary: str, traction) -> Load:
+        """Surface traction [Pa] on a named boundary: a vector, or a callable f(x) -> (gdim, n)
+        of the coordinates x (3, n) (interpolated in the displacement space)."""
+        return self.load_path.add_load("traction", boundary, traction)
+
+    def add_pressure(self, boundary: str, pressure: float) -> Load:
+        """Normal pressure p [Pa] on a named boundary (curved ones too): traction t = -p n, n the
+        outward normal of the rock; p > 0 pushes on the surface."""
+        return self.load_path.add_load("pressure", boundary, pressure)
+
+    def add_body_force(self, force) -> Load:
+        """Body force per unit volume [N/m³] in every block."""
+        return self.load_path.add_load("body_force", None, force)
+
+    def excavate(self, boundary: str, fraction_left: float = 0.0) -> Load:
+        """Excavation of an opening meshed as a hole: the in-situ traction σ0·n that `boundary`
+        carries in the initial state is ramped to `fraction_left` of itself (default 0) over the
+        next stage. The handle's value is that fraction; remove() puts the traction back."""
+        return self.load_path.excavate(boundary, fraction_left)
+
+    def set_in_situ_stress(self, in_situ: InSituStress, equilibrium_tolerance: float = 1e-8) -> None:
+        """The initial stress σ0 (before the first stage): the bulk stress, the tractions σ0·n on
+        every named boundary (carried by the supports on supported components), gravity, and
+        joints pre-closed to their law's closure at the initial normal stress make an equilibrium
+        state with u = 0; ValueError if σ0 and the model's gravity disagree, or (at the first
+        solve) if the initial residual exceeds equilibrium_tolerance × the in-situ forces. A field
+        that P1/P2 cannot balance exactly (a non-linear from_function field, a gradient along joints
+        with P2 in 3D) needs a larger tolerance; the first stage then moves u by the imbalance."""
+        if self.stages:
+            raise RuntimeError("set_in_situ_stress: the in-situ stress is the initial state; set it before "
+                               "the first solve()")
+        self.load_path.set_in_situ_stress(in_situ, equilibrium_tolerance)
+        self._initialised = False
+
     # ---- setup -----------------------------------------------------------------------------
     def _prepare(self) -> None:
-        if not self._space_ready:
-            self._setup_space()
-        if self._supports_dirty:
+        if self.coupling is None:
+            self._setup_joints_and_solver()
+        lp = self.load_path
+        if lp.supports_dirty:
             self._setup_supports()
-        if self._forms_dirty:
-            self._compile_forms()
-        self._collect_prescribed()
+        if lp.forms_dirty:
+            lp.compile_forms()
+        lp.collect_prescribed(self.u.x.array)
         if not self._initialised:
             self._initial_state()
 
-    def _setup_space(self) -> None:
+    def _setup_joints_and_solver(self) -> None:
+        """The joints, through the public API a user's own model uses (docs/user-model.md): the
+        model is a client of JointCoupling like any DOLFINx model; and the linear solver."""
         t0 = time.perf_counter()
-        mesh, gdim, tdim = self.mesh, self.gdim, self.mesh.topology.dim
-        V = fem.functionspace(mesh, ("Lagrange", self.degree, (mesh.geometry.dim,)))
-        self.V = V
-        self.u = fem.Function(V, name="displacement")
-        self.du = fem.Function(V)
-        self._w = fem.Function(V)  # a displacement whose internal force is wanted (lift, reactions)
-
-        # Lamé parameters and density per cell from the block tags (DG0).
-        Q = fem.functionspace(mesh, ("DG", 0))
-        lam, mu, rho = fem.Function(Q), fem.Function(Q), fem.Function(Q)
-        tags = self.dmesh.cell_blocks
-        ncells = mesh.topology.index_map(tdim).size_local + mesh.topology.index_map(tdim).num_ghosts
-        cell_tag = np.full(ncells, -1, dtype=np.int64)
-        cell_tag[tags.indices] = tags.values
-        self._cell_tag = cell_tag
-        lam_a, mu_a, rho_a = np.full(ncells, np.nan), np.full(ncells, np.nan), np.zeros(ncells)
-        blocks = names_of(self.dmesh, "blocks")
-        for tag, (E, nu) in self.rock.items():
-            sel = cell_tag == tag
-            mu_a[sel] = E / (2 * (1 + nu))
-            l = E * nu / ((1 + nu) * (1 - 2 * nu))
-            if self.plane == "stress":
-                l = 2 * l * mu_a[sel] / (l + 2 * mu_a[sel])
-            lam_a[sel] = l
-        for name, value in self.densities.items():
-            rho_a[cell_tag == blocks[name]] = value
-        if np.isnan(mu_a).any():
-            raise ValueError("some cells carry no block tag with rock properties")
-        dofs = Q.dofmap.list.ravel()
-        lam.x.array[dofs] = lam_a
-        mu.x.array[dofs] = mu_a
-        rho.x.array[dofs] = rho_a
-        self._lame, self._rho = (lam, mu), rho
-
-        def eps(w):
-            return ufl.sym(ufl.grad(w))
-
-        def sigma(w):
-            return 2 * mu * eps(w) + lam * ufl.tr(eps(w)) * ufl.Identity(gdim)
-
-        self.eps, self.sigma = eps, sigma
-        du_, v = ufl.TrialFunction(V), ufl.TestFunction(V)
-        self._v = v
-        self.a_form = fem.form(ufl.inner(sigma(du_), eps(v)) * ufl.dx)
-        self._internal_form = fem.form(ufl.inner(sigma(self._w), eps(v)) * ufl.dx)
-        self._ds = ufl.Measure("ds", domain=mesh, subdomain_data=self.dmesh.boundaries)
-        self._normal = ufl.FacetNormal(mesh)
-        mesh.topology.create_connectivity(tdim - 1, tdim)
-
-        # The joints, through the public API a user's own model uses (docs/user-model.md): the
-        # model is a client of JointCoupling like any DOLFINx model.
         names = names_of(self.dmesh, "joints")
-        self.coupling = JointCoupling(V, self.dmesh, {n: self.behaviours[t] for n, t in names.items()},
+        self.coupling = JointCoupling(self.V, self.dmesh, {n: self.behaviours[t] for n, t in names.items()},
                                       quadrature=self.quadrature)
-        imap, bs = V.dofmap.index_map, V.dofmap.index_map_bs
-        self._n_local = (imap.size_local + imap.num_ghosts) * bs
-        self.r = la.create_petsc_vector(imap, bs)
-        self._r_joint = self.r.duplicate()
-        self._f_lambda = self.r.duplicate()
-        self._lift = self.r.duplicate()
-        self._r_sigma0 = None  # ∫ε(v):σ0 dx with an in-situ stress
-
+        imap, bs = self.V.dofmap.index_map, self.V.dofmap.index_map_bs
         num_dofs = imap.size_global * bs
-        symmetric = symmetric_tangent(self.behaviours)
-        nullspace = None
         kind = resolve_kind(self.linear_solver_kind, num_dofs, self.gdim)
-        if kind == "iterative":
-            nullspace = rigid_body_modes(V)
+        nullspace = rigid_body_modes(self.V) if kind == "iterative" else None
         self.linear_solver = LinearSolver(self.comm, kind, num_dofs=num_dofs, near_nullspace=nullspace,
-                                          symmetric=symmetric, options=self.petsc_options,
-                                          prefix=self.options_prefix)
+                                          symmetric=symmetric_tangent(self.behaviours),
+                                          options=self.petsc_options, prefix=self.options_prefix)
         self.num_dofs = num_dofs
-        self.load_factor = 0.0
-        self._applied = None
-        self._saved = None
-        self.K = self.J = None
         self.timings["setup"] += time.perf_counter() - t0
-        self._space_ready = True
 
     def _setup_supports(self) -> None:
         """Dirichlet dofs of every support and the bulk matrix K with them (identity rows)."""
         t0 = time.perf_counter()
-        V, fdim = self.V, self.mesh.topology.dim - 1
-        f2c = self.mesh.topology.connectivity(fdim, fdim + 1)
-        bcs, constrained = [], np.zeros(self._n_local, dtype=np.int8)
-        self._support_dofs = {}
-        for s in self._supports:
-            facets = self.dmesh.boundary(s.boundary)
-            if s.block_tag is not None:
-                facets = np.array([f for f in facets if self._cell_tag[f2c.links(f)[0]] == s.block_tag],
-                                  dtype=np.int32)
-            entries = []
-            for k, c in enumerate(s.components):
-                Vc = V.sub(c)
-                bc = fem.dirichletbc(PETSc.ScalarType(0), fem.locate_dofs_topological(Vc, fdim, facets), Vc)
-                bcs.append(bc)
-                idx, first_ghost = bc.dof_indices()
-                constrained[idx] = 1
-                entries.append((k, c, np.asarray(idx), np.asarray(idx[:first_ghost])))
-            self._support_dofs[id(s)] = entries
+        bcs, constrained = self.load_path.dirichlet()
         self.bcs = bcs
         self._constrained = constrained
-        self._constrained_local = np.flatnonzero(constrained).astype(np.int32)
-        imap = self.V.dofmap.index_map
-        self._constrained_owned = np.flatnonzero(constrained[: imap.size_local * self.V.dofmap.index_map_bs]
-                                                 ).astype(np.int32)
+        n_owned = self.V.dofmap.index_map.size_local * self.V.dofmap.index_map_bs
+        self._constrained_owned = np.flatnonzero(constrained[:n_owned]).astype(np.int32)
         for A in (self.K, self.J):
             if A is not None:
                 A.destroy()
         self.coupling.set_supports(bcs)
-        K = self.coupling.create_matrix(self.a_form)  # joint couplings reserved (pitfall 4)
-        fem_petsc.assemble_matrix(K, self.a_form, bcs)
+        K = self.coupling.create_matrix(self.blocks.a_form)  # joint couplings reserved (pitfall 4)
+        fem_petsc.assemble_matrix(K, self.blocks.a_form, bcs)
         K.assemble()
         self.K, self.J = K, K.duplicate(copy=True)
         self.timings["bulk_assembly"] += time.perf_counter() - t0
-        self._supports_dirty = False
+
+    def _initial_state(self) -> None:
+        """u = 0 and the loads of the initial state; with an in-situ stress, joints pre-closed
+        (initial jump j0 = (-Δ0, τ0/k_s), Δ0 the closure at σ_n0 = -n·σ0·n) and the equilibrium
+        checked."""
+        lp = self.load_path
+        self.u.x.array[:] = 0.0
+        lp.start()
+        self._initialised = True
+        if lp.in_situ is None:
+            return
+        vertex_rule = self.quadrature == "nodal" and self.degree == 1
+        self.coupling.set_initial_jump(initial_jump(self.coupling.interface, lp.in_situ, self.behaviours,
+                                                    self.gdim, names_of(self.dmesh, "joints"), vertex_rule))
+        self._begin_stage(next_loads=lp.state)
+        rnorm = self.residual()
+        scale = self.load_norm(0.0)
+        tolerance = lp.equilibrium_tolerance
+        if not rnorm <= tolerance * scale:
+            raise ValueError(
+                f"the in-situ stress is not in equilibrium with the model's loads: the initial residual is "
+                f"{rnorm:.3e} N, {rnorm / max(scale, 1e-300):.2e} of the in-situ forces (allowed "
+                f"{tolerance:g}). A uniform σ0 needs no gravity (density=None); a depth-dependent one needs "
+                f"gravity with the same density; a field must satisfy div σ0 + ρ g = 0 (a discretisation "
+                f"imbalance of a non-linear field: raise set_in_situ_stress(..., equilibrium_tolerance=))")
+
+    def _begin_stage(self, next_loads=None) -> None:
+        self.load_path.begin_stage(self.u.x.array, next_loads)
+        self.load_factor = 0.0
+        self._step_iterations = 0
+
+    def _end_stage(self, reached: float) -> None:
+        self.load_path.end_stage(reached)
+
+    def _reactions(self) -> dict:
+        """{(boundary, component): force the support exerts on the rock} at the current state."""
+        lp = self.load_path
+        lp.apply(self.load_factor, self.u)
+        self.blocks.w.x.array[:] = self.u.x.array
+        force = lp.assemble(self.blocks.internal_form)
+        if lp.r_sigma0 is not None:
+            force.axpy(1.0, lp.r_sigma0)
+        self._joint_forces()
+        force.axpy(1.0, self._r_joint)
+        out = lp.reactions(force)
+        force.destroy()
+        return out
 
     @property
     def interface(self):
@@ -344,11 +343,7 @@ class JointedRockModel(StagedLoading):
     # ---- the problem interface used by newton.py ------------------------------------------
     def load_norm(self, load_factor: float) -> float:
         """Scale of the forces at `load_factor`: ||f(λ)|| (+ ||∫ε(v):σ0||)."""
-        f = self._f_prev.copy()
-        f.axpy(load_factor, self._df)
-        out = f.norm()
-        f.destroy()
-        return out + (self._r_sigma0.norm() if self._r_sigma0 is not None else 0.0)
+        return self.load_path.load_norm(load_factor)
 
     def _joint_forces(self) -> bool:
         """r_joint(u) into self._r_joint (owned entries complete); False if not finite."""
@@ -364,7 +359,8 @@ class JointedRockModel(StagedLoading):
         return finite
 
     def residual(self) -> float:
-        self._apply_load_factor()
+        lp = self.load_path
+        lp.apply(self.load_factor, self.u)
         r = self.r
         if not self._joint_forces():
             # Never hand on a stale residual: SNES (through JointedProblem) and our Newton both
@@ -373,11 +369,11 @@ class JointedRockModel(StagedLoading):
             self.counts["nonfinite_residuals"] += 1
             return np.inf
         self.K.mult(self.u.x.petsc_vec, r)
-        if self._any_prescribed:
-            r.axpy(1.0, self._lift)
-        if self._r_sigma0 is not None:
-            r.axpy(1.0, self._r_sigma0)
-        r.axpy(-1.0, self._f_lambda)
+        if lp.any_prescribed:
+            r.axpy(1.0, lp.lift)
+        if lp.r_sigma0 is not None:
+            r.axpy(1.0, lp.r_sigma0)
+        r.axpy(-1.0, lp.f_lambda)
         r.axpy(1.0, self._r_joint)
         with r.localForm() as loc:  # owned entries come first in the local form
             loc.array[self._constrained_owned] = 0.0
@@ -441,7 +437,7 @@ class JointedRockModel(StagedLoading):
         """Back to the last saved (converged) step: u, load factor and the joints' trial state."""
         arr, self.load_factor = self._saved
         self.u.x.array[:] = arr
-        self._applied = None
+        self.load_path.applied = None
         self.coupling.revert_state()
 
     def commit_state(self) -> None:
@@ -455,7 +451,7 @@ class JointedRockModel(StagedLoading):
         """The model as a problem object (F, J) for PETSc SNES or a user's Newton, at the current
         stage's load factor (`model.load_factor`)."""
         self._prepare()
-        if self._f_prev is None:
+        if not self.load_path.stage_open:
             self._begin_stage()
         return JointedProblem(self)
 
@@ -470,7 +466,7 @@ class JointedRockModel(StagedLoading):
         last converged load step."""
         if solver not in ("newton", "snes"):
             raise ValueError(f"solver must be 'newton' or 'snes', got {solver!r}")
-        if restart and self._space_ready:
+        if restart and self.coupling is not None:
             self.coupling.reset_state()  # path-dependent point state
             self._initialised = False
             self._advancing = False
@@ -562,7 +558,7 @@ class JointedRockModel(StagedLoading):
         T = fem.functionspace(self.mesh, ("DG", degree, (self.mesh.geometry.dim, self.mesh.geometry.dim)))
         stress = self.sigma(self.u)
         if self.in_situ is not None:
-            stress = stress + self._sigma0
+            stress = stress + self.load_path.sigma0
         points = T.element.interpolation_points
         points = points() if callable(points) else points
         out = fem.Function(T, name="total_stress")
