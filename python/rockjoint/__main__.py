@@ -9,11 +9,17 @@ import pkgutil
 import sys
 
 from . import commands
+from .law_registry import load_plugins
 
 
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(prog="python3 -m rockjoint",
                                      description="Rough-rock-joint closure laws (rockjoint)")
+    try:  # laws registered from outside the package (ROCKJOINT_LAWS, entry points)
+        load_plugins()
+    except ValueError as err:
+        print(f"rockjoint: error: {err}", file=sys.stderr)
+        return 2
     sub = parser.add_subparsers(dest="command", metavar="command")
     for info in sorted(pkgutil.iter_modules(commands.__path__), key=lambda i: i.name):
         importlib.import_module(f"{commands.__name__}.{info.name}").add_parser(sub)

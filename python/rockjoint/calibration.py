@@ -28,16 +28,16 @@ import math
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Callable, Dict, List, Optional, Sequence
+from typing import Dict, List, Optional, Sequence
 
 import numpy as np
 
 from ._rockjoint import calibration as _cpp_calibration
-from ._rockjoint.constitutive import AsperityParameters, ClosureLaw
-from .laws import make_law
+from ._rockjoint.constitutive import ClosureLaw
+from .law_registry import Quantity, calibratable, get
 
 __all__ = ["ClosureCurve", "FittedParameter", "Calibration", "read_closure_curve",
-           "calibrate", "LAWS"]
+           "calibrate", "calibratable_laws"]
 
 log = logging.getLogger(__name__)
 
@@ -202,63 +202,14 @@ def read_closure_curve(path, *, intact_length: Optional[float] = None,
     return ClosureCurve(stress, closure, std, np.array(lines), source)
 
 
-# ---- the laws that can be calibrated -------------------------------------------------------
-
-@dataclass(frozen=True)
-class _Unknown:
-    name: str        # parameter name (SI value in results)
-    symbol: str
-    unit: str        # display unit
-    scale: float     # SI per display unit
+# ---- what a calibration fits: the law registry's CalibrationSpec of each law -----------------
+#: the closure offset Δ_0 (fitted besides a law's own unknowns)
+_OFFSET = Quantity("closure_offset", "Δ_0", "mm")
 
 
-@dataclass(frozen=True)
-class _LawSpec:
-    unknowns: tuple
-    needs: tuple     # names of given inputs
-    build: Callable  # (values SI, given) -> ClosureLaw
-    offset: bool     # fit a closure offset by default
-
-
-def _gw_type(values, given, interaction: bool) -> ClosureLaw:
-    """A GW-type law from (η, σ_s) and the given E*, β through the law factory."""
-    eta, sigma_s = values
-    stats = AsperityParameters(composite_modulus=given["composite_modulus"],
-                               summit_density=eta, summit_radius=given["summit_radius"],
-                               summit_height_std=sigma_s)
-    distribution = given.get("distribution", "gaussian")
-    if not interaction:
-        return make_law("greenwood_williamson", stats, distribution=distribution)
-    variant = given.get("variant", "I1")
-    if given.get("base", "tang_substrate") == "greenwood_williamson":
-        base = make_law("greenwood_williamson", stats, distribution=distribution)
-        return make_law("tang_jiao", stats, base=base, variant=variant)
-    kw = {} if given.get("base_radius") is None else {"base_radius": given["base_radius"]}
-    return make_law("tang_jiao", stats, distribution=distribution, variant=variant, **kw)
-
-
-_ETA = _Unknown("summit_density", "η", "1/mm²", 1e6)
-_SIGMA_S = _Unknown("summit_height_std", "σ_s", "mm", 1e-3)
-#: law name -> what is fitted and how the law is built
-LAWS: Dict[str, _LawSpec] = {
-    "barton_bandis": _LawSpec(
-        (_Unknown("initial_normal_stiffness", "K_ni", "MPa/mm", 1e9),
-         _Unknown("maximum_closure", "V_m", "mm", 1e-3)), (),
-        lambda v, g: make_law("barton_bandis", initial_normal_stiffness=v[0],
-                              maximum_closure=v[1]), False),
-    "exponential": _LawSpec(
-        (_Unknown("maximum_closure", "V_m", "mm", 1e-3),
-         _Unknown("characteristic_stress", "σ_c", "MPa", 1e6)), (),
-        lambda v, g: make_law("exponential", maximum_closure=v[0],
-                              characteristic_stress=v[1]), False),
-    "greenwood_williamson": _LawSpec(
-        (_ETA, _SIGMA_S), ("composite_modulus", "summit_radius"),
-        lambda v, g: _gw_type(v, g, False), True),
-    "tang_jiao": _LawSpec(
-        (_ETA, _SIGMA_S), ("composite_modulus", "summit_radius"),
-        lambda v, g: _gw_type(v, g, True), True),
-}
-_OFFSET = _Unknown("closure_offset", "Δ_0", "mm", 1e-3)
+def calibratable_laws() -> list:
+    """Keys of the laws `calibrate` can fit (rockjoint.law_registry.calibratable)."""
+    return calibratable()
 
 
 @dataclass
@@ -379,44 +330,6 @@ def _closure_of(law: ClosureLaw, stress: np.ndarray) -> np.ndarray:
     return np.asarray(law.closure_at_stress(stress), dtype=float)
 
 
-def _initial_guess(name: str, spec: _LawSpec, curve: ClosureCurve, given: dict,
-                   fit_offset: bool) -> List[float]:
-    """Starting values (SI) from the shape of the curve."""
-    s, d = curve.normal_stress, curve.closure
-    pos = (d > 0) & (s > 0)
-    extra = [0.0] if fit_offset else []  # empirical laws: offset starts at 0
-    if name == "barton_bandis":
-        # σ/Δ = K_ni + σ/V_m is linear in σ (theory §6).
-        slope, intercept = (np.polyfit(s[pos], s[pos] / d[pos], 1) if pos.sum() >= 2
-                            else (0.0, 0.0))
-        k = intercept if intercept > 0 else float(np.median(s[pos] / d[pos]))
-        v = 1.0 / slope if slope > 0 and 1.0 / slope > d[-1] else 1.5 * d[-1]
-        return [k, v] + extra
-    if name == "exponential":
-        v = 1.2 * d[-1]
-        sc = float(np.median(-s[pos] / np.log1p(-d[pos] / v)))
-        return [v, sc] + extra
-    # GW-type: σ_s from the slope of Δ against ln σ (exact for exponential heights), then η
-    # so that the law carries the middle stress at the middle closure (σ ∝ η for GW).
-    upper = pos & (s >= np.median(s[pos]))
-    if upper.sum() >= 2:
-        sigma_s = float(np.polyfit(np.log(s[upper]), d[upper], 1)[0])
-    else:
-        sigma_s = 0.0
-    sigma_s = max(sigma_s, 0.05 * (d[-1] - d[0]))
-    eta, offset = 1e5, 0.0
-    mid = int(np.argmin(np.abs(s - np.median(s))))
-    for _ in range(4):
-        law = spec.build([eta, sigma_s], given)
-        target = d[mid] + offset
-        if target > 0:
-            eta *= s[mid] / float(law.normal_stress(target))
-        if fit_offset:
-            law = spec.build([eta, sigma_s], given)
-            offset = float(_closure_of(law, s[:1])[0]) - d[0]
-    return [eta, sigma_s] + ([offset] if fit_offset else [])
-
-
 def calibrate(curve: ClosureCurve, law: str, *, composite_modulus: Optional[float] = None,
               summit_radius: Optional[float] = None, distribution: str = "gaussian",
               base: Optional[str] = None, variant: str = "I1",
@@ -433,34 +346,31 @@ def calibrate(curve: ClosureCurve, law: str, *, composite_modulus: Optional[floa
     starting values (SI, in the order of the fitted parameters). Weights: 1/closure_std² when
     the curve has it.
     """
-    if law not in LAWS:
-        raise ValueError(f"calibrate: law '{law}' is unknown; choose one of "
-                         f"{', '.join(sorted(LAWS))}")
-    spec = LAWS[law]
+    record = get(law)
+    spec = record.calibration
+    if spec is None:
+        raise ValueError(f"calibrate: law '{law}' cannot be calibrated; choose one of "
+                         f"{', '.join(calibratable())}")
     given: Dict[str, object] = {}
-    if "composite_modulus" in spec.needs:
-        for key, v, unit in (("composite_modulus", composite_modulus, "Pa"),
-                             ("summit_radius", summit_radius, "m")):
-            if v is None or not (math.isfinite(v) and v > 0):
-                raise ValueError(f"calibrate: law '{law}' needs {key} [{unit}] finite and > 0 "
-                                 f"(got {v})")
-            given[key] = float(v)
-        given["distribution"] = distribution
-        if law == "tang_jiao":
-            given["base"] = base or "tang_substrate"
-            given["variant"] = variant
-            if base_radius is not None:
-                given["base_radius"] = float(base_radius)
-    elif composite_modulus is not None or summit_radius is not None:
+    inputs = {"composite_modulus": (composite_modulus, "Pa"), "summit_radius": (summit_radius, "m")}
+    for key in spec.needs:
+        v, unit = inputs[key]
+        if v is None or not (math.isfinite(v) and v > 0):
+            raise ValueError(f"calibrate: law '{law}' needs {key} [{unit}] finite and > 0 (got {v})")
+        given[key] = float(v)
+    if not spec.needs and (composite_modulus is not None or summit_radius is not None):
         log.info("calibrate: %s ignores composite_modulus/summit_radius", law)
-    offset = spec.offset if fit_offset is None else bool(fit_offset)
+    options = {"distribution": distribution, "base": base or "tang_substrate", "variant": variant,
+               "base_radius": None if base_radius is None else float(base_radius)}
+    given.update({k: options[k] for k in spec.options if options[k] is not None})
+    offset = spec.fit_offset if fit_offset is None else bool(fit_offset)
     unknowns = list(spec.unknowns) + ([_OFFSET] if offset else [])
     if curve.closure.size <= len(unknowns) + 1:
         raise ValueError(f"{curve.source}: {curve.closure.size} points are too few to fit "
                          f"{len(unknowns)} parameters with an uncertainty (need at least "
                          f"{len(unknowns) + 2})")
-    start = list(initial) if initial is not None else _initial_guess(law, spec, curve, given,
-                                                                      offset)
+    start = (list(initial) if initial is not None else
+             spec.initial_guess(curve.normal_stress, curve.closure, given, spec.build, offset, _closure_of))
     if len(start) != len(unknowns):
         raise ValueError(f"calibrate: {len(start)} initial values for {len(unknowns)} "
                          f"parameters ({', '.join(u.name for u in unknowns)})")

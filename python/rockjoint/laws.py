@@ -1,6 +1,7 @@
 """The one law factory: closure laws by name, from a parameter file, or from a topography.
 
-Every law the package builds from a description goes through here: the CLI
+Every law the package builds from a description goes through here (the laws themselves are the
+records of rockjoint.law_registry, their one place): the CLI
 (``python3 -m rockjoint tabulate``, ``topography analyse``), the TOML parameter files, the
 topography code and the demos. Roughness statistics travel as one type,
 :class:`rockjoint.AsperityParameters` (E*, η, β, σ_s and the sampling interval h they belong
@@ -15,19 +16,12 @@ from __future__ import annotations
 import dataclasses
 import os
 import tomllib
-from typing import Callable, Dict, Mapping, Optional, Sequence, Tuple
+from typing import Dict, Optional, Sequence, Tuple
 
 import numpy as np
 
-from ._rockjoint.constitutive import (AsperityParameters, BartonBandis, ClosureLaw,
-                                      ExponentialLaw, GreenwoodWilliamson, LogarithmicLaw,
-                                      TangJiao, TangSubstrate, composite_modulus)
-
-MM = 1e-3          # m per mm
-MPA = 1e6          # Pa per MPa
-GPA = 1e9          # Pa per GPa
-MPA_PER_MM = 1e9   # Pa/m per MPa/mm
-PER_MM2 = 1e6      # 1/m² per 1/mm²
+from ._rockjoint.constitutive import AsperityParameters, ClosureLaw
+from .law_registry import MM, MPA, MPA_PER_MM, REGISTRY, get
 
 
 @dataclasses.dataclass(frozen=True)
@@ -40,83 +34,12 @@ class NamedLaw:
     description: str   # what the law is, in one sentence
 
 
-# ---- the registry of models -------------------------------------------------------------------
-@dataclasses.dataclass(frozen=True)
-class Model:
-    """One model of the registry: its TOML keys (user units) and how it is built (SI)."""
-
-    key: str
-    label: str
-    description: str
-    required: frozenset
-    optional: frozenset
-    from_values: Callable[[dict], ClosureLaw]   # TOML [law] values (user units) -> law
-
-
-_ASPERITY_KEYS = frozenset({"composite_modulus_GPa", "young_modulus_GPa", "poisson_ratio",
-                            "summit_density_per_mm2", "summit_radius_mm", "summit_height_std_mm",
-                            "sampling_interval_mm", "height_distribution"})
-_STATISTICS_KEYS = frozenset({"summit_density_per_mm2", "summit_radius_mm",
-                              "summit_height_std_mm"})
-_SUBSTRATE_KEYS = frozenset({"deflection_coefficient", "base_radius_mm"})
 _TEXT_KEYS = frozenset({"height_distribution", "variant"})
-_ASPERITY_MODELS = ("greenwood_williamson", "tang_substrate", "tang_jiao")
-
-
-def parameters_from_values(values: Mapping[str, float]) -> AsperityParameters:
-    """AsperityParameters (SI) from the TOML [law] keys of an asperity model (user units)."""
-    if "composite_modulus_GPa" in values:
-        e_star = values["composite_modulus_GPa"] * GPA
-    else:
-        e_star = composite_modulus(values["young_modulus_GPa"] * GPA, values["poisson_ratio"])
-    h = values.get("sampling_interval_mm")
-    return AsperityParameters(composite_modulus=e_star,
-                              summit_density=values["summit_density_per_mm2"] * PER_MM2,
-                              summit_radius=values["summit_radius_mm"] * MM,
-                              summit_height_std=values["summit_height_std_mm"] * MM,
-                              sampling_interval=None if h is None else h * MM)
-
-
-def _asperity_from_values(model: str) -> Callable[[dict], ClosureLaw]:
-    def build(values: dict) -> ClosureLaw:
-        options = {"distribution": values.get("height_distribution", "gaussian")}
-        if "deflection_coefficient" in values:
-            options["deflection_coefficient"] = values["deflection_coefficient"]
-        if "base_radius_mm" in values:
-            options["base_radius"] = values["base_radius_mm"] * MM
-        if "variant" in values:
-            options["variant"] = values["variant"]
-        return make_law(model, parameters_from_values(values), **options)
-    return build
-
-
-MODELS: Dict[str, Model] = {m.key: m for m in (
-    Model("barton_bandis", "Barton-Bandis", "hyperbolic law σ = K_ni Δ/(1 - Δ/V_m) (theory §6)",
-          frozenset({"initial_normal_stiffness_MPa_per_mm", "maximum_closure_mm"}), frozenset(),
-          lambda v: BartonBandis(v["initial_normal_stiffness_MPa_per_mm"] * MPA_PER_MM,
-                                 v["maximum_closure_mm"] * MM)),
-    Model("logarithmic", "logarithmic", "Δ = B ln(σ/σ0) (Swan 1983; theory §6)",
-          frozenset({"closure_scale_mm", "seating_stress_MPa"}), frozenset(),
-          lambda v: LogarithmicLaw(v["closure_scale_mm"] * MM, v["seating_stress_MPa"] * MPA)),
-    Model("exponential", "exponential", "Δ = V_m (1 - exp(-σ/σ_c)) (theory §6)",
-          frozenset({"maximum_closure_mm", "characteristic_stress_MPa"}), frozenset(),
-          lambda v: ExponentialLaw(v["maximum_closure_mm"] * MM,
-                                   v["characteristic_stress_MPa"] * MPA)),
-    Model("greenwood_williamson", "GW", "Greenwood-Williamson on the composite topography "
-          "(theory §2)", _STATISTICS_KEYS, _ASPERITY_KEYS,
-          _asperity_from_values("greenwood_williamson")),
-    Model("tang_substrate", "Tang", "GW with Tang's substrate deformation (theory §4)",
-          _STATISTICS_KEYS, _ASPERITY_KEYS | _SUBSTRATE_KEYS,
-          _asperity_from_values("tang_substrate")),
-    Model("tang_jiao", "Tang & Jiao", "Tang & Jiao's interaction cell over Tang's substrate law "
-          "(theory §5)", _STATISTICS_KEYS, _ASPERITY_KEYS | _SUBSTRATE_KEYS | {"variant"},
-          _asperity_from_values("tang_jiao")),
-)}
 
 
 # ---- by name (SI) -----------------------------------------------------------------------------
 def make_law(model: str, parameters: Optional[AsperityParameters] = None, **options) -> ClosureLaw:
-    """The law `model` (a key of MODELS) in SI units.
+    """The law `model` (a key of the law registry, rockjoint.law_registry) in SI units.
 
     Asperity models take `parameters` (AsperityParameters) and the options of their classes:
     ``distribution`` ("gaussian", "exponential" or an empirical (heights, radii, area) list, for
@@ -124,53 +47,11 @@ def make_law(model: str, parameters: Optional[AsperityParameters] = None, **opti
     ``base_radius``, ``reference_separation``, ``seating_stress``, ``tolerance``; "tang_jiao"
     also ``variant``, ``overlap_closure``/``overlap_area_ratio``, ``cell_radius`` /
     ``cell_height_std`` (R and σ of Eq. (1); default β and σ_s of the base), and ``base`` (a
-    ready base law, default Tang's substrate law from the same options). Empirical models take their own
-    constructor's keywords (e.g. make_law("barton_bandis", initial_normal_stiffness=2e10,
-    maximum_closure=3e-4)).
+    ready base law, default Tang's substrate law from the same options). Laws with their own
+    parameters take them as SI keywords (e.g. make_law("barton_bandis",
+    initial_normal_stiffness=2e10, maximum_closure=3e-4)).
     """
-    if model not in MODELS:
-        raise ValueError(f"unknown law model {model!r}; expected one of {', '.join(MODELS)}")
-    if model not in _ASPERITY_MODELS:
-        cls = {"barton_bandis": BartonBandis, "logarithmic": LogarithmicLaw,
-               "exponential": ExponentialLaw}[model]
-        return cls(**options)
-    tang_jiao = {k: options.pop(k) for k in ("variant", "overlap_closure", "overlap_area_ratio",
-                                             "cell_radius", "cell_height_std") if k in options}
-    base = options.pop("base", None)
-    if model != "tang_jiao" and (tang_jiao or base is not None):
-        raise ValueError(f"{model}: {', '.join(list(tang_jiao) + ['base'] * (base is not None))} "
-                         "apply to tang_jiao only")
-    if base is None:
-        if parameters is None:
-            raise ValueError(f"{model}: AsperityParameters are required")
-        empirical = not isinstance(options.get("distribution", "gaussian"), str)
-        stats = ({} if empirical else
-                 dict(summit_density=parameters.summit_density,
-                      summit_radius=parameters.summit_radius,
-                      summit_height_std=parameters.summit_height_std))
-        cls = GreenwoodWilliamson if model == "greenwood_williamson" else TangSubstrate
-        if cls is GreenwoodWilliamson and {"deflection_coefficient", "base_radius"} & options.keys():
-            raise ValueError("greenwood_williamson: deflection_coefficient and base_radius "
-                             "belong to tang_substrate / tang_jiao")
-        base = cls(parameters.composite_modulus, **stats, **options)
-    elif options:
-        raise ValueError(f"{model}: options {', '.join(options)} describe the base law; "
-                         "they cannot be given with base=")
-    if model != "tang_jiao":
-        return base
-    for k in ("overlap_closure", "overlap_area_ratio"):
-        if k in tang_jiao:
-            tang_jiao[k] = np.asarray(tang_jiao[k], dtype=float)
-    # Eq. (1) inputs of the interaction cell: by default R = β and σ_s of the base law; a
-    # choice documented in theory §5 lets either be replaced (e.g. the surface rms for σ).
-    radius, height_std = tang_jiao.pop("cell_radius", None), tang_jiao.pop("cell_height_std", None)
-    if radius is not None or height_std is not None:
-        stats = base.asperity_parameters
-        tang_jiao.update(composite_modulus=stats.composite_modulus,
-                         radius=stats.summit_radius if radius is None else radius,
-                         summit_height_std=(stats.summit_height_std if height_std is None
-                                            else height_std))
-    return TangJiao(base, **tang_jiao)
+    return get(model).build(parameters, **options)
 
 
 # ---- from a parameter file ---------------------------------------------------------------------
@@ -180,7 +61,7 @@ _TABLE_KEYS = {"maximum_stress_MPa", "maximum_closure_mm", "tolerance",
 
 def read_law_file(path: str | os.PathLike) -> Tuple[NamedLaw, dict]:
     """(NamedLaw, tabulation options in SI for rockjoint.tabulate) from a TOML parameter file
-    with a [law] section (``model`` = a key of MODELS, keys in the units their names say) and an
+    with a [law] section (``model`` = a key of the law registry, keys in the units their names say) and an
     optional [table] section. ValueError naming the file and the key for every mistake."""
     path = os.fspath(path)
     with open(path, "rb") as f:
@@ -193,25 +74,25 @@ def read_law_file(path: str | os.PathLike) -> Tuple[NamedLaw, dict]:
             raise ValueError(f"{path}: unknown section [{section}]; expected [law] and [table]")
     values = dict(doc.get("law", {}))
     key = values.pop("model", None)
-    if key not in MODELS:
+    if key not in REGISTRY:
         raise ValueError(f"{path}: [law] model = {key!r}; expected one of "
-                         f"{', '.join(sorted(MODELS))}")
-    model = MODELS[key]
-    missing = sorted(model.required - values.keys())
-    if key in _ASPERITY_MODELS and not ("composite_modulus_GPa" in values
+                         f"{', '.join(sorted(REGISTRY))}")
+    model = REGISTRY[key]
+    missing = sorted(model.file_required - values.keys())
+    if model.asperity and not ("composite_modulus_GPa" in values
                                         or {"young_modulus_GPa", "poisson_ratio"} <= values.keys()):
         missing.append("composite_modulus_GPa (or young_modulus_GPa and poisson_ratio)")
     if missing:
         raise ValueError(f"{path}: [law] model {key} is missing {', '.join(missing)}")
-    unknown = sorted(values.keys() - model.required - model.optional)
+    unknown = sorted(values.keys() - model.file_required - model.file_optional)
     if unknown:
         raise ValueError(f"{path}: [law] unknown key(s) {', '.join(unknown)} for model {key}; "
-                         f"expected {', '.join(sorted(model.required | model.optional))}")
+                         f"expected {', '.join(sorted(model.file_required | model.file_optional))}")
     for k, v in values.items():
         if k not in _TEXT_KEYS and (isinstance(v, bool) or not isinstance(v, (int, float))):
             raise ValueError(f"{path}: [law] {k} = {v!r} must be a number")
     try:
-        law = model.from_values(values)
+        law = model.from_file_values(values)
     except TypeError as err:
         raise ValueError(f"{path}: [law] model {key}: {err}") from err
     return NamedLaw(key, model.label, law, model.description), _table_options(path, doc)
@@ -306,12 +187,9 @@ def laws_from_topography(parameters: AsperityParameters, *, summits=None,
     def family(suffix: str, label_suffix: str, options: dict):
         gw = make_law("greenwood_williamson", parameters, **options)
         tang = make_law("tang_substrate", parameters, **options, **substrate)
-        add("greenwood_williamson" + suffix, "GW" + label_suffix, MODELS["greenwood_williamson"]
-            .description, gw)
-        add("tang_substrate" + suffix, "Tang" + label_suffix, MODELS["tang_substrate"].description,
-            tang)
-        add("tang_jiao" + suffix, "Tang & Jiao" + label_suffix, MODELS["tang_jiao"].description,
-            make_law("tang_jiao", base=tang, variant=variant))
+        for key, law in (("greenwood_williamson", gw), ("tang_substrate", tang),
+                         ("tang_jiao", make_law("tang_jiao", base=tang, variant=variant))):
+            add(key + suffix, REGISTRY[key].label + label_suffix, REGISTRY[key].description, law)
         return gw, tang
 
     gw, _ = family("", "", dict(distribution=distribution, **seat))
@@ -332,11 +210,11 @@ def laws_from_topography(parameters: AsperityParameters, *, summits=None,
 
 
 def describe_models() -> str:
-    """One line per registered model: key, what it is, its TOML keys."""
+    """One line per registered model: key, what it is, its parameter-file keys."""
     lines = []
-    for m in MODELS.values():
-        optional = sorted(m.optional - m.required)
-        lines.append(f"{m.key}: {m.description}; requires {', '.join(sorted(m.required))}"
+    for m in REGISTRY.values():
+        optional = sorted(m.file_optional - m.file_required)
+        lines.append(f"{m.key}: {m.description}; requires {', '.join(sorted(m.file_required))}"
                      + (f"; optional {', '.join(optional)}" if optional else ""))
     return "\n".join(lines)
 

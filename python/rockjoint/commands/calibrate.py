@@ -17,9 +17,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-MM = 1e-3
-MPA = 1e6
-GPA = 1e9
+from ..law_registry import GPA, MM, MPA, TANG_JIAO_BASES, calibratable
 
 
 def add_parser(subparsers) -> None:
@@ -28,9 +26,8 @@ def add_parser(subparsers) -> None:
         description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("curve", help="CSV file: 'closure [mm]' (or 'displacement [mm]') and "
                                  "'normal_stress [MPa]' columns, units in the header")
-    p.add_argument("--law", required=True,
-                   choices=["barton_bandis", "exponential", "greenwood_williamson",
-                            "tang_jiao"], help="law to fit")
+    p.add_argument("--law", required=True, choices=calibratable(),
+                   help="law to fit (the calibratable laws of rockjoint.law_registry)")
     p.add_argument("--young", type=float, metavar="GPA",
                    help="Young's modulus of the rock [GPa] (intact-deformation removal; with "
                         "--poisson it also gives E* = E/(2(1-ν²)) for GW-type laws)")
@@ -43,7 +40,7 @@ def add_parser(subparsers) -> None:
                    help="mean summit radius β [mm] (GW-type laws; also R of Eq. (1))")
     p.add_argument("--distribution", choices=["gaussian", "exponential"], default="gaussian",
                    help="summit-height distribution of GW-type laws (default gaussian)")
-    p.add_argument("--base", choices=["tang_substrate", "greenwood_williamson"],
+    p.add_argument("--base", choices=TANG_JIAO_BASES,
                    default="tang_substrate", help="base law of tang_jiao (default "
                                                   "tang_substrate)")
     p.add_argument("--variant", choices=["I1", "I2"], default="I1",

@@ -1,0 +1,349 @@
+"""The law registry: the one place where a closure law's identity lives.
+
+Each law rockjoint builds by name has one `LawRecord`: its key (a C++ law's ``name()``), words
+for people, its SI builder, its parameters with their units and parameter-file keys, and what a
+calibration fits. Everything that names laws reads from here: ``laws.make_law`` and
+``laws.read_law_file`` (TOML), ``laws.laws_from_topography``, ``calibration.calibrate``, the CLI's
+choices (``python3 -m rockjoint tabulate | calibrate``) and the docs table (``docs_table``). A
+table (.rjt) keeps its source's key (``TabulatedLaw.source_model``) and any FE joint takes any
+law, so a registered law is usable end to end. Adding a law: docs/architecture.md.
+
+Laws can also be registered from outside the package: modules named in the environment variable
+``ROCKJOINT_LAWS`` (comma separated) or in the entry-point group ``rockjoint.laws`` are imported
+by ``load_plugins()`` (the CLI calls it), and call ``register``.
+
+Units: SI in every builder; the files and reports use the units the quantities name (mm, MPa,
+GPa, MPa/mm, 1/mm²), converted here and nowhere else.
+"""
+from __future__ import annotations
+
+import dataclasses
+import importlib
+import os
+from typing import Callable, Dict, Optional, Sequence, Tuple
+
+import numpy as np
+
+from ._rockjoint.constitutive import (AsperityParameters, BartonBandis, ClosureLaw,
+                                      ExponentialLaw, GreenwoodWilliamson, LogarithmicLaw,
+                                      TangJiao, TangSubstrate, composite_modulus)
+
+#: SI per user unit, for files and reports (the only copy of these factors)
+UNITS = {"-": 1.0, "mm": 1e-3, "MPa": 1e6, "GPa": 1e9, "MPa/mm": 1e9, "1/mm²": 1e6}
+MM, MPA, GPA, MPA_PER_MM, PER_MM2 = (UNITS[u] for u in ("mm", "MPa", "GPa", "MPa/mm", "1/mm²"))
+_FILE_SUFFIX = {"-": "", "mm": "_mm", "MPa": "_MPa", "GPa": "_GPa", "MPa/mm": "_MPa_per_mm",
+                "1/mm²": "_per_mm2"}
+
+
+@dataclasses.dataclass(frozen=True)
+class Quantity:
+    """A law parameter: its SI keyword, symbol and user unit (files, reports)."""
+
+    name: str
+    symbol: str
+    unit: str
+
+    def __post_init__(self):
+        if self.unit not in UNITS:
+            raise ValueError(f"Quantity {self.name!r}: unit {self.unit!r} unknown; one of {sorted(UNITS)}")
+
+    @property
+    def scale(self) -> float:
+        """SI per user unit."""
+        return UNITS[self.unit]
+
+    @property
+    def file_key(self) -> str:
+        """The key in a parameter file, its unit in its name (e.g. maximum_closure_mm)."""
+        return self.name + _FILE_SUFFIX[self.unit]
+
+
+@dataclasses.dataclass(frozen=True)
+class CalibrationSpec:
+    """What `calibration.calibrate` fits: `unknowns` (positive, fitted as logarithms), the given
+    inputs `needs` (SI keywords the caller must pass) and `options` (optional ones), the builder
+    (values SI, given) -> law, the starting values initial_guess(stress, closure, given, build,
+    offset, closure_of) -> values SI (+ the closure offset when `offset`; closure_of(law,
+    stresses) -> closures), and whether a closure offset is fitted by default."""
+
+    unknowns: Tuple[Quantity, ...]
+    build: Callable[[Sequence[float], dict], ClosureLaw]
+    initial_guess: Callable[..., list]
+    needs: Tuple[str, ...] = ()
+    options: Tuple[str, ...] = ()
+    fit_offset: bool = False
+
+
+@dataclasses.dataclass(frozen=True)
+class LawRecord:
+    """One law of the registry."""
+
+    key: str                 # stable identifier (for a C++ law class: its name())
+    label: str               # short display name
+    description: str         # what the law is, in one sentence (with its theory section)
+    build: Callable[..., ClosureLaw]            # build(parameters=None, **SI options)
+    file_required: frozenset                    # parameter-file keys (user units)
+    file_optional: frozenset
+    from_file_values: Callable[[dict], ClosureLaw]
+    calibration: Optional[CalibrationSpec] = None
+    parameters: Tuple[Quantity, ...] = ()       # SI keywords of a law built from its own values
+    asperity: bool = False                      # built from AsperityParameters (E*, η, β, σ_s)
+
+
+REGISTRY: Dict[str, LawRecord] = {}
+
+
+def register(record: LawRecord) -> LawRecord:
+    """Add a law to the registry (ValueError for a key already taken or a malformed record)."""
+    if not isinstance(record, LawRecord):
+        raise ValueError(f"register: a LawRecord is needed, got {type(record).__name__}")
+    if not record.key.isidentifier() or record.key != record.key.lower():
+        raise ValueError(f"register: law key {record.key!r} must be a lower-case identifier")
+    if record.key in REGISTRY:
+        raise ValueError(f"register: a law {record.key!r} is registered already")
+    REGISTRY[record.key] = record
+    return record
+
+
+def unregister(key: str) -> None:
+    """Remove a law (tests, plugins being reloaded)."""
+    REGISTRY.pop(key, None)
+
+
+def get(key: str) -> LawRecord:
+    """The record of `key`, or ValueError listing the registered laws."""
+    if key not in REGISTRY:
+        raise ValueError(f"unknown law model {key!r}; expected one of {', '.join(sorted(REGISTRY))}")
+    return REGISTRY[key]
+
+
+def calibratable() -> list:
+    """Keys of the laws `calibrate` can fit."""
+    return sorted(k for k, r in REGISTRY.items() if r.calibration is not None)
+
+
+def load_plugins() -> list:
+    """Import the law plugins named in ROCKJOINT_LAWS and the entry points 'rockjoint.laws';
+    returns the module names loaded. An import error names the plugin."""
+    loaded = []
+    names = [n.strip() for n in os.environ.get("ROCKJOINT_LAWS", "").split(",") if n.strip()]
+    for name in names:
+        try:
+            importlib.import_module(name)
+        except ImportError as err:
+            raise ValueError(f"ROCKJOINT_LAWS: cannot import law plugin {name!r}: {err}") from err
+        loaded.append(name)
+    from importlib.metadata import entry_points
+    for ep in entry_points(group="rockjoint.laws"):
+        ep.load()
+        loaded.append(ep.value)
+    return loaded
+
+
+def docs_table() -> str:
+    """The registered laws as a Markdown table (key, law, parameter-file keys, fitted by
+    `calibrate`)."""
+    rows = ["| key | law | parameter-file keys | fitted by `calibrate` |", "|---|---|---|---|"]
+    for r in REGISTRY.values():
+        keys = ", ".join(f"`{k}`" for k in sorted(r.file_required))
+        if r.asperity:
+            keys += ", `composite_modulus_GPa` (or `young_modulus_GPa`, `poisson_ratio`)"
+        fitted = ", ".join(q.symbol for q in r.calibration.unknowns) if r.calibration else "-"
+        rows.append(f"| `{r.key}` | {r.description} | {keys} | {fitted} |")
+    return "\n".join(rows)
+
+
+# ---- laws built from their own parameters ------------------------------------------------------
+def law_from_parameters(key: str, label: str, description: str, make: Callable[..., ClosureLaw],
+                        parameters: Sequence[Quantity], initial_guess=None) -> LawRecord:
+    """A record for a law built by `make(**SI parameters)` (a law class, or a function that
+    composes one): the builder, the parameter-file keys and, with `initial_guess`, a calibration
+    of every parameter."""
+    parameters = tuple(parameters)
+    names = [q.name for q in parameters]
+
+    def build(parameters_=None, **options) -> ClosureLaw:
+        if parameters_ is not None:
+            raise ValueError(f"{key}: takes its own parameters ({', '.join(names)}), not AsperityParameters")
+        unknown = sorted(set(options) - set(names))
+        if unknown:
+            raise ValueError(f"{key}: unknown parameter(s) {', '.join(unknown)}; expected {', '.join(names)}")
+        return make(**options)
+
+    def from_file(values: dict) -> ClosureLaw:
+        return make(**{q.name: values[q.file_key] * q.scale for q in parameters})
+
+    calibration = None
+    if initial_guess is not None:
+        calibration = CalibrationSpec(parameters, lambda v, g: make(**dict(zip(names, v))), initial_guess)
+    return LawRecord(key, label, description, build, frozenset(q.file_key for q in parameters),
+                     frozenset(), from_file, calibration, parameters)
+
+
+def _barton_bandis_guess(s, d, given, build, offset, closure_of) -> list:
+    """σ/Δ = K_ni + σ/V_m is linear in σ (theory §6); an offset starts at 0."""
+    pos = (d > 0) & (s > 0)
+    slope, intercept = np.polyfit(s[pos], s[pos] / d[pos], 1) if pos.sum() >= 2 else (0.0, 0.0)
+    k = intercept if intercept > 0 else float(np.median(s[pos] / d[pos]))
+    v = 1.0 / slope if slope > 0 and 1.0 / slope > d[-1] else 1.5 * d[-1]
+    return [k, v] + ([0.0] if offset else [])
+
+
+def _exponential_guess(s, d, given, build, offset, closure_of) -> list:
+    pos = (d > 0) & (s > 0)
+    v = 1.2 * d[-1]
+    return [v, float(np.median(-s[pos] / np.log1p(-d[pos] / v)))] + ([0.0] if offset else [])
+
+
+_K_NI = Quantity("initial_normal_stiffness", "K_ni", "MPa/mm")
+_V_M = Quantity("maximum_closure", "V_m", "mm")
+register(law_from_parameters(
+    "barton_bandis", "Barton-Bandis", "hyperbolic law σ = K_ni Δ/(1 - Δ/V_m) (theory §6)",
+    BartonBandis, (_K_NI, _V_M), _barton_bandis_guess))
+register(law_from_parameters(
+    "logarithmic", "logarithmic", "Δ = B ln(σ/σ0) (Swan 1983; theory §6)", LogarithmicLaw,
+    (Quantity("closure_scale", "B", "mm"), Quantity("seating_stress", "σ0", "MPa"))))
+register(law_from_parameters(
+    "exponential", "exponential", "Δ = V_m (1 - exp(-σ/σ_c)) (theory §6)", ExponentialLaw,
+    (_V_M, Quantity("characteristic_stress", "σ_c", "MPa")), _exponential_guess))
+
+
+# ---- asperity laws: built from the statistics of the composite topography -----------------------
+_ASPERITY_KEYS = frozenset({"composite_modulus_GPa", "young_modulus_GPa", "poisson_ratio",
+                            "summit_density_per_mm2", "summit_radius_mm", "summit_height_std_mm",
+                            "sampling_interval_mm", "height_distribution"})
+_STATISTICS_KEYS = frozenset({"summit_density_per_mm2", "summit_radius_mm", "summit_height_std_mm"})
+_SUBSTRATE_KEYS = frozenset({"deflection_coefficient", "base_radius_mm"})
+#: laws Tang & Jiao's interaction cell can sit on (calibrate(base=...), the CLI's --base)
+TANG_JIAO_BASES = ("tang_substrate", "greenwood_williamson")
+_TANG_JIAO_OPTIONS = ("variant", "overlap_closure", "overlap_area_ratio", "cell_radius", "cell_height_std")
+
+
+def parameters_from_values(values) -> AsperityParameters:
+    """AsperityParameters (SI) from the parameter-file keys of an asperity model (user units)."""
+    if "composite_modulus_GPa" in values:
+        e_star = values["composite_modulus_GPa"] * GPA
+    else:
+        e_star = composite_modulus(values["young_modulus_GPa"] * GPA, values["poisson_ratio"])
+    h = values.get("sampling_interval_mm")
+    return AsperityParameters(composite_modulus=e_star,
+                              summit_density=values["summit_density_per_mm2"] * PER_MM2,
+                              summit_radius=values["summit_radius_mm"] * MM,
+                              summit_height_std=values["summit_height_std_mm"] * MM,
+                              sampling_interval=None if h is None else h * MM)
+
+
+def _asperity_build(key: str) -> Callable[..., ClosureLaw]:
+    """The SI builder of an asperity law (options: laws.make_law's docstring)."""
+
+    def build(parameters: Optional[AsperityParameters] = None, **options) -> ClosureLaw:
+        tang_jiao = {k: options.pop(k) for k in _TANG_JIAO_OPTIONS if k in options}
+        base = options.pop("base", None)
+        if key != "tang_jiao" and (tang_jiao or base is not None):
+            raise ValueError(f"{key}: {', '.join(list(tang_jiao) + ['base'] * (base is not None))} "
+                             "apply to tang_jiao only")
+        if base is None:
+            if parameters is None:
+                raise ValueError(f"{key}: AsperityParameters are required")
+            empirical = not isinstance(options.get("distribution", "gaussian"), str)
+            stats = ({} if empirical else
+                     dict(summit_density=parameters.summit_density, summit_radius=parameters.summit_radius,
+                          summit_height_std=parameters.summit_height_std))
+            cls = GreenwoodWilliamson if key == "greenwood_williamson" else TangSubstrate
+            if cls is GreenwoodWilliamson and {"deflection_coefficient", "base_radius"} & options.keys():
+                raise ValueError("greenwood_williamson: deflection_coefficient and base_radius "
+                                 "belong to tang_substrate / tang_jiao")
+            base = cls(parameters.composite_modulus, **stats, **options)
+        elif options:
+            raise ValueError(f"{key}: options {', '.join(options)} describe the base law; "
+                             "they cannot be given with base=")
+        if key != "tang_jiao":
+            return base
+        for k in ("overlap_closure", "overlap_area_ratio"):
+            if k in tang_jiao:
+                tang_jiao[k] = np.asarray(tang_jiao[k], dtype=float)
+        # Eq. (1) inputs of the interaction cell: by default R = β and σ_s of the base law; a
+        # choice documented in theory §5 lets either be replaced (e.g. the surface rms for σ).
+        radius, height_std = tang_jiao.pop("cell_radius", None), tang_jiao.pop("cell_height_std", None)
+        if radius is not None or height_std is not None:
+            stats = base.asperity_parameters
+            tang_jiao.update(composite_modulus=stats.composite_modulus,
+                             radius=stats.summit_radius if radius is None else radius,
+                             summit_height_std=(stats.summit_height_std if height_std is None
+                                                else height_std))
+        return TangJiao(base, **tang_jiao)
+
+    return build
+
+
+def _asperity_from_file(key: str) -> Callable[[dict], ClosureLaw]:
+    build = _asperity_build(key)
+
+    def from_file(values: dict) -> ClosureLaw:
+        options = {"distribution": values.get("height_distribution", "gaussian")}
+        if "deflection_coefficient" in values:
+            options["deflection_coefficient"] = values["deflection_coefficient"]
+        if "base_radius_mm" in values:
+            options["base_radius"] = values["base_radius_mm"] * MM
+        if "variant" in values:
+            options["variant"] = values["variant"]
+        return build(parameters_from_values(values), **options)
+
+    return from_file
+
+
+def _gw_type(key: str) -> Callable[[Sequence[float], dict], ClosureLaw]:
+    """(η, σ_s) fitted, E* and β given: GW, or Tang & Jiao over the given base."""
+    def build(values, given) -> ClosureLaw:
+        eta, sigma_s = values
+        stats = AsperityParameters(composite_modulus=given["composite_modulus"], summit_density=eta,
+                                   summit_radius=given["summit_radius"], summit_height_std=sigma_s)
+        distribution = given.get("distribution", "gaussian")
+        gw = _asperity_build("greenwood_williamson")
+        if key == "greenwood_williamson":
+            return gw(stats, distribution=distribution)
+        tj = _asperity_build("tang_jiao")
+        variant = given.get("variant", "I1")
+        if given.get("base", "tang_substrate") == "greenwood_williamson":
+            return tj(stats, base=gw(stats, distribution=distribution), variant=variant)
+        kw = {} if given.get("base_radius") is None else {"base_radius": given["base_radius"]}
+        return tj(stats, distribution=distribution, variant=variant, **kw)
+    return build
+
+
+def _gw_type_guess(s, d, given, build, offset, closure_of) -> list:
+    """σ_s from the slope of Δ against ln σ (exact for exponential heights), then η so that the
+    law carries the middle stress at the middle closure (σ ∝ η for GW), with the offset."""
+    pos = (d > 0) & (s > 0)
+    upper = pos & (s >= np.median(s[pos]))
+    sigma_s = float(np.polyfit(np.log(s[upper]), d[upper], 1)[0]) if upper.sum() >= 2 else 0.0
+    sigma_s = max(sigma_s, 0.05 * (d[-1] - d[0]))
+    eta, c = 1e5, 0.0
+    mid = int(np.argmin(np.abs(s - np.median(s))))
+    for _ in range(4):
+        law = build([eta, sigma_s], given)
+        target = d[mid] + c
+        if target > 0:
+            eta *= s[mid] / float(law.normal_stress(target))
+        if offset:
+            law = build([eta, sigma_s], given)
+            c = float(closure_of(law, s[:1])[0]) - d[0]
+    return [eta, sigma_s] + ([c] if offset else [])
+
+
+_ETA = Quantity("summit_density", "η", "1/mm²")
+_SIGMA_S = Quantity("summit_height_std", "σ_s", "mm")
+_GIVEN = ("composite_modulus", "summit_radius")
+for _key, _label, _description, _optional, _options in (
+        ("greenwood_williamson", "GW", "Greenwood-Williamson on the composite topography (theory §2)",
+         _ASPERITY_KEYS, ("distribution",)),
+        ("tang_substrate", "Tang", "GW with Tang's substrate deformation (theory §4)",
+         _ASPERITY_KEYS | _SUBSTRATE_KEYS, None),
+        ("tang_jiao", "Tang & Jiao", "Tang & Jiao's interaction cell over Tang's substrate law (theory §5)",
+         _ASPERITY_KEYS | _SUBSTRATE_KEYS | {"variant"}, ("distribution", "base", "variant", "base_radius"))):
+    register(LawRecord(
+        _key, _label, _description, _asperity_build(_key), _STATISTICS_KEYS, _optional,
+        _asperity_from_file(_key),
+        None if _options is None else CalibrationSpec((_ETA, _SIGMA_S), _gw_type(_key), _gw_type_guess,
+                                                      needs=_GIVEN, options=_options, fit_offset=True),
+        asperity=True))

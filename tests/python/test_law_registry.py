@@ -1,0 +1,116 @@
+"""One law registry (rockjoint.law_registry): a toy law registered in one place becomes available
+to make_law, tabulation, the CLI (tabulate and calibrate, through ROCKJOINT_LAWS), calibration
+and the FE joint; every answer is checked against the toy law's closed form
+Δ(σ) = V_m (1 - exp(-σ/(k0 V_m))). And a law's identity lives in the registry only: no
+comparison with a law name elsewhere in the package, and the docs table is the registry's."""
+import os
+import pathlib
+import re
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import rockjoint
+from rockjoint import law_registry
+from rockjoint.calibration import ClosureCurve, calibrate
+from rockjoint.laws import make_law
+
+from demo_runner import SOURCE
+
+toy = pytest.importorskip("toy_law_plugin")  # registers the toy law on import (for the CLI) ...
+law_registry.unregister(toy.KEY)              # ... which other test modules must not see
+
+
+@pytest.fixture(autouse=True, scope="module")
+def _toy_law_registered_for_this_module_only():
+    """Other test modules see the built-in laws only."""
+    law_registry.REGISTRY.setdefault(toy.KEY, toy.RECORD)
+    yield
+    law_registry.unregister(toy.KEY)
+
+K0, VM = 2e10, 0.5e-3          # [Pa/m], [m]
+STRESS = np.array([0.5, 1, 2, 4, 7, 10, 15, 20]) * 1e6   # [Pa]
+
+
+def test_make_law_and_tabulation_take_the_registered_law():
+    law = make_law(toy.KEY, initial_normal_stiffness=K0, maximum_closure=VM)
+    np.testing.assert_allclose(law.closure_at_stress(STRESS), toy.closure(STRESS, K0, VM), rtol=1e-12)
+    table = rockjoint.tabulate(law, max_stress=25e6, tolerance=1e-6)
+    np.testing.assert_allclose(table.closure_at_stress(STRESS), toy.closure(STRESS, K0, VM), rtol=1e-5)
+    with pytest.raises(ValueError, match="unknown parameter"):
+        make_law(toy.KEY, stiffness=K0)
+    with pytest.raises(ValueError, match="registered already"):
+        law_registry.register(law_registry.REGISTRY[toy.KEY])
+
+
+def test_calibration_recovers_the_toy_parameters():
+    rng = np.random.default_rng(3)
+    noise = 0.002 * VM
+    closure = toy.closure(STRESS, K0, VM) + rng.normal(0.0, noise, STRESS.size)
+    fit = calibrate(ClosureCurve(STRESS, closure, None, np.arange(STRESS.size), "generated"), toy.KEY)
+    for truth, p in zip((K0, VM), fit.parameters):
+        assert abs(p.value - truth) <= 3 * p.standard_error, (p.name, p.value, truth, p.standard_error)
+        assert p.standard_error < 0.1 * truth
+
+
+def _cli(args, cwd):
+    tests = os.path.dirname(__file__)
+    env = dict(os.environ, ROCKJOINT_LAWS="toy_law_plugin", MPLBACKEND="Agg",
+               PYTHONPATH=os.pathsep.join([tests] + [p for p in sys.path if p]))
+    return subprocess.run([sys.executable, "-m", "rockjoint", *args], cwd=cwd, env=env,
+                          capture_output=True, text=True, timeout=300)
+
+
+def test_cli_tabulates_and_calibrates_a_plugin_law(tmp_path):
+    (tmp_path / "toy.toml").write_text(
+        f'[law]\nmodel = "{toy.KEY}"\ninitial_normal_stiffness_MPa_per_mm = {K0 / 1e9}\n'
+        f'maximum_closure_mm = {VM * 1e3}\n[table]\nmaximum_stress_MPa = 25\n')
+    r = _cli(["tabulate", "toy.toml", "-o", "toy.rjt"], tmp_path)
+    assert r.returncode == 0, r.stdout + r.stderr
+    table = rockjoint.TabulatedLaw.load(str(tmp_path / "toy.rjt"))
+    np.testing.assert_allclose(table.closure_at_stress(STRESS), toy.closure(STRESS, K0, VM), rtol=1e-5)
+    with open(tmp_path / "curve.csv", "w") as f:
+        f.write("normal_stress [MPa],closure [mm]\n")
+        for s, d in zip(STRESS, toy.closure(STRESS, K0, VM)):
+            f.write(f"{float(s) / 1e6!r},{float(d) * 1e3!r}\n")
+    r = _cli(["calibrate", "curve.csv", "--law", toy.KEY], tmp_path)
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert "k0" in r.stdout and "V_m" in r.stdout
+    r = _cli(["calibrate", "curve.csv", "--law", "no_such_law"], tmp_path)
+    assert r.returncode == 2 and "invalid choice" in r.stderr
+
+
+def test_fe_joint_takes_the_registered_law():
+    pytest.importorskip("dolfinx")
+    from test_fem_column import column_model, expected_top
+    stress = 10e6
+    model = column_model(2, make_law(toy.KEY, initial_normal_stiffness=K0, maximum_closure=VM))
+    model.add_traction("top", (0.0, -stress))
+    model.solve(load_steps=2)
+    top = model.boundary_mean_displacement("top")[1]
+    assert top == pytest.approx(expected_top(2, stress, float(toy.closure(stress, K0, VM))), rel=1e-8)
+
+
+def test_law_names_are_compared_only_in_the_registry():
+    package = pathlib.Path(SOURCE) / "python" / "rockjoint"
+    keys = [k for k in law_registry.REGISTRY if k != toy.KEY]
+    pattern = re.compile(r"(law|model|name|key|base)\s*[!=]=\s*[\"'](" + "|".join(keys) + r")[\"']")
+    offenders = [f"{p.relative_to(package)}:{i}" for p in package.rglob("*.py") if p.name != "law_registry.py"
+                 for i, line in enumerate(p.read_text(encoding="utf-8").splitlines(), 1) if pattern.search(line)]
+    assert not offenders, offenders
+
+
+def test_architecture_page_shows_the_registry_table():
+    builtin = {k: r for k, r in law_registry.REGISTRY.items() if k != toy.KEY}
+    saved = dict(law_registry.REGISTRY)
+    try:
+        law_registry.REGISTRY.clear()
+        law_registry.REGISTRY.update(builtin)
+        table = law_registry.docs_table()
+    finally:
+        law_registry.REGISTRY.clear()
+        law_registry.REGISTRY.update(saved)
+    page = (pathlib.Path(SOURCE) / "docs" / "architecture.md").read_text(encoding="utf-8")
+    assert table in page, "docs/architecture.md: regenerate the law table with law_registry.docs_table()"
