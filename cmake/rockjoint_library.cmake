@@ -10,8 +10,13 @@ function(rockjoint_add_library name)
   add_library(rockjoint::${name} ALIAS rockjoint_${name})
   set_target_properties(rockjoint_${name} PROPERTIES EXPORT_NAME ${name})
   target_compile_features(rockjoint_${name} PUBLIC cxx_std_20)
-  # In the build tree <build>/include/rockjoint is a link to the source root (see the top-level
-  # CMakeLists.txt), so the same <rockjoint/...> paths resolve before and after installation.
+  # The headers are copied into <build>/include/rockjoint/<name>/ (configure_file re-copies a
+  # header when it changes), so the same <rockjoint/...> paths resolve before and after
+  # installation, and only headers are visible under the include root.
+  foreach(_header ${_headers})
+    get_filename_component(_file ${_header} NAME)
+    configure_file(${_header} ${ROCKJOINT_BUILD_INCLUDE_DIR}/rockjoint/${name}/${_file} COPYONLY)
+  endforeach()
   target_include_directories(rockjoint_${name} PUBLIC
     $<BUILD_INTERFACE:${ROCKJOINT_BUILD_INCLUDE_DIR}>
     $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
