@@ -93,7 +93,7 @@ def corner_block(jm) -> str:
 def build_model(case, dmesh, corner, variant):
     import numpy as np
     import rockjoint
-    from rockjoint.fem import JointedRockModel, NewtonOptions
+    from rockjoint.fem_coupling import JointedRockModel, NewtonOptions
     law = rockjoint.BartonBandis(KNI, VM)
     newton = NewtonOptions(verbose=True, forcing="fixed" if variant == "fixed_forcing" else "eisenstat_walker")
     petsc = {"pc_gamg_agg_nsmooths": 1} if variant == "smoothed_aggregation" else None
@@ -201,7 +201,7 @@ def run_one(case, label, dmesh, corner, variant="default") -> dict:
 def worker(args) -> None:
     logging.basicConfig(level=logging.INFO, format="%(message)s")  # Newton progress (rank 0)
     from mpi4py import MPI
-    from rockjoint.fem.distributed_mesh import distribute
+    from rockjoint.fem_coupling.distributed_mesh import distribute
     comm = MPI.COMM_WORLD
     load0 = os.getloadavg()
     jm, t_mesh = None, 0.0
@@ -247,9 +247,9 @@ def find_build(build: str | None) -> str:
         if c:
             path = c if os.path.isabs(c) else os.path.join(ROOT, c)
             lib = os.path.join(path, "python", "rockjoint")
-            if os.path.isdir(lib) and any(f.startswith("_rockjoint_fem") for f in os.listdir(lib)):
+            if os.path.isdir(lib) and any(f.startswith("_rockjoint_fem_coupling") for f in os.listdir(lib)):
                 return path
-    sys.exit("no build with rockjoint._rockjoint_fem found: build with -DROCKJOINT_FEM=ON and pass --build")
+    sys.exit("no build with rockjoint._rockjoint_fem_coupling found: build with -DROCKJOINT_FEM=ON and pass --build")
 
 
 def launch(env, ranks, case, h, repeat, out, cache, variants=()) -> dict:

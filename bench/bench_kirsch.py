@@ -72,8 +72,8 @@ def solve_case(width_ratio: float, wall_divisions: int, degree: int = 1, loading
     from mpi4py import MPI
 
     from rockjoint import meshes
-    from rockjoint.fem import JointedRockModel, NewtonOptions, distribute
-    from rockjoint.fem.probe import probe, stress_function
+    from rockjoint.fem_coupling import JointedRockModel, NewtonOptions, distribute
+    from rockjoint.fem_coupling.probe import probe, stress_function
     from rockjoint.reference import KirschSolution
 
     if loading not in LOADINGS:
@@ -100,7 +100,7 @@ def solve_case(width_ratio: float, wall_divisions: int, degree: int = 1, loading
         model.add_traction("right", (-K0 * P, 0.0))
         model.solve(load_steps=1)
     else:
-        from rockjoint.fem import InSituStress
+        from rockjoint.fem_coupling import InSituStress
         supports = (("left", "x"), ("bottom", "y")) if quarter else \
             (("left", "x"), ("right", "x"), ("bottom", "y"), ("top", "y"))
         for name, comp in supports:

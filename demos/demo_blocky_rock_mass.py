@@ -41,8 +41,8 @@ from mpi4py import MPI
 import rockjoint
 from rockjoint.console import quiet_compiler_logging, say
 from rockjoint import meshes
-from rockjoint.fem import JointedRockModel, NewtonOptions, ShearState, distribute, make_strength
-from rockjoint.fem.output import gather_triangles
+from rockjoint.fem_coupling import JointedRockModel, NewtonOptions, ShearState, distribute, make_strength
+from rockjoint.fem_coupling.output import gather_triangles
 
 COMM = MPI.COMM_WORLD
 quiet_compiler_logging()  # DOLFINx's form compiler would log every command

@@ -27,7 +27,7 @@ import rockjoint
 from rockjoint.console import quiet_compiler_logging, say
 from rockjoint import contact, meshes
 from rockjoint import topography as topo
-from rockjoint.fem import JointedRockModel, NewtonOptions, distribute
+from rockjoint.fem_coupling import JointedRockModel, NewtonOptions, distribute
 
 COMM = MPI.COMM_WORLD
 quiet_compiler_logging()  # DOLFINx's form compiler would log every command

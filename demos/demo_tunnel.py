@@ -44,9 +44,9 @@ import rockjoint
 from rockjoint.console import quiet_compiler_logging
 from rockjoint import meshes
 from rockjoint import topography as topo
-from rockjoint.fem import InSituStress, JointedRockModel, NewtonOptions, ShearState, distribute
-from rockjoint.fem.output import gather_triangles
-from rockjoint.fem.probe import probe
+from rockjoint.fem_coupling import InSituStress, JointedRockModel, NewtonOptions, ShearState, distribute
+from rockjoint.fem_coupling.output import gather_triangles
+from rockjoint.fem_coupling.probe import probe
 from rockjoint.reference import KirschSolution
 
 COMM = MPI.COMM_WORLD

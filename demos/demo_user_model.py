@@ -35,9 +35,9 @@ from petsc4py import PETSc
 
 import rockjoint
 from rockjoint.console import quiet_compiler_logging, say
-from rockjoint.fem import (JointCoupling, JointedNonlinearProblem, JointedRockModel, NewtonOptions,
+from rockjoint.fem_coupling import (JointCoupling, JointedNonlinearProblem, JointedRockModel, NewtonOptions,
                            split_joints)
-from rockjoint.fem.output import gather_triangles, write_joint_points
+from rockjoint.fem_coupling.output import gather_triangles, write_joint_points
 
 COMM = MPI.COMM_WORLD
 quiet_compiler_logging()  # DOLFINx's form compiler would log every command

@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace rockjoint::fem
+namespace rockjoint::fem_coupling
 {
 
 FacetQuadrature make_facet_quadrature(QuadratureRule rule, int gdim, int degree)
@@ -69,4 +69,4 @@ FacetQuadrature make_facet_quadrature(QuadratureRule rule, int gdim, int degree)
   return q;
 }
 
-} // namespace rockjoint::fem
+} // namespace rockjoint::fem_coupling

@@ -9,7 +9,7 @@
 
 #include <vector>
 
-namespace rockjoint::fem
+namespace rockjoint::fem_coupling
 {
 
 /// Where the interface law is sampled.
@@ -40,4 +40,4 @@ struct FacetQuadrature
 /// for the quadratic integrand u·v). Throws std::invalid_argument for other combinations.
 FacetQuadrature make_facet_quadrature(QuadratureRule rule, int gdim, int degree);
 
-} // namespace rockjoint::fem
+} // namespace rockjoint::fem_coupling

@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace rockjoint::fem
+namespace rockjoint::fem_coupling
 {
 
 InterfaceAssembler::InterfaceAssembler(int gdim, int degree, QuadratureRule rule,
@@ -380,4 +380,4 @@ std::vector<double> InterfaceAssembler::measures() const
   return m;
 }
 
-} // namespace rockjoint::fem
+} // namespace rockjoint::fem_coupling

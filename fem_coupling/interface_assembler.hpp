@@ -30,7 +30,7 @@
 #include <span>
 #include <vector>
 
-namespace rockjoint::fem
+namespace rockjoint::fem_coupling
 {
 
 class InterfaceAssembler
@@ -187,4 +187,4 @@ private:
   mutable std::size_t _num_law_evaluations = 0;
 };
 
-} // namespace rockjoint::fem
+} // namespace rockjoint::fem_coupling

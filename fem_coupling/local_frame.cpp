@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace rockjoint::fem
+namespace rockjoint::fem_coupling
 {
 
 namespace
@@ -142,4 +142,4 @@ std::array<double, 3> joint_reference_direction(const std::array<double, 9>& nor
   return {-m[1] / h, m[0] / h, 0.0}; // e_z × m
 }
 
-} // namespace rockjoint::fem
+} // namespace rockjoint::fem_coupling

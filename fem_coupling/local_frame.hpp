@@ -8,7 +8,7 @@
 #include <array>
 #include <span>
 
-namespace rockjoint::fem
+namespace rockjoint::fem_coupling
 {
 
 /// Orthonormal frame of one facet. Unused entries (3D components in 2D) are zero.
@@ -52,4 +52,4 @@ void set_tangents(LocalFrame& frame, int gdim, const std::array<double, 3>& refe
 /// std::invalid_argument for a moment that is not finite or is zero.
 std::array<double, 3> joint_reference_direction(const std::array<double, 9>& normal_moment);
 
-} // namespace rockjoint::fem
+} // namespace rockjoint::fem_coupling

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-namespace rockjoint::fem
+namespace rockjoint::fem_coupling
 {
 
 void assemble_interface_matrix(Mat A, const InterfaceAssembler& assembler,
@@ -39,4 +39,4 @@ void assemble_interface_matrix(Mat A, const InterfaceAssembler& assembler,
   }
 }
 
-} // namespace rockjoint::fem
+} // namespace rockjoint::fem_coupling

@@ -14,7 +14,7 @@
 #include <cstdint>
 #include <span>
 
-namespace rockjoint::fem
+namespace rockjoint::fem_coupling
 {
 
 /// Add every pair's consistent Jacobian at `u` to `A` with MatSetValuesLocal/ADD_VALUES
@@ -29,4 +29,4 @@ void assemble_interface_matrix(Mat A, const InterfaceAssembler& assembler,
                                std::span<const double> u,
                                std::span<const std::int8_t> constrained, double scale = 1.0);
 
-} // namespace rockjoint::fem
+} // namespace rockjoint::fem_coupling

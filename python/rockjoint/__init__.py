@@ -3,7 +3,7 @@
 SI units inside (Pa, m); compression positive; closure Δ net of intact-rock deformation.
 """
 # The pure-Python sources live in <src>/python/rockjoint; the compiled modules (_rockjoint,
-# _rockjoint_fem) may sit in a build tree's python/rockjoint. extend_path joins every
+# _rockjoint_fem_coupling) may sit in a build tree's python/rockjoint. extend_path joins every
 # rockjoint/ folder on sys.path into this package (PYTHONPATH=<src>/python:<build>/python).
 from pkgutil import extend_path
 

@@ -16,7 +16,7 @@
 #include <set>
 
 using namespace rockjoint;
-using namespace rockjoint::fem;
+using namespace rockjoint::fem_coupling;
 using namespace rockjoint::joint;
 
 namespace

@@ -11,7 +11,7 @@
 #include <vector>
 
 using namespace rockjoint;
-using namespace rockjoint::fem;
+using namespace rockjoint::fem_coupling;
 using namespace rockjoint::test;
 using joint::ShearState;
 

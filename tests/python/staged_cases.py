@@ -4,8 +4,8 @@ from mpi4py import MPI
 
 import rockjoint
 from rockjoint import meshes
-from rockjoint.fem import JointedRockModel, NewtonOptions
-from rockjoint.fem.distributed_mesh import distribute
+from rockjoint.fem_coupling import JointedRockModel, NewtonOptions
+from rockjoint.fem_coupling.distributed_mesh import distribute
 from rockjoint.meshes.node_splitting import build_jointed_mesh
 
 E, NU = 20e9, 0.25

@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 
 pytest.importorskip("dolfinx")
-pytest.importorskip("rockjoint._rockjoint_fem")
+pytest.importorskip("rockjoint._rockjoint_fem_coupling")
 meshio = pytest.importorskip("meshio")
 
 import demo_runner  # noqa: E402

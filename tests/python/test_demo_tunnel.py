@@ -18,7 +18,7 @@ import numpy as np
 import pytest
 
 pytest.importorskip("dolfinx")
-pytest.importorskip("rockjoint._rockjoint_fem")
+pytest.importorskip("rockjoint._rockjoint_fem_coupling")
 
 import demo_runner  # noqa: E402
 from rockjoint.reference import KirschSolution  # noqa: E402
@@ -27,7 +27,7 @@ A, SIGMA_V, K0, E, NU = 4.0, 2700.0 * 9.81 * 300.0, 0.5, 50e9, 0.25
 NAMES = ("right sidewall", "crown", "left sidewall", "invert")
 # Coulomb strength of granite joints: basic friction φ_b = 30° (Barton & Choubey 1977), c = 0
 FRICTION_ANGLE, COHESION = math.radians(30.0), 0.0
-STICK, SLIP, OPEN = 0, 1, 2  # rockjoint.fem.ShearState values
+STICK, SLIP, OPEN = 0, 1, 2  # rockjoint.fem_coupling.ShearState values
 
 
 def run_demo(out, ranks):

@@ -9,7 +9,7 @@ import re
 import pytest
 
 pytest.importorskip("dolfinx")
-pytest.importorskip("rockjoint._rockjoint_fem")
+pytest.importorskip("rockjoint._rockjoint_fem_coupling")
 
 import demo_runner  # noqa: E402
 

@@ -1,4 +1,4 @@
-"""rockjoint.fem.distributed_mesh in serial: DOLFINx mesh, tags and joint pairs from a JointedMesh.
+"""rockjoint.fem_coupling.distributed_mesh in serial: DOLFINx mesh, tags and joint pairs from a JointedMesh.
 
 References: the JointedMesh's own facet pairs (built by a different code path: glued facet table on the
 input mesh) and closed-form block volumes / face areas. Facet vertices are read through DOLFINx's
@@ -9,7 +9,7 @@ import pytest
 from mpi4py import MPI
 
 import dolfinx
-from rockjoint.fem.distributed_mesh import distribute, pair_vertex_positions
+from rockjoint.fem_coupling.distributed_mesh import distribute, pair_vertex_positions
 from rockjoint.meshes import Joint, column, jointed_block
 
 from mesh_checks import facet_coordinates, owned_block_measures, sorted_rows

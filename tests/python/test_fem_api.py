@@ -7,14 +7,14 @@ import numpy as np
 import pytest
 
 pytest.importorskip("dolfinx")
-pytest.importorskip("rockjoint._rockjoint_fem")
+pytest.importorskip("rockjoint._rockjoint_fem_coupling")
 
 from mpi4py import MPI  # noqa: E402
 
 import rockjoint  # noqa: E402
 from rockjoint import meshes  # noqa: E402
-from rockjoint.fem import JointedRockModel, NewtonOptions  # noqa: E402
-from rockjoint.fem.distributed_mesh import distribute  # noqa: E402
+from rockjoint.fem_coupling import JointedRockModel, NewtonOptions  # noqa: E402
+from rockjoint.fem_coupling.distributed_mesh import distribute  # noqa: E402
 
 
 @pytest.fixture(scope="module")

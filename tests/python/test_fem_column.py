@@ -15,14 +15,14 @@ import numpy as np
 import pytest
 
 pytest.importorskip("dolfinx")
-pytest.importorskip("rockjoint._rockjoint_fem")
+pytest.importorskip("rockjoint._rockjoint_fem_coupling")
 
 from mpi4py import MPI  # noqa: E402
 
 import rockjoint  # noqa: E402
 from rockjoint import meshes  # noqa: E402
-from rockjoint.fem import JointedRockModel, NewtonOptions  # noqa: E402
-from rockjoint.fem.distributed_mesh import distribute  # noqa: E402
+from rockjoint.fem_coupling import JointedRockModel, NewtonOptions  # noqa: E402
+from rockjoint.fem_coupling.distributed_mesh import distribute  # noqa: E402
 
 E, NU = 20e9, 0.25
 HEIGHT, JOINTS = 3.0, (1.0, 2.0)
@@ -69,7 +69,7 @@ def test_column_barton_bandis_matches_closed_form(dim, caplog):
     top = [0.0] * dim
     top[-1] = -stress
     model.add_traction("top", top)
-    caplog.set_level(logging.INFO, logger="rockjoint.fem.newton")
+    caplog.set_level(logging.INFO, logger="rockjoint.fem_coupling.newton")
     sol = model.solve(load_steps=1)
     closure = stress * VM / (KNI * VM + stress)  # Barton-Bandis inverse, closed form
     u_top = model.boundary_mean_displacement("top")[dim - 1]
@@ -79,7 +79,7 @@ def test_column_barton_bandis_matches_closed_form(dim, caplog):
     np.testing.assert_allclose(joints["closure"], closure, rtol=1e-8)
     np.testing.assert_allclose(joints["normal_stress"], stress, rtol=1e-8)
     assert np.max(np.abs(joints["shear_traction"])) < 1e-8 * stress
-    # The residual norms Newton logs (INFO, rockjoint.fem.newton) are the ones it records.
+    # The residual norms Newton logs (INFO, rockjoint.fem_coupling.newton) are the ones it records.
     logged = printed_residuals(caplog.text)
     assert logged == pytest.approx([n for r in sol.reports for n in r.residual_norms], rel=1e-6)
     assert_quadratic(logged)
@@ -146,7 +146,7 @@ def test_a_table_driven_past_its_range_is_reported_not_silent(caplog):
     table = rockjoint.tabulate(law, max_stress=5e6)
     model = column_model(2, table, newton=NewtonOptions(verbose=False))
     model.add_traction("top", (0.0, -8e6))
-    with caplog.at_level(logging.WARNING, logger="rockjoint.fem.model"):
+    with caplog.at_level(logging.WARNING, logger="rockjoint.fem_coupling.model"):
         sol = model.solve()
     beyond = sol.beyond_law_range()
     assert set(beyond) == {f"joint_{i + 1}" for i in range(len(JOINTS))}

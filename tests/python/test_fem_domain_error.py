@@ -11,10 +11,10 @@ closed form top displacement -(σ H / E' + N Δ(σ)), Δ(σ) = V_m σ / (K_ni V_
 import pytest
 
 pytest.importorskip("dolfinx")
-pytest.importorskip("rockjoint._rockjoint_fem")
+pytest.importorskip("rockjoint._rockjoint_fem_coupling")
 
 import rockjoint  # noqa: E402
-from rockjoint.fem import NewtonOptions  # noqa: E402
+from rockjoint.fem_coupling import NewtonOptions  # noqa: E402
 
 from test_fem_column import KNI, VM, column_model, expected_top  # noqa: E402
 

@@ -3,7 +3,7 @@ case (test_fem_inexact_newton.py) and one GAMG set-up, as in serial."""
 import pytest
 
 pytest.importorskip("dolfinx")
-pytest.importorskip("rockjoint._rockjoint_fem")
+pytest.importorskip("rockjoint._rockjoint_fem_coupling")
 
 from test_fem_inexact_newton import assert_exact, blocky_model, dmesh  # noqa: E402,F401
 

@@ -3,7 +3,7 @@ direction reduced over ranks, the pre-closure force balance summed over ranks)."
 import pytest
 
 pytest.importorskip("dolfinx")
-pytest.importorskip("rockjoint._rockjoint_fem")
+pytest.importorskip("rockjoint._rockjoint_fem_coupling")
 
 import test_fem_joint_element as element  # noqa: E402  (tests/python is on sys.path under pytest)
 from mpi_ranks import two_ranks  # noqa: E402

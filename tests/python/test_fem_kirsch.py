@@ -20,7 +20,7 @@ import sys
 import pytest
 
 pytest.importorskip("dolfinx")
-pytest.importorskip("rockjoint._rockjoint_fem")
+pytest.importorskip("rockjoint._rockjoint_fem_coupling")
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "..", "bench"))
 import bench_kirsch  # noqa: E402
@@ -68,8 +68,8 @@ def test_3d_extrusion_with_axial_rollers_is_the_plane_strain_tunnel():
     from mpi4py import MPI
 
     from rockjoint import meshes
-    from rockjoint.fem import InSituStress, JointedRockModel, NewtonOptions, distribute
-    from rockjoint.fem.probe import probe
+    from rockjoint.fem_coupling import InSituStress, JointedRockModel, NewtonOptions, distribute
+    from rockjoint.fem_coupling.probe import probe
     from rockjoint.reference import KirschSolution
 
     a, W, L, p, k0, E, nu = 1.0, 20.0, 0.25, 10e6, 0.5, 20e9, 0.25

@@ -7,7 +7,7 @@ pytest.importorskip("dolfinx")
 
 from petsc4py import PETSc  # noqa: E402
 
-from rockjoint.fem.linear_solver import LinearSolver  # noqa: E402
+from rockjoint.fem_coupling.linear_solver import LinearSolver  # noqa: E402
 
 
 def laplacian(n, shift=0.0):
@@ -80,7 +80,7 @@ def test_bad_tolerances_are_refused_with_their_range():
 def test_auto_picks_mumps_only_below_the_measured_crossover():
     """bench/results/direct_vs_iterative.md: in 3D GAMG wins from a few thousand dofs on, in 2D
     the two are comparable up to ~90k dofs."""
-    from rockjoint.fem.linear_solver import DIRECT_DOF_LIMIT, resolve_kind
+    from rockjoint.fem_coupling.linear_solver import DIRECT_DOF_LIMIT, resolve_kind
 
     assert resolve_kind("auto", 40_000, 2) == "direct"
     assert resolve_kind("auto", 40_000, 3) == "iterative"

@@ -4,7 +4,7 @@ residual contributions sent to owners, Jacobian blocks in off-process rows."""
 import pytest
 
 pytest.importorskip("dolfinx")
-pytest.importorskip("rockjoint._rockjoint_fem")
+pytest.importorskip("rockjoint._rockjoint_fem_coupling")
 
 from mpi4py import MPI  # noqa: E402
 

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 pytest.importorskip("dolfinx")
-pytest.importorskip("rockjoint._rockjoint_fem")
+pytest.importorskip("rockjoint._rockjoint_fem_coupling")
 
 from mpi4py import MPI  # noqa: E402
 

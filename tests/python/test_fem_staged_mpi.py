@@ -8,11 +8,11 @@ import numpy as np
 import pytest
 
 pytest.importorskip("dolfinx")
-pytest.importorskip("rockjoint._rockjoint_fem")
+pytest.importorskip("rockjoint._rockjoint_fem_coupling")
 
 from mpi4py import MPI  # noqa: E402
 
-from rockjoint.fem import InSituStress, JointedRockModel  # noqa: E402
+from rockjoint.fem_coupling import InSituStress, JointedRockModel  # noqa: E402
 from staged_cases import E, NU, QUIET, column, quarter_annulus  # noqa: E402
 from mpi_ranks import two_ranks  # noqa: E402
 

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 pytest.importorskip("dolfinx")
-pytest.importorskip("rockjoint._rockjoint_fem")
+pytest.importorskip("rockjoint._rockjoint_fem_coupling")
 
 import gmsh  # noqa: E402
 import ufl  # noqa: E402
@@ -21,7 +21,7 @@ from petsc4py import PETSc  # noqa: E402
 
 import rockjoint  # noqa: E402
 from rockjoint import meshes  # noqa: E402
-from rockjoint.fem import JointCoupling, JointedNonlinearProblem, distribute, supported_dofs  # noqa: E402
+from rockjoint.fem_coupling import JointCoupling, JointedNonlinearProblem, distribute, supported_dofs  # noqa: E402
 from rockjoint.meshes.builders import _ensure_gmsh  # noqa: E402
 
 import user_model_case as case  # noqa: E402

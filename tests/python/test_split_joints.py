@@ -10,7 +10,7 @@ from dolfinx.io import gmshio  # noqa: E402
 from mpi4py import MPI  # noqa: E402
 
 from rockjoint import meshes  # noqa: E402
-from rockjoint.fem import distribute, split_joints  # noqa: E402
+from rockjoint.fem_coupling import distribute, split_joints  # noqa: E402
 from rockjoint.meshes.builders import _ensure_gmsh  # noqa: E402
 
 import user_model_geometry as case  # noqa: E402

@@ -2,7 +2,7 @@
 stiffness, residual stiffness and strength per joint name. The one place where these inputs are
 checked and combined, for JointedRockModel(joints=...) and JointCoupling / joint_behaviours(laws=...).
 
-    from rockjoint.fem import joint_behaviours
+    from rockjoint.fem_coupling import joint_behaviours
     behaviours = joint_behaviours({"fault": 3}, {"fault": law}, shear_stiffness=1e9,
                                   strength={"friction_angle": 0.5})
 """

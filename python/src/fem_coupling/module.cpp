@@ -1,4 +1,4 @@
-// The _rockjoint_fem extension: bindings of rockjoint::fem (interface assembler). Separate
+// The _rockjoint_fem_coupling extension: bindings of rockjoint::fem_coupling (interface assembler). Separate
 // from _rockjoint so that the closure laws and the per-point joint behaviour never need PETSc.
 // Closure laws and JointBehaviour come in as the objects bound by rockjoint._rockjoint (import
 // it first: pybind11 shares the registered types between the two modules).
@@ -21,7 +21,7 @@
 #include <span>
 
 namespace py = pybind11;
-using namespace rockjoint::fem;
+using namespace rockjoint::fem_coupling;
 
 namespace
 {
@@ -46,7 +46,7 @@ py::array_t<T> to_numpy(const std::vector<T>& v, py::ssize_t cols = 1)
 }
 } // namespace
 
-PYBIND11_MODULE(_rockjoint_fem, m)
+PYBIND11_MODULE(_rockjoint_fem_coupling, m)
 {
   m.doc() = "rockjoint zero-thickness joint elements: interface assembly (SI units)";
 

@@ -62,7 +62,7 @@ def _per_block(blocks: dict, value, what: str, missing_message: str) -> dict:
 class JointedRockModel:
     """A jointed rock mass: elastic blocks + joints with closure laws, loads, supports.
 
-    dmesh: rockjoint.fem.distributed_mesh.DistributedJointMesh (mesh, cell_blocks, boundaries,
+    dmesh: rockjoint.fem_coupling.distributed_mesh.DistributedJointMesh (mesh, cell_blocks, boundaries,
         names, pairs).
     element_degree: 1 or 2 (P2 uses the nodal joint rule).
     rock: {block name: (E [Pa], ν)} for every block, or one (E, ν) for all blocks.
@@ -76,7 +76,7 @@ class JointedRockModel:
     strength: joint shear strength (docs/joint-strength.md): None (elastic joints), one description
         for every joint, or {joint name: description}; a description is a JointStrength or a dict
         {"model": "coulomb" | "barton", "friction_angle": rad, "cohesion": Pa, ...} (see
-        rockjoint.fem.make_strength). With a strength the Jacobian is non-symmetric (LU / GMRES)
+        rockjoint.fem_coupling.make_strength). With a strength the Jacobian is non-symmetric (LU / GMRES)
         and the slip is committed only when a load step converges.
     plane: "strain" (default) or "stress" in 2D; None (or "3D") in 3D.
     quadrature: "nodal" (default; smooth tractions for stiff joints) or "gauss".

@@ -22,7 +22,7 @@ from typing import Mapping
 import numpy as np
 from petsc4py import PETSc
 
-from .. import _rockjoint_fem
+from .. import _rockjoint_fem_coupling
 from .petsc_options import check_options_prefix, check_petsc_options
 
 log = logging.getLogger(__name__)
@@ -74,7 +74,7 @@ class JointedSNESProblem:
     def snes_F(self, snes, x: PETSc.Vec, b: PETSc.Vec) -> None:
         self.F(x, b)
         if self.nonfinite:
-            _rockjoint_fem.snes_set_function_domain_error(snes.handle)
+            _rockjoint_fem_coupling.snes_set_function_domain_error(snes.handle)
 
     def snes_J(self, snes, x: PETSc.Vec, A: PETSc.Mat, P: PETSc.Mat) -> None:
         self.J(x, A)

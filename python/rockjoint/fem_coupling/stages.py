@@ -157,7 +157,7 @@ def _flag_matrix(solver, A) -> None:
 
 
 class StageClock:
-    """Progress of a stage on rank 0 (logger rockjoint.fem.stages, INFO): stage k/n, load factor,
+    """Progress of a stage on rank 0 (logger rockjoint.fem_coupling.stages, INFO): stage k/n, load factor,
     Newton iterations of the step, elapsed time."""
 
     def __init__(self, comm, label: str):

@@ -1,12 +1,12 @@
-"""rockjoint.fem: DOLFINx side of the joint model (distributed jointed meshes, interface coupling).
+"""rockjoint.fem_coupling: DOLFINx side of the joint model (distributed jointed meshes, interface coupling).
 
-    from rockjoint.fem import JointedRockModel, distribute
+    from rockjoint.fem_coupling import JointedRockModel, distribute
 """
 from .distributed_mesh import (DistributedJointMesh, JointPairs, distribute,  # noqa: F401
                                pair_vertex_positions)
 from .split_joints import split_joints  # noqa: F401
 
-try:  # the joint elements need the compiled _rockjoint_fem (built with -DROCKJOINT_FEM=ON)
+try:  # the joint elements need the compiled _rockjoint_fem_coupling (built with -DROCKJOINT_FEM=ON)
     from .behaviours import joint_behaviours  # noqa: F401
     from .coupling import JointCoupling, JointedNonlinearProblem, supported_dofs  # noqa: F401
     from .interface import JointInterface, QuadratureRule  # noqa: F401
@@ -21,5 +21,5 @@ try:  # the joint elements need the compiled _rockjoint_fem (built with -DROCKJO
                          ShearState, StrengthModel, barton_bandis_shear_stiffness,
                          closure_at_normal_stress, joint_response, make_strength)
 except ImportError as _error:  # pragma: no cover
-    if "_rockjoint_fem" not in str(_error):
+    if "_rockjoint_fem_coupling" not in str(_error):
         raise
