@@ -60,6 +60,20 @@ class FourierWall:
         k = np.hypot(self.kx, self.ky)
         return best + step * float(np.sum(np.abs(self.c) * k ** 3))
 
+    def max_slope(self, region, step: float) -> float:
+        """max |∇z| over a fine lattice of ``region``, plus step·Σ|c_k||k|² for the change
+        between nodes (an upper bound of the slope anywhere in the region)."""
+        x, y = np.meshgrid(np.arange(region[0], region[1], step),
+                           np.arange(region[2], region[3], step))
+        x, y = x.ravel(), y.ravel()
+        best = 0.0
+        for s in range(0, x.size, 4096):
+            e = np.exp(1j * (np.outer(x[s:s + 4096], self.kx) + np.outer(y[s:s + 4096], self.ky)))
+            gx = -(e @ (self.c * self.kx)).imag
+            gy = -(e @ (self.c * self.ky)).imag
+            best = max(best, float(np.hypot(gx, gy).max()))
+        return best + step * self.curvature_bound
+
     def __call__(self, x, y):
         x, y = np.asarray(x, float), np.asarray(y, float)
         out = np.empty(x.size)
@@ -146,7 +160,8 @@ def max_enclosing_radius(xy: np.ndarray) -> float:
     a = np.linalg.norm(c[:, 1] - c[:, 2], axis=1)
     b = np.linalg.norm(c[:, 0] - c[:, 2], axis=1)
     d = np.linalg.norm(c[:, 0] - c[:, 1], axis=1)
-    area = 0.5 * np.abs(np.cross(c[:, 1] - c[:, 0], c[:, 2] - c[:, 0]))
+    u, v = c[:, 1] - c[:, 0], c[:, 2] - c[:, 0]
+    area = 0.5 * np.abs(u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0])
     edges = np.linalg.norm(c - np.roll(c, 1, axis=1), axis=2)
     longest = edges.max(axis=1)
     keep = longest <= 3 * np.median(edges)
@@ -154,3 +169,33 @@ def max_enclosing_radius(xy: np.ndarray) -> float:
     obtuse = sq[:, 2] >= sq[:, 0] + sq[:, 1]
     radius = np.where(obtuse, longest / 2, a * b * d / (4 * np.maximum(area, 1e-300)))
     return float(np.max(radius[keep]))
+
+
+def scan_grid(wall, frame, origin, shape, step, *, noise, hole, gap=0.0, rng):
+    """A scanner's own lattice (ESRI grid): nodes (origin + step·(j, i)) in the scanner frame,
+    whose frame is ``frame`` (rotation about z and offset, possibly flipped, never tilted, so
+    the scanner's z is ±the joint's z). Heights [m] in the scanner frame with noise, NaN in
+    the hole (joint-frame disc). Returns (heights, joint-frame (x, y) of the valid nodes)."""
+    xs, ys = np.meshgrid(origin[0] + step * np.arange(shape[1]),
+                         origin[1] + step * np.arange(shape[0]))
+    inv = np.linalg.inv(frame)
+    pj = apply(inv, np.column_stack([xs.ravel(), ys.ravel(), np.zeros(xs.size)]))
+    z = wall(pj[:, 0], pj[:, 1]) + gap + rng.uniform(-noise, noise, xs.size)
+    scanner = apply(frame, np.column_stack([pj[:, :2], z]))
+    assert np.allclose(scanner[:, :2], np.column_stack([xs.ravel(), ys.ravel()]), atol=1e-12)
+    heights = scanner[:, 2].reshape(shape).copy()
+    if hole is not None:
+        out = np.hypot(pj[:, 0] - hole[0], pj[:, 1] - hole[1]) <= hole[2]
+        heights[out.reshape(shape)] = np.nan
+    ok = ~np.isnan(heights.ravel())
+    return heights, pj[ok, :2]
+
+
+def plane_tilt(wall, region) -> float:
+    """Slope angle [rad] of the least-squares plane of ``wall`` over ``region``: how far the
+    levelled frame of a scan of it leans from the joint frame."""
+    x, y = np.meshgrid(np.linspace(region[0], region[1], 60), np.linspace(region[2], region[3], 60))
+    z = wall(x.ravel(), y.ravel())
+    a = np.column_stack([x.ravel(), y.ravel(), np.ones(x.size)])
+    gx, gy, _ = np.linalg.lstsq(a, z, rcond=None)[0]
+    return float(np.arctan(np.hypot(gx, gy)))

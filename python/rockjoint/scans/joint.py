@@ -56,14 +56,17 @@ class RegisteredJoint:
 def joint_from_scans(upper: ScanPoints, lower: ScanPoints, *, spacing: Optional[float] = None,
                      flip_upper: bool = True, fill: str = "none", plane_removal: str = "common",
                      hole_factor: float = 3.0, angle_step: float = np.radians(2.0),
-                     max_rotation: float = np.pi, min_overlap: float = 0.25
+                     max_rotation: float = np.pi, min_overlap: float = 0.5,
+                     min_correlation: float = 0.5, max_misfit: float = 0.5
                      ) -> RegisteredJoint:
     """The joint of two walls each scanned in its own frame (see the module doc).
 
     ``spacing`` [m]: lattice step (default: the coarser wall's median sample spacing);
     ``flip_upper``: the upper scan looks at the joint face from above (default) - set False if
     its heights are already in the joint frame; ``fill``: "none" (holes stay NaN, masked by
-    the analysis), "nearest" or "refuse" (MaskedNodesError); the hole count is logged."""
+    the analysis), "nearest" or "refuse" (MaskedNodesError); the hole count is logged.
+    ``angle_step``, ``max_rotation``, ``min_overlap``, ``min_correlation``, ``max_misfit``:
+    see registration.register (NoOverlapError when the walls do not face each other)."""
     from .. import topography as topo
     up = flip(upper.points) if flip_upper else upper.points
     up, up_level = level(up)
@@ -74,7 +77,9 @@ def joint_from_scans(upper: ScanPoints, lower: ScanPoints, *, spacing: Optional[
     up_grid = resample(up, h, hole_factor=hole_factor, path=upper.path,
                        sample_spacing=upper.sample_spacing())
     reg = register(low_grid, up_grid, angle_step=angle_step, max_rotation=max_rotation,
-                   min_overlap=min_overlap, path=upper.path)
+                   min_overlap=min_overlap, min_correlation=min_correlation,
+                   max_misfit=max_misfit,
+                   path=upper.path)
     up_on_low = resample(reg.apply(up), h, origin=low_grid.origin,
                          shape=low_grid.heights.shape, hole_factor=hole_factor,
                          path=upper.path, sample_spacing=upper.sample_spacing())

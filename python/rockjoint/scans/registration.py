@@ -63,12 +63,18 @@ class _Sampler:
 
 
 def register(lower: ScanGrid, upper: ScanGrid, *, angle_step: float = np.radians(2.0),
-             max_rotation: float = np.pi, min_overlap: float = 0.25, path=None
+             max_rotation: float = np.pi, min_overlap: float = 0.5,
+             min_correlation: float = 0.5, max_misfit: float = 0.5, path=None
              ) -> Registration:
     """Rigid in-plane registration of the (levelled, resampled) upper wall onto the lower one.
     ``max_rotation`` [rad] bounds |θ| of the search (π: any orientation); ``min_overlap`` is
-    the smallest acceptable fraction of the smaller wall that the other covers, below which
-    NoOverlapError is raised."""
+    the smallest acceptable fraction of the smaller wall that the other covers, and
+    ``min_correlation`` the smallest normalised cross-correlation of the walls' heights there
+    (mated walls correlate at 0.9 and more, unrelated ones by chance at 0.2-0.4), below which
+    NoOverlapError is raised: the walls do not face each other anywhere. The same error if
+    the rms of the aperture's variation exceeds ``max_misfit`` times the lower wall's rms
+    roughness over the overlap (unrelated walls: about √2 times, chance fits on a small
+    overlap: above 0.5; mated walls: the unmated fraction, 0.1-0.3)."""
     h = lower.spacing_x
     need = min_overlap * min(_valid(lower), _valid(upper))
     sampler = _Sampler(upper)
@@ -91,6 +97,11 @@ def register(lower: ScanGrid, upper: ScanGrid, *, angle_step: float = np.radians
         raise NoOverlapError(path, f"no relative position of the walls shares "
                              f"{min_overlap:.0%} of the smaller wall ({int(need)} nodes)")
     score, theta, t = coarse(theta + np.linspace(-angle_step, angle_step, 17))
+    if score < min_correlation:
+        raise NoOverlapError(path, f"the walls do not match anywhere: best normalised "
+                             f"correlation {score:.2f} < {min_correlation} over "
+                             f"{min_overlap:.0%} of the smaller wall (scans of different "
+                             "joints, or of no common area?)")
 
     # θ enters as the arc length θ·radius [m] so that all three unknowns are lengths
     radius = 0.5 * float(np.hypot(*np.ptp(upper.points()[:, :2], axis=0)))
@@ -106,10 +117,16 @@ def register(lower: ScanGrid, upper: ScanGrid, *, angle_step: float = np.radians
                                options=dict(initial_simplex=simplex, xatol=1e-4 * h,
                                             fatol=1e-9 * h, maxiter=4000))
     result.x = result.x * scale
-    d, count = _difference(result.x, lx, ly, lz, sampler)
+    d, count, roughness = _difference(result.x, lx, ly, lz, sampler, lower_too=True)
     if count < need:
         raise NoOverlapError(path, f"registered walls share {count} nodes, fewer than "
                              f"{min_overlap:.0%} of the smaller wall ({int(need)})")
+    if np.std(d) > max_misfit * roughness:
+        raise NoOverlapError(path, f"the walls do not match: at the best registration the "
+                             f"aperture varies by {np.std(d) * 1e3:.3g} mm rms, "
+                             f"{np.std(d) / roughness:.2f} of the lower wall's "
+                             f"{roughness * 1e3:.3g} mm roughness there (> max_misfit "
+                             f"{max_misfit}; scans of different joints, or of no common area?)")
     reg = Registration(float(result.x[0]), np.array(result.x[1:]), float(np.std(d)),
                        count / min(_valid(lower), _valid(upper)), float(score))
     log.info("registration: rotation %.4f°, shift (%.4g, %.4g) mm, overlap %.0f%%, residual "
@@ -123,7 +140,13 @@ def _valid(grid: ScanGrid) -> int:
     return int(np.count_nonzero(~np.isnan(grid.heights)))
 
 
-def _difference(x, lx, ly, lz, sampler) -> Tuple[np.ndarray, int]:
+def _detrended(x: np.ndarray, y: np.ndarray, z: np.ndarray) -> np.ndarray:
+    """z less its least-squares plane in (x, y)."""
+    a = np.column_stack([x - x.mean(), y - y.mean(), np.ones(z.size)])
+    return z - a @ np.linalg.lstsq(a, z, rcond=None)[0]
+
+
+def _difference(x, lx, ly, lz, sampler, lower_too: bool = False):
     """Upper minus lower heights at the valid lower nodes for (θ, t_x, t_y), less their
     least-squares plane: two walls levelled on different patches keep a relative tilt that
     is not in the data (frame.py) and must not pull the registration."""
@@ -133,8 +156,9 @@ def _difference(x, lx, ly, lz, sampler) -> Tuple[np.ndarray, int]:
     ok = np.isfinite(zu) & np.isfinite(lz)
     d = (zu - lz)[ok]
     if d.size >= 3:
-        a = np.column_stack([lx[ok] - lx[ok].mean(), ly[ok] - ly[ok].mean(), np.ones(d.size)])
-        d = d - a @ np.linalg.lstsq(a, d, rcond=None)[0]
+        d = _detrended(lx[ok], ly[ok], d)
+    if lower_too:
+        return d, d.size, np.std(_detrended(lx[ok], ly[ok], lz[ok]))
     return d, d.size
 
 
