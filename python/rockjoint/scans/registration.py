@@ -25,6 +25,8 @@ from .lattice import ScanGrid
 
 log = logging.getLogger(__name__)
 
+COARSE_NODES = 128     # lattice nodes per side of the coarse search, at most
+
 
 @dataclasses.dataclass(frozen=True)
 class Registration:
@@ -80,11 +82,17 @@ def register(lower: ScanGrid, upper: ScanGrid, *, angle_step: float = np.radians
     sampler = _Sampler(upper)
     lx, ly = lower.node_coordinates()
     lz = lower.heights
+    # the coarse search needs the long wavelengths only: at most COARSE_NODES per side keeps
+    # its ~200 FFT correlations cheap for large scans; Nelder-Mead then works on every node
+    k = max(1, int(np.ceil(max(lower.heights.shape + upper.heights.shape) / COARSE_NODES)))
+    low_c, up_c = _decimated(lower, k), _decimated(upper, k)
+    sampler_c = _Sampler(up_c)
+    need_c = min_overlap * min(_valid(low_c), _valid(up_c))
 
     def coarse(angles):
         best = (-np.inf, 0.0, np.zeros(2))
         for theta in angles:
-            score, t = _correlate(lower, upper, sampler, theta, h, need)
+            score, t = _correlate(low_c, up_c, sampler_c, theta, k * h, need_c)
             if score > best[0]:
                 best = (score, theta, t)
         return best
@@ -112,7 +120,7 @@ def register(lower: ScanGrid, upper: ScanGrid, *, angle_step: float = np.radians
         return np.std(d) if count >= need else 1e3 * (1 + need - count)
 
     start = np.array([theta * radius, t[0], t[1]])
-    simplex = np.vstack([start, start + np.eye(3) * (h / 2)])
+    simplex = np.vstack([start, start + np.eye(3) * (k * h / 2)])
     result = optimize.minimize(misfit, start, method="Nelder-Mead",
                                options=dict(initial_simplex=simplex, xatol=1e-4 * h,
                                             fatol=1e-9 * h, maxiter=4000))
@@ -134,6 +142,14 @@ def register(lower: ScanGrid, upper: ScanGrid, *, angle_step: float = np.radians
              *(reg.translation * 1e3), 100 * reg.overlap_fraction, reg.residual_rms * 1e3,
              reg.correlation)
     return reg
+
+
+def _decimated(grid: ScanGrid, k: int) -> ScanGrid:
+    """Every k-th node (the coarse search's lattice)."""
+    if k == 1:
+        return grid
+    return ScanGrid(grid.heights[::k, ::k], grid.spacing_x * k, grid.spacing_y * k,
+                    grid.origin, grid.path)
 
 
 def _valid(grid: ScanGrid) -> int:
