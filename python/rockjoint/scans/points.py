@@ -8,7 +8,7 @@ from typing import Optional
 import numpy as np
 from scipy.spatial import cKDTree
 
-from .errors import ScanUnitError
+from .errors import MalformedScanError, ScanUnitError
 
 # Plausible sample spacings and extents of a rock-joint scan [m]: laser and structured-light
 # scanners and profilometers sample at 1 µm to 2 mm, specimens and outcrop patches span 1 mm
@@ -61,7 +61,6 @@ def check_units(path, spacing: float, extent: float, unit: str) -> None:
 def finish(points: np.ndarray, path, unit: str, triangles=None, *, minimum: int = 9
            ) -> ScanPoints:
     """Scale to SI, check the count, the in-plane spread and the units."""
-    from .errors import MalformedScanError
     if points.shape[0] < minimum:
         raise MalformedScanError(path, f"{points.shape[0]} sample(s): a wall needs at least "
                                  f"{minimum}")
