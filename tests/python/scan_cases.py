@@ -93,6 +93,14 @@ def rigid(angle_deg: float, offset) -> np.ndarray:
     return m
 
 
+def tilt_about_x(angle_deg: float) -> np.ndarray:
+    """4x4 rotation about x: a scanner whose table is not level."""
+    a = np.radians(angle_deg)
+    m = np.eye(4)
+    m[1:3, 1:3] = [[np.cos(a), -np.sin(a)], [np.sin(a), np.cos(a)]]
+    return m
+
+
 FLIP = np.diag([-1.0, 1.0, -1.0, 1.0])   # the upper scanner looks from the other side
 
 

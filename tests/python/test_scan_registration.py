@@ -1,6 +1,6 @@
 """Two walls scanned in their own frames (STL binary and ASCII, XYZ point cloud, ESRI grid),
-with a rigid motion (rotation about z and a 3D offset), the upper one seen from the other
-side, noise and a hole: the recovered aperture must match the known one to within the
+with a rigid motion (rotation about z and a 3D offset; for "xyz-tilted" also 4° and -7°
+tilts of the scanners), the upper one seen from the other side, noise and a hole: the recovered aperture must match the known one to within the
 resampling error bound of rockjoint.scans.lattice, and the registration must recover the
 relative motion.
 
@@ -31,6 +31,9 @@ RELATIVE_ROTATION = 10.0          # [deg]: flip(R(-20°)) = R(+20°); lower R(30
 # an ESRI grid is in its scanner's own coordinates, e.g. metres off the lab origin
 ESRI_LOWER_FRAME = sc.rigid(30.0, [1.0, 2.0, 0.005])
 ESRI_UPPER_FRAME = sc.rigid(-20.0, [-0.3, 0.5, -0.01]) @ sc.FLIP
+# scanners whose tables are not level: the levelling must take the 4° and 7° out
+TILTED_LOWER_FRAME = LOWER_FRAME @ sc.tilt_about_x(4.0)
+TILTED_UPPER_FRAME = sc.rigid(-20.0, [0.3, 0.2, -0.1]) @ sc.tilt_about_x(-7.0) @ sc.FLIP
 MATEDNESS = 5e-3                  # shared wavelengths >= 5 mm, independent 4-5 mm
 
 
@@ -39,11 +42,19 @@ def truth():
     return sc.joint(seed=3, matedness=MATEDNESS)
 
 
-def _point_scans(truth, rng):
+def _frames(kind):
+    if kind == "esri":
+        return ESRI_LOWER_FRAME, ESRI_UPPER_FRAME
+    if kind == "xyz-tilted":
+        return TILTED_LOWER_FRAME, TILTED_UPPER_FRAME
+    return LOWER_FRAME, UPPER_FRAME
+
+
+def _point_scans(truth, rng, frames=(LOWER_FRAME, UPPER_FRAME)):
     low, low_xy = sc.scan_wall(truth.lower, LOWER_REGION, STEP, jitter=0.2 * STEP,
-                               noise=NOISE, hole=HOLE, frame=LOWER_FRAME, rng=rng)
+                               noise=NOISE, hole=HOLE, frame=frames[0], rng=rng)
     up, up_xy = sc.scan_wall(truth.upper, UPPER_REGION, STEP, jitter=0.2 * STEP, noise=NOISE,
-                             hole=None, frame=UPPER_FRAME, gap=truth.gap, rng=rng)
+                             hole=None, frame=frames[1], gap=truth.gap, rng=rng)
     return low, low_xy, up, up_xy
 
 
@@ -64,8 +75,8 @@ def _write(tmp_path, kind, truth, rng):
                                                 centre=name == "upper"))
             xys.append(xy)
         return paths[0], xys[0], paths[1], xys[1]
-    low, low_xy, up, up_xy = _point_scans(truth, rng)
-    if kind == "xyz":
+    low, low_xy, up, up_xy = _point_scans(truth, rng, _frames(kind))
+    if kind in ("xyz", "xyz-tilted"):
         return (scans.write_xyz_points(tmp_path / "lower.xyz", low), low_xy,
                 scans.write_xyz_points(tmp_path / "upper.csv", up), up_xy)
     binary = kind == "stl-binary"
@@ -104,7 +115,7 @@ def _aperture_error(joint, truth, lower_frame):
 
 
 @pytest.mark.parametrize("matedness", [0.0, MATEDNESS])
-@pytest.mark.parametrize("kind", ["stl-binary", "stl-ascii", "xyz", "esri"])
+@pytest.mark.parametrize("kind", ["stl-binary", "stl-ascii", "xyz", "xyz-tilted", "esri"])
 def test_recovered_aperture_matches_the_known_one_within_the_resampling_bound(tmp_path, kind,
                                                                              matedness):
     """Identical walls (λ_m = 0) have one best registration, the true one: it must be found to
@@ -118,13 +129,13 @@ def test_recovered_aperture_matches_the_known_one_within_the_resampling_bound(tm
     upper, lower = scans.read_scan(up_path), scans.read_scan(low_path)
     joint = scans.joint_from_scans(upper, lower, fill="none")
 
-    frames = (ESRI_LOWER_FRAME, ESRI_UPPER_FRAME) if kind == "esri" else \
-        (LOWER_FRAME, UPPER_FRAME)
+    frames = _frames(kind)
     delta = _misregistration(joint, truth, up_xy, frames)
     limit = STEP / 8 if matedness == 0 else STEP
     assert delta <= limit, f"registration off by {delta * 1e6:.1f} µm (> {limit * 1e6:.0f} µm)"
-    rotation = np.degrees(joint.registration.rotation)
-    assert abs(rotation - RELATIVE_ROTATION) < (0.05 if matedness == 0 else 0.5), rotation
+    if kind != "xyz-tilted":   # with tilts the in-plane angle is not simply 10°: δ says it
+        rotation = np.degrees(joint.registration.rotation)
+        assert abs(rotation - RELATIVE_ROTATION) < (0.05 if matedness == 0 else 0.5), rotation
 
     region = (0.0, 48e-3, 0.0, 48e-3)
     step = sc.SPEC.cutoff_wavelength / 16
