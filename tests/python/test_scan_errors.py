@@ -193,8 +193,10 @@ ESRI_DATA = ["1 2 3", "4 5 6", "7 8 9"]
      r":1: 'cols' is not an ESRI ASCII header key"),
     (ESRI_OK[:4] + ["cellsize 500"], ESRI_DATA, scans.ScanUnitError,
      r": sample spacing 0.5 m \(read in unit 'mm'\)"),
+    (ESRI_OK, ["1 2 3", "4 -9999 6", "7 8 9"], scans.MalformedScanError,
+     r":7: value -9999 looks like a NODATA marker but the header has no NODATA_value"),
 ], ids=["no-ncols", "no-cellsize", "corner-and-centre", "repeated", "truncated", "word",
-        "too-many", "bad-key", "units"])
+        "too-many", "bad-key", "units", "undeclared-nodata"])
 def test_malformed_esri_grids(tmp_path, header, data, cls, message):
     p = tmp_path / "bad.asc"
     p.write_text("\n".join(header + data) + "\n")

@@ -18,6 +18,11 @@ from .errors import MalformedScanError, TruncatedScanError
 from .lattice import ScanGrid
 from .points import check_units, metres_per_unit
 
+# Values that writers use for NODATA (ESRI/GDAL -9999, int16 -32768, float32 lowest): read
+# as heights without a NODATA_value line they would be a cliff kilometres deep, so a grid
+# without the key that holds one is refused rather than read silently wrong.
+_SENTINELS = (-9999.0, -32768.0, -3.4028234663852886e38, -3.4028230607370965e38)
+
 _KEYS = ("ncols", "nrows", "xllcorner", "xllcenter", "yllcorner", "yllcenter", "cellsize",
          "dx", "dy", "nodata_value")
 
@@ -80,6 +85,13 @@ def read_esri_ascii(path, unit: str = "mm", height_unit: Optional[str] = None) -
     z = np.array(values, dtype=float).reshape(rows, cols)[::-1]   # north row first in file
     if "nodata_value" in header:
         z[z == header["nodata_value"]] = np.nan
+    else:
+        sentinel = np.isin(np.array(values[:rows * cols]), _SENTINELS)
+        if sentinel.any():
+            k = int(np.argmax(sentinel))
+            raise MalformedScanError(path, f"value {values[k]:g} looks like a NODATA marker "
+                                     "but the header has no NODATA_value line: add it (or "
+                                     "write the missing cells as nan)", line=where[k])
     scale = metres_per_unit(unit)
     dx, dy = geometry["dx"] * scale, geometry["dy"] * scale
     grid = ScanGrid(z * metres_per_unit(height_unit or unit), dx, dy,
