@@ -92,6 +92,26 @@ def test_non_manifold_stl_is_refused(tmp_path):
         scans.read_scan(p)
 
 
+def test_folded_stl_is_not_a_height_field(tmp_path):
+    """A Z-fold: panels at z = 0 (x 0..3), back to x = 2 at z = 0.5, forward to x = 5; the
+    middle panel faces the other way, so (x, y) in 2..3 has three heights. Its share of the
+    projected area is 3/21 = 14.3% on z = 0, a little less on the (slightly tilted) mean
+    plane."""
+    profile = [(0, 0), (1, 0), (2, 0), (3, 0), (2, 0.5), (3, 0.5), (4, 0.5), (5, 0.5)]
+    facets = []
+    for (x0, z0), (x1, z1) in zip(profile[:-1], profile[1:]):
+        for y in range(3):
+            a, b = (x0, y, z0), (x1, y, z1)
+            c, d = (x0, y + 1, z0), (x1, y + 1, z1)
+            facets += [(a, b, d), (a, d, c)]
+    p = tmp_path / "fold.stl"
+    _binary_stl(p, facets)
+    with pytest.raises(scans.NonManifoldScanError,
+                       match=rf"{re.escape(str(p))}: facet 18: not a height field: 6 facets "
+                             r"\(1[34]\.\d% of the projected area\)"):
+        scans.read_scan(p)
+
+
 def test_degenerate_stl_facet_is_refused(tmp_path):
     p = tmp_path / "flat.stl"
     facets = _square_facets()

@@ -124,7 +124,37 @@ def _mesh(facets: np.ndarray, path, unit: str) -> ScanPoints:
                                    f"{vertices[e[1]].tolist()} belongs to {counts[over[0]]} "
                                    f"facets ({over.size} such edges); a scanned wall is one "
                                    "sheet", record=facet)
+    _check_height_field(path, vertices, triangles)
     return finish(vertices, path, unit, triangles, minimum=3)
+
+
+# Flipped facets may cover this fraction of the projected area (noise slivers at steep
+# spots) before the mesh counts as folded.
+FOLD_TOLERANCE = 0.005
+
+
+def _check_height_field(path, vertices: np.ndarray, triangles: np.ndarray) -> None:
+    """A wall is a height field over its mean plane: in a consistently oriented mesh every
+    facet faces the same side of that plane. Facets facing the other way are folds or
+    overhangs, where one (x, y) has several heights and resampling would mix them; refused
+    if they cover more than FOLD_TOLERANCE of the projected area. A mesh whose orientation is
+    inconsistent (a directed edge in two facets) cannot be checked this way and is let
+    through to the resampling."""
+    directed = np.concatenate([triangles[:, [0, 1]], triangles[:, [1, 2]],
+                               triangles[:, [2, 0]]])
+    if np.unique(directed, axis=0).shape[0] < directed.shape[0]:
+        return
+    centred = vertices - vertices.mean(axis=0)
+    plane_normal = np.linalg.svd(centred, full_matrices=False)[2][2]
+    v = vertices[triangles]
+    along = np.cross(v[:, 1] - v[:, 0], v[:, 2] - v[:, 0]) @ plane_normal  # 2 x projected area
+    minority = along > 0 if np.sum(along[along > 0]) < -np.sum(along[along < 0]) else along < 0
+    folded = float(np.sum(np.abs(along[minority])) / np.sum(np.abs(along)))
+    if folded > FOLD_TOLERANCE:
+        raise NonManifoldScanError(path, f"not a height field: {np.count_nonzero(minority)} "
+                                   f"facets ({100 * folded:.1f}% of the projected area) face "
+                                   "away from the others (folds or overhangs over the mean "
+                                   "plane)", record=int(np.argmax(minority)))
 
 
 def write_stl(path, points: np.ndarray, triangles: np.ndarray, *, unit: str = "mm",
