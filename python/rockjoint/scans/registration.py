@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import dataclasses
 import logging
-from typing import Optional, Tuple
+from typing import Tuple
 
 import numpy as np
 from scipy import fft, optimize
