@@ -49,8 +49,9 @@ _XYZ_SUFFIXES = (".xyz", ".csv")
 def read_surface(path: PathLike, *, spacing: Optional[float] = None,
                  spacing_y: Optional[float] = None, lateral_unit: Optional[str] = None,
                  height_unit: Optional[str] = None) -> Surface:
-    """Read a height map: plain-text grid (.txt/.grid/.asc/.dat), XYZ list (.xyz/.csv) or
-    NumPy array (.npy, NaN = missing).
+    """Read a height map: plain-text grid (.txt/.grid/.asc/.dat), ESRI ASCII grid (.asc
+    starting with an ESRI header key; units default to mm), XYZ list on a lattice (.xyz/.csv)
+    or NumPy array (.npy, NaN = missing). Scans (STL, unstructured XYZ): rockjoint.scans.
 
     ``spacing`` (in ``lateral_unit``) and the units override what the file says. A .npy file
     holds only heights, so ``spacing`` is required there; its units default to mm.
@@ -77,11 +78,24 @@ def read_surface(path: PathLike, *, spacing: Optional[float] = None,
         if spacing is not None:
             raise ValueError(f"{path}: an XYZ list defines its own lattice; do not pass spacing")
         return _cpp.read_xyz(path, lateral_unit=lateral_unit, height_unit=height_unit)[0]
+    if suffix == ".asc" and _is_esri_ascii(path):
+        # ESRI ASCII grid (any header variant, rockjoint.scans.esri); it states no units
+        if spacing is not None or spacing_y is not None:
+            raise ValueError(f"{path}: an ESRI ASCII grid states its cell size; do not pass "
+                             "spacing")
+        from .scans import read_esri_ascii
+        return read_esri_ascii(path, unit=lateral_unit or "mm",
+                               height_unit=height_unit).surface()
     if suffix in _GRID_SUFFIXES:
         return _cpp.read_height_grid(path, spacing_x=spacing, spacing_y=spacing_y,
                                      lateral_unit=lateral_unit, height_unit=height_unit)[0]
     raise ValueError(f"{path}: unknown height-map format '{suffix}'; use one of "
                      f"{', '.join(_GRID_SUFFIXES + _XYZ_SUFFIXES)}, .npy")
+
+
+def _is_esri_ascii(path: str) -> bool:
+    from .scans.esri import is_esri_ascii
+    return is_esri_ascii(path)
 
 
 def write_surface(path: PathLike, surface: Surface, *, lateral_unit: str = "mm",

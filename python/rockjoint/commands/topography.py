@@ -34,9 +34,22 @@ def add_parser(subparsers) -> None:
     a = sub.add_parser("analyse", help="summit statistics, spectral estimates, resampling, "
                                        "pictures and closure curves of a joint")
     a.add_argument("upper", help="upper wall (or a single wall pressed on a flat)")
-    a.add_argument("lower", nargs="?", help="lower wall, same lattice and frame")
-    a.add_argument("--spacing", type=float, help="grid spacing [mm] (required for .npy)")
+    a.add_argument("lower", nargs="?", help="lower wall: same lattice and frame for grids; "
+                   "any frame for scans (STL, point clouds, ESRI), which are registered")
+    a.add_argument("--format", choices=("auto", "grid", "esri", "stl", "points"),
+                   default="auto", help="input format (auto: by extension; .stl scan, "
+                   ".asc ESRI if it has an ESRI header, .pts point cloud, else a rockjoint "
+                   "grid/.xyz lattice/.npy; unstructured .xyz/.csv clouds need 'points')")
+    a.add_argument("--unit", default="mm", help="length unit of scan files (STL, point "
+                   "clouds, ESRI grids), which do not say it [default mm]")
+    a.add_argument("--spacing", type=float, help="grid spacing [mm] (required for .npy); for "
+                   "scans the lattice step they are resampled to (default: sample spacing)")
     a.add_argument("--height-unit", default=None, help="override the height unit of the files")
+    a.add_argument("--fill", choices=("none", "nearest", "refuse"), default="none",
+                   help="scan nodes not covered by the scan: keep masked (none), copy the "
+                        "nearest valid node, or stop with an error; the count is printed")
+    a.add_argument("--no-flip", action="store_true",
+                   help="the upper scan is already in the joint frame (not seen from above)")
     a.add_argument("--offset", type=int, nargs=2, default=(0, 0), metavar=("DX", "DY"),
                    help="contact state: upper (i, j) faces lower (i+DY, j+DX) [grid steps]")
     a.add_argument("--plane", choices=("common", "separate", "none"), default="common")
@@ -93,15 +106,86 @@ def _synth(args) -> int:
     return 0
 
 
+def _input_kind(path: str, format: str) -> str:
+    """'grid' (rockjoint.topography.read_surface) or a scan format of rockjoint.scans."""
+    from rockjoint import scans
+    if format != "auto":
+        return format
+    suffix = os.path.splitext(path)[1].lower()
+    if suffix == ".stl":
+        return "stl"
+    if suffix == ".pts":
+        return "points"
+    if suffix == ".asc" and os.path.isfile(path) and scans.is_esri_ascii(path):
+        return "esri"
+    return "grid"
+
+
+def _read_grid(path, args):
+    from rockjoint import topography as topo
+    try:
+        return topo.read_surface(path, spacing=args.spacing, height_unit=args.height_unit)
+    except ValueError as err:
+        if os.path.splitext(path)[1].lower() in (".xyz", ".csv") and "lattice" in str(err):
+            raise ValueError(f"{err} (an unstructured point cloud? use --format points)") \
+                from None
+        raise
+
+
+def _read_scan(path, kind, args):
+    from rockjoint import scans
+    if kind == "grid":   # a lattice wall among scans: its nodes are its samples
+        s = _read_grid(path, args)
+        return scans.ScanPoints(scans.ScanGrid(s.heights, s.spacing_x, s.spacing_y).points(),
+                                path)
+    return scans.read_scan(path, kind, unit=args.unit, height_unit=args.height_unit)
+
+
+def _scan_walls(args, kinds, report):
+    """Scans: flip, level, register, resample (rockjoint.scans); returns (upper, joint)."""
+    from rockjoint import scans
+    from rockjoint import topography as topo
+    if tuple(args.offset) != (0, 0):
+        raise ValueError("scans are registered automatically; --offset is for grids that "
+                         "share one lattice")
+    spacing = None if args.spacing is None else args.spacing * 1e-3
+    upper = _read_scan(args.upper, kinds[0], args)
+    if not args.lower:
+        flat, _ = scans.level(upper.points)
+        grid = scans.resample(flat, spacing or upper.sample_spacing(), path=upper.path)
+        heights, holes = scans.apply_fill(grid.heights, args.fill, upper.path)
+        print(f"scan {args.upper}: levelled on its mean plane, {heights.shape[0]} x "
+              f"{heights.shape[1]} nodes at {grid.spacing_x * 1e3:.4g} mm, {holes} hole "
+              f"node(s) ({'masked' if args.fill == 'none' else 'filled: ' + args.fill})")
+        surface = topo.Surface(heights, grid.spacing_x, grid.spacing_y)
+        return surface, None
+    lower = _read_scan(args.lower, kinds[1], args)
+    joint = scans.joint_from_scans(upper, lower, spacing=spacing, flip_upper=not args.no_flip,
+                                   fill=args.fill, plane_removal=args.plane)
+    print(joint.report())
+    r = joint.registration
+    report["registration"] = {"rotation_deg": float(np.degrees(r.rotation)),
+                              "shift_mm": [float(v) * 1e3 for v in r.translation],
+                              "overlap_fraction": r.overlap_fraction,
+                              "residual_misfit_mm": r.residual_rms * 1e3,
+                              "hole_nodes": joint.masked_count, "fill": joint.fill}
+    return joint.upper.surface(), joint.composite
+
+
 def _analyse(args) -> int:
     from rockjoint import topography as topo
     from rockjoint.laws import RECOMMENDATION, laws_from_topography
-    read = dict(spacing=args.spacing, height_unit=args.height_unit)
-    upper = topo.read_surface(args.upper, **read)
-    if args.lower:
-        lower = topo.read_surface(args.lower, **read)
-        joint = topo.composite_topography(upper, lower, tuple(args.offset), args.plane)
+    report = {}
+    kinds = [_input_kind(p, args.format) for p in (args.upper, args.lower) if p]
+    joint = None
+    if any(k != "grid" for k in kinds):
+        upper, joint = _scan_walls(args, kinds, report)
     else:
+        upper = _read_grid(args.upper, args)
+        if args.lower:
+            joint = topo.composite_topography(upper, _read_grid(args.lower, args),
+                                              tuple(args.offset), args.plane)
+    if joint is None:
         # One wall on a flat: the flat is the "upper" wall, so s = z - plane (summits = maxima).
         flat = topo.Surface(np.zeros(upper.shape), upper.spacing_x, upper.spacing_y)
         joint = topo.composite_topography(flat, upper, (0, 0), "separate")
@@ -115,7 +199,7 @@ def _analyse(args) -> int:
         study = topo.resampling_study(joint.composite, args.resample)
         print("\nresampling study (counted | Nayak/McCool from FD moments):")
         print(topo.resampling_table(study))
-    report = {
+    report.update({
         "sampling_interval_mm": result.sampling_interval * 1e3,
         "summit_count": result.statistics.summit_count,
         "summit_density_per_mm2": result.statistics.summit_density * 1e-6,
@@ -127,7 +211,7 @@ def _analyse(args) -> int:
                      "summit_height_std_mm": result.spectral.summit_height_std * 1e3,
                      "bandwidth_alpha": result.spectral.bandwidth},
         "mean_aperture_mm": joint.mean_aperture * 1e3,
-    }
+    })
     if args.figures:
         os.makedirs(args.figures, exist_ok=True)
         f = args.figures
