@@ -46,12 +46,8 @@ class FourierWall:
         cut-off λ_s, so a lattice of step << λ_s resolves the maximum; the tests use
         step = λ_s/64, where the Hessian changes by at most step·Σ|c_k||k|³ between nodes,
         which is added."""
-        x, y = np.meshgrid(np.arange(region[0], region[1], step),
-                           np.arange(region[2], region[3], step))
-        x, y = x.ravel(), y.ravel()
         best = 0.0
-        for s in range(0, x.size, 4096):
-            e = np.exp(1j * (np.outer(x[s:s + 4096], self.kx) + np.outer(y[s:s + 4096], self.ky)))
+        for e in self._fourier_blocks(region, step):
             hxx = -(e @ (self.c * self.kx ** 2)).real
             hyy = -(e @ (self.c * self.ky ** 2)).real
             hxy = -(e @ (self.c * self.kx * self.ky)).real
@@ -60,15 +56,20 @@ class FourierWall:
         k = np.hypot(self.kx, self.ky)
         return best + step * float(np.sum(np.abs(self.c) * k ** 3))
 
-    def max_slope(self, region, step: float) -> float:
-        """max |∇z| over a fine lattice of ``region``, plus step·Σ|c_k||k|² for the change
-        between nodes (an upper bound of the slope anywhere in the region)."""
+    def _fourier_blocks(self, region, step: float, block: int = 4096):
+        """exp(i k·x) of the Fourier modes at the nodes of a fine lattice of ``region``, in
+        blocks of nodes (rows: nodes, columns: modes)."""
         x, y = np.meshgrid(np.arange(region[0], region[1], step),
                            np.arange(region[2], region[3], step))
         x, y = x.ravel(), y.ravel()
+        for s in range(0, x.size, block):
+            yield np.exp(1j * (np.outer(x[s:s + block], self.kx) + np.outer(y[s:s + block], self.ky)))
+
+    def max_slope(self, region, step: float) -> float:
+        """max |∇z| over a fine lattice of ``region``, plus step·Σ|c_k||k|² for the change
+        between nodes (an upper bound of the slope anywhere in the region)."""
         best = 0.0
-        for s in range(0, x.size, 4096):
-            e = np.exp(1j * (np.outer(x[s:s + 4096], self.kx) + np.outer(y[s:s + 4096], self.ky)))
+        for e in self._fourier_blocks(region, step):
             gx = -(e @ (self.c * self.kx)).imag
             gy = -(e @ (self.c * self.ky)).imag
             best = max(best, float(np.hypot(gx, gy).max()))
