@@ -1,21 +1,36 @@
-// Bindings of rockjoint::constitutive. Laws are held by shared_ptr so that composite laws
-// (Tang & Jiao over a GW base, tables over any law) can share them.
+// Bindings of rockjoint::constitutive (one file per C++ namespace, DOLFINx style): the closure
+// laws and their inverse, the asperity models (GW, Tang's substrate), Tang & Jiao's interaction
+// cell and law, and the tabulated law; declare_constitutive binds them all.
 #include "array_helpers.hpp"
 
+#include <rockjoint/constitutive/asperity_parameters.hpp>
 #include <rockjoint/constitutive/barton_bandis.hpp>
 #include <rockjoint/constitutive/closure_law.hpp>
 #include <rockjoint/constitutive/elasticity.hpp>
 #include <rockjoint/constitutive/empirical_laws.hpp>
+#include <rockjoint/constitutive/greenwood_williamson.hpp>
 #include <rockjoint/constitutive/hertz.hpp>
+#include <rockjoint/constitutive/interaction_cell.hpp>
+#include <rockjoint/constitutive/interaction_cell_numeric.hpp>
+#include <rockjoint/constitutive/substrate.hpp>
+#include <rockjoint/constitutive/summit_population_law.hpp>
+#include <rockjoint/constitutive/tabulated_law.hpp>
+#include <rockjoint/constitutive/tang_jiao.hpp>
+#include <rockjoint/constitutive/tang_substrate.hpp>
 
 #include <pybind11/stl.h>
+
+#include <cmath>
+#include <optional>
+#include <stdexcept>
+#include <string>
 
 namespace py = pybind11;
 using namespace rockjoint::constitutive;
 
 namespace rockjoint::python
 {
-
+// ---- constitutive ------------------------------------------------------------------------------
 namespace
 {
 /// Δ(σ) over an array (scalar in → scalar out).
@@ -34,7 +49,7 @@ py::object inverse_array(const ClosureLaw& law, const DoubleArray& stress)
 
 } // namespace
 
-void declare_constitutive(py::module_& m)
+void declare_laws(py::module_& m)
 {
   py::enum_<Status>(m, "Status", "Outcome of one law evaluation")
       .value("contact", Status::contact)
@@ -97,4 +112,579 @@ void declare_constitutive(py::module_& m)
         "1/E* = (1-ν1²)/E1 + (1-ν2²)/E2 [Pa]");
 }
 
+// ---- asperity models ---------------------------------------------------------------------------
+namespace
+{
+/// The distribution argument: "gaussian", "exponential", or (heights, radii, area).
+struct DistributionChoice
+{
+  HeightDistribution kind = HeightDistribution::gaussian;
+  std::optional<EmpiricalSummits> summits;
+};
+
+DistributionChoice parse_distribution(const std::string& owner, const py::object& d)
+{
+  if (py::isinstance<py::str>(d))
+  {
+    const auto s = d.cast<std::string>();
+    if (s == "gaussian")
+      return {HeightDistribution::gaussian, std::nullopt};
+    if (s == "exponential")
+      return {HeightDistribution::exponential, std::nullopt};
+    throw py::value_error(owner + ": distribution '" + s
+                          + "' is invalid; it must be 'gaussian', 'exponential' or a "
+                            "(heights [m], radii [m], area [m^2]) triple");
+  }
+  py::tuple t;
+  try
+  {
+    t = py::tuple(d);
+  }
+  catch (const py::error_already_set&)
+  {
+    throw py::value_error(owner
+                          + ": distribution must be 'gaussian', 'exponential' or a "
+                            "(heights [m], radii [m], area [m^2]) triple");
+  }
+  if (t.size() != 3)
+    throw py::value_error(owner
+                          + ": an empirical distribution is a (heights [m], radii [m], "
+                            "area [m^2]) triple; got "
+                          + std::to_string(t.size()) + " items");
+  auto heights = t[0].cast<DoubleArray>();
+  auto radii = t[1].cast<DoubleArray>();
+  const auto h = as_span(heights), r = as_span(radii);
+  return {HeightDistribution::empirical,
+          EmpiricalSummits({h.begin(), h.end()}, {r.begin(), r.end()}, t[2].cast<double>())};
+}
+
+SeatingReference parse_reference(const std::string& owner,
+                                 std::optional<double> reference_separation,
+                                 std::optional<double> seating_stress)
+{
+  if (reference_separation && seating_stress)
+    throw py::value_error(owner + ": give reference_separation or seating_stress, not both");
+  if (reference_separation)
+    return SeatingReference::at_separation(*reference_separation);
+  if (seating_stress)
+    return SeatingReference::at_stress(*seating_stress);
+  return SeatingReference::automatic();
+}
+
+/// Statistics for a parametric distribution (all required), none for an empirical list.
+AsperityParameters parse_statistics(const std::string& owner, const DistributionChoice& dist,
+                                    double modulus, std::optional<double> density,
+                                    std::optional<double> radius, std::optional<double> height_std)
+{
+  if (dist.summits)
+  {
+    if (density || radius || height_std)
+      throw py::value_error(owner
+                            + ": summit_density, summit_radius and summit_height_std are "
+                              "derived from an empirical (heights, radii, area) list; "
+                              "do not give them");
+    return {};
+  }
+  for (auto [name, value] :
+       {std::pair{"summit_density", density}, std::pair{"summit_radius", radius},
+        std::pair{"summit_height_std", height_std}})
+    if (!value)
+      throw py::value_error(owner + ": parameter '" + name + "' is required for distribution '"
+                            + to_string(dist.kind) + "'");
+  return {modulus, *density, *radius, *height_std};
+}
+
+std::shared_ptr<GreenwoodWilliamson> make_gw(double modulus, std::optional<double> density,
+                                             std::optional<double> radius,
+                                             std::optional<double> height_std,
+                                             const py::object& distribution,
+                                             std::optional<double> reference_separation,
+                                             std::optional<double> seating_stress, double tolerance)
+{
+  const std::string owner = "GreenwoodWilliamson";
+  DistributionChoice dist = parse_distribution(owner, distribution);
+  const AsperityParameters p = parse_statistics(owner, dist, modulus, density, radius, height_std);
+  const SeatingReference ref = parse_reference(owner, reference_separation, seating_stress);
+  if (dist.summits)
+    return std::make_shared<GreenwoodWilliamson>(modulus, std::move(*dist.summits), ref);
+  return std::make_shared<GreenwoodWilliamson>(p, dist.kind, ref, tolerance);
+}
+
+std::shared_ptr<TangSubstrate>
+make_tang(double modulus, std::optional<double> density, std::optional<double> radius,
+          std::optional<double> height_std, const py::object& distribution,
+          double deflection_coefficient, std::optional<double> base_radius,
+          std::optional<double> reference_separation, std::optional<double> seating_stress,
+          double tolerance)
+{
+  const std::string owner = "TangSubstrate";
+  DistributionChoice dist = parse_distribution(owner, distribution);
+  const AsperityParameters p = parse_statistics(owner, dist, modulus, density, radius, height_std);
+  const SeatingReference ref = parse_reference(owner, reference_separation, seating_stress);
+  const SubstrateParameters sub{deflection_coefficient, base_radius};
+  if (dist.summits)
+    return std::make_shared<TangSubstrate>(modulus, std::move(*dist.summits), sub, ref);
+  return std::make_shared<TangSubstrate>(p, dist.kind, sub, ref, tolerance);
+}
+
+py::tuple separation_response(const SummitPopulationLaw& law, const DoubleArray& separation)
+{
+  require_no_nan(separation, "separation");
+  DoubleArray s = empty_like(separation), k = empty_like(separation), a = empty_like(separation),
+              rate = empty_like(separation);
+  const double* d = separation.data();
+  {
+    py::gil_scoped_release release;
+    for (py::ssize_t i = 0; i < separation.size(); ++i)
+    {
+      const ClosureResponse r = law.response_at_separation(d[i]);
+      s.mutable_data()[i] = r.normal_stress;
+      k.mutable_data()[i] = r.normal_stiffness;
+      a.mutable_data()[i] = r.contact_area_ratio;
+      rate.mutable_data()[i] = r.contact_area_rate;
+    }
+  }
+  if (separation.ndim() == 0)
+    return py::make_tuple(s.attr("item")(), k.attr("item")(), a.attr("item")(),
+                          rate.attr("item")());
+  return py::make_tuple(s, k, a, rate);
+}
+
+const char* common_doc
+    = "composite_modulus: E* [Pa] with 1/E* = (1-ν1²)/E1 + (1-ν2²)/E2 (NOT E/(1-ν²)).\n"
+      "summit_density η [1/m²], summit_radius β [m], summit_height_std σ_s [m]: required for "
+      "distribution 'gaussian' (mean 0) or 'exponential' (f = e^{-z/σ_s}/σ_s, z >= 0); "
+      "omitted for an empirical distribution given as (heights [m], radii [m], area [m²]) "
+      "(η = N/A0, β = mean radius, σ_s = std of heights; each summit keeps its radius).\n"
+      "Seating convention: d = d0 - Δ and σ(Δ) = σ_model(d0 - Δ) - σ_model(d0). Reference d0: "
+      "reference_separation [m], or seating_stress [Pa] (solve σ_model(d0) = σ_seat), or by "
+      "default the mean summit height + 3.5 σ_s (highest summit of an empirical list).\n"
+      "quadrature_tolerance: relative tolerance of the height quadrature (unused for an "
+      "empirical list).";
+} // namespace
+
+void declare_asperity_models(py::module_& m)
+{
+  // AsperityParameters/AsperityLaw may have been registered by another binding file.
+  if (!py::detail::get_type_info(typeid(AsperityParameters)))
+    py::class_<AsperityParameters>(
+        m, "AsperityParameters",
+        "Roughness statistics of the composite topography (SI): the one parameter type of the "
+        "asperity laws, the topography analysis and the parameter files")
+        .def(py::init(
+                 [](double e, double eta, double beta, double sigma, std::optional<double> h)
+                 {
+                   AsperityParameters p{e, eta, beta, sigma};
+                   if (h)
+                     p.sampling_interval = *h;
+                   validate(p, "AsperityParameters");
+                   return p;
+                 }),
+             py::arg("composite_modulus"), py::arg("summit_density"),
+             py::arg("summit_radius"), py::arg("summit_height_std"),
+             py::arg("sampling_interval") = py::none())
+        .def_readonly("composite_modulus", &AsperityParameters::composite_modulus, "E* [Pa]")
+        .def_readonly("summit_density", &AsperityParameters::summit_density, "η [1/m²]")
+        .def_readonly("summit_radius", &AsperityParameters::summit_radius, "β [m]")
+        .def_readonly("summit_height_std", &AsperityParameters::summit_height_std, "σ_s [m]")
+        .def_property_readonly(
+            "sampling_interval",
+            [](const AsperityParameters& p) -> std::optional<double>
+            {
+              if (std::isnan(p.sampling_interval))
+                return std::nullopt;
+              return p.sampling_interval;
+            },
+            "h [m] the statistics belong to, or None if not known")
+        .def("__eq__",
+             [](const AsperityParameters& a, const AsperityParameters& b)
+             {
+               auto same = [](double x, double y) { return x == y || (std::isnan(x) && std::isnan(y)); };
+               return a.composite_modulus == b.composite_modulus
+                      && a.summit_density == b.summit_density && a.summit_radius == b.summit_radius
+                      && a.summit_height_std == b.summit_height_std
+                      && same(a.sampling_interval, b.sampling_interval);
+             })
+        .def("__repr__",
+             [](const AsperityParameters& p)
+             {
+               return py::str("AsperityParameters(composite_modulus={!r}, summit_density={!r}, "
+                              "summit_radius={!r}, summit_height_std={!r}, "
+                              "sampling_interval={!r})")
+                   .format(p.composite_modulus, p.summit_density, p.summit_radius,
+                           p.summit_height_std,
+                           std::isnan(p.sampling_interval) ? py::object(py::none())
+                                                           : py::object(py::float_(p.sampling_interval)));
+             });
+  if (!py::detail::get_type_info(typeid(AsperityLaw)))
+    py::class_<AsperityLaw, ClosureLaw, std::shared_ptr<AsperityLaw>>(
+        m, "AsperityLaw", "A closure law built on a population of Hertzian summits")
+        .def_property_readonly("asperity_parameters", &AsperityLaw::asperity_parameters,
+                               "Summit statistics (E* [Pa], η [1/m²], β [m], σ_s [m])");
+
+  py::class_<SummitPopulationLaw, AsperityLaw, std::shared_ptr<SummitPopulationLaw>>(
+      m, "SummitPopulationLaw", "Common base of GreenwoodWilliamson and TangSubstrate")
+      .def_property_readonly("reference_separation", &SummitPopulationLaw::reference_separation,
+                             "Reference (seating) separation d0 [m]")
+      .def_property_readonly("distribution", [](const SummitPopulationLaw& l)
+                             { return std::string(to_string(l.distribution())); })
+      .def_property_readonly("quadrature_tolerance", &SummitPopulationLaw::quadrature_tolerance)
+      .def("quadrature_converged", &SummitPopulationLaw::quadrature_converged, py::arg("closure"),
+           "Diagnostic: True if every height integral at closure Δ [m] met the tolerance")
+      .def("response_at_separation", &separation_response, py::arg("separation"),
+           "Un-seated model response at separation d [m]: (σ_model [Pa], k [Pa/m], A/A0 [-], "
+           "d(A/A0)/dΔ [1/m])");
+
+  py::class_<GreenwoodWilliamson, SummitPopulationLaw, std::shared_ptr<GreenwoodWilliamson>>(
+      m, "GreenwoodWilliamson",
+      (std::string("Greenwood-Williamson law: σ = (4/3) E* η β^½ ∫_d^∞ (z-d)^{3/2} f dz per unit "
+                   "area, k = dσ/dΔ, A/A0 = π η β ∫ (z-d) f dz (theory §2).\n")
+       + common_doc)
+          .c_str())
+      .def(py::init(&make_gw), py::arg("composite_modulus"), py::arg("summit_density") = py::none(),
+           py::arg("summit_radius") = py::none(), py::arg("summit_height_std") = py::none(),
+           py::kw_only(), py::arg("distribution") = "gaussian",
+           py::arg("reference_separation") = py::none(), py::arg("seating_stress") = py::none(),
+           py::arg("quadrature_tolerance") = default_quadrature_tolerance);
+
+  py::class_<TangSubstrate, SummitPopulationLaw, std::shared_ptr<TangSubstrate>>(
+      m, "TangSubstrate",
+      (std::string("GW with substrate deformation (Tang et al. 2014, f3 of Tang & Jiao 2018, "
+                   "theory §4): each summit carries (4/3) E* β^½ g^{3/2} with "
+                   "w = g + κ_s √β g^{3/2} / r0.\n")
+       + common_doc
+       + "\ndeflection_coefficient κ_s [-] (default 8/(3π), centre deflection; "
+         "MEAN_DEFLECTION 64/(9π²); RIGID_BASE 2/3; 0 gives GW); base_radius r0 [m] (default "
+         "1/(2√η), half the summit spacing).")
+          .c_str())
+      .def(py::init(&make_tang), py::arg("composite_modulus"),
+           py::arg("summit_density") = py::none(), py::arg("summit_radius") = py::none(),
+           py::arg("summit_height_std") = py::none(), py::kw_only(),
+           py::arg("distribution") = "gaussian",
+           py::arg("deflection_coefficient") = substrate::centre_deflection,
+           py::arg("base_radius") = py::none(), py::arg("reference_separation") = py::none(),
+           py::arg("seating_stress") = py::none(),
+           py::arg("quadrature_tolerance") = default_quadrature_tolerance)
+      .def_property_readonly("deflection_coefficient", &TangSubstrate::deflection_coefficient,
+                             "κ_s [-]")
+      .def_property_readonly("base_radius", &TangSubstrate::base_radius, "r0 [m]")
+      .def_readonly_static("CENTRE_DEFLECTION", &substrate::centre_deflection)
+      .def_readonly_static("MEAN_DEFLECTION", &substrate::mean_deflection)
+      .def_readonly_static("RIGID_BASE", &substrate::rigid_base);
+}
+
+// ---- tang jiao ---------------------------------------------------------------------------------
+namespace
+{
+TangJiaoVariant parse_variant(const std::string& v)
+{
+  // "as_published" is accepted as the former name of I1 (the project's reading of Eq. (7)).
+  if (v == "I1" || v == "i1" || v == "stress_interaction" || v == "as_published")
+    return TangJiaoVariant::stress_interaction;
+  if (v == "I2" || v == "i2" || v == "kinematic")
+    return TangJiaoVariant::kinematic;
+  throw py::value_error("TangJiao: variant '" + v
+                        + "' is invalid; it must be 'I1' (stress interaction, the project's reading of Eq. (7)) or 'I2' (kinematic)");
+}
+
+std::vector<double> to_vector(const std::optional<DoubleArray>& a)
+{
+  if (!a)
+    return {};
+  auto s = as_span(*a);
+  return {s.begin(), s.end()};
+}
+
+std::shared_ptr<TangJiao> make_tang_jiao(std::shared_ptr<ClosureLaw> base,
+                                         std::optional<double> modulus,
+                                         std::optional<double> radius,
+                                         std::optional<double> height_std,
+                                         const std::string& variant,
+                                         std::optional<DoubleArray> overlap_closure,
+                                         std::optional<DoubleArray> overlap_area_ratio,
+                                         double maximum_area_root, double maximum_shift_rate)
+{
+  TangJiaoOptions o;
+  o.variant = parse_variant(variant);
+  o.overlap_closure = to_vector(overlap_closure);
+  o.overlap_area_ratio = to_vector(overlap_area_ratio);
+  o.maximum_area_root = maximum_area_root;
+  o.maximum_shift_rate = maximum_shift_rate;
+  const bool any = modulus || radius || height_std;
+  const bool all = modulus && radius && height_std;
+  if (!any)
+  {
+    auto asperity = std::dynamic_pointer_cast<const AsperityLaw>(base);
+    if (!base)
+      throw py::value_error("TangJiao: parameter 'base' is None; it must be a closure law");
+    if (!asperity)
+      throw py::value_error("TangJiao: base law '" + base->name()
+                            + "' is not an asperity law: give composite_modulus, radius and "
+                              "summit_height_std");
+    return std::make_shared<TangJiao>(asperity, std::move(o));
+  }
+  if (!all)
+    throw py::value_error("TangJiao: give all of composite_modulus, radius and "
+                          "summit_height_std, or none (to take them from an asperity law)");
+  return std::make_shared<TangJiao>(std::shared_ptr<const ClosureLaw>(base), *modulus, *radius,
+                                    *height_std, std::move(o));
+}
+
+py::dict state_dict(const TangJiao::State& s)
+{
+  py::dict d;
+  d["base_stress"] = s.base_stress;
+  d["base_stiffness"] = s.base_stiffness;
+  d["area_ratio"] = s.area_ratio;
+  d["area_rate"] = s.area_rate;
+  d["area_root"] = s.area_root;
+  d["load_fraction"] = s.load_fraction;
+  d["normal_stress"] = s.normal_stress;
+  d["normal_stiffness"] = s.normal_stiffness;
+  d["closure_shift"] = s.closure_shift;
+  d["closure_shift_rate"] = s.closure_shift_rate;
+  d["status"] = s.status;
+  return d;
+}
+} // namespace
+
+void declare_tang_jiao(py::module_& m)
+{
+  py::enum_<TangJiaoLimit>(m, "TangJiaoLimit", "What sets TangJiao.maximum_closure")
+      .value("none", TangJiaoLimit::none)
+      .value("area_root", TangJiaoLimit::area_root)
+      .value("closure_shift_rate", TangJiaoLimit::closure_shift_rate)
+      .value("base_law", TangJiaoLimit::base_law);
+
+  py::class_<TangJiao, ClosureLaw, std::shared_ptr<TangJiao>>(
+      m, "TangJiao",
+      "Tang & Jiao (2018) self-consistent interaction over a base law f3 (theory §5).\n"
+      "Two project readings of Eq. (7) (not the paper's words; docs/theory.md §5):\n"
+      "I1 (default): F = σ_model/Q(s) - σ_seat/Q(s0), s = √(A/A0), closure unchanged;\n"
+      "I2: F at Δ = ξ - ε(ξ), ε = (2F/E*)√(b²-a²).\n"
+      "Validity limit at s = maximum_area_root (I2 also at dε/dξ = maximum_shift_rate).")
+      .def(py::init(&make_tang_jiao), py::arg("base"), py::arg("composite_modulus") = py::none(),
+           py::arg("radius") = py::none(), py::arg("summit_height_std") = py::none(),
+           py::arg("variant") = "I1", py::arg("overlap_closure") = py::none(),
+           py::arg("overlap_area_ratio") = py::none(), py::arg("maximum_area_root") = 0.99,
+           py::arg("maximum_shift_rate") = 0.9,
+           "base: any ClosureLaw; composite_modulus E* [Pa], radius R [m] (= β), "
+           "summit_height_std σ_s [m]: all three, or none to take them from an asperity law "
+           "(GreenwoodWilliamson, TangSubstrate). overlap_closure [m] / overlap_area_ratio [-]: "
+           "optional geometric fraction{e <= Δ} samples for Eq. (2) (Δ_0 = 0, monotone).")
+      .def_property_readonly("variant", [](const TangJiao& l)
+                             { return l.variant() == TangJiaoVariant::kinematic ? "I2" : "I1"; })
+      .def_property_readonly("limit", &TangJiao::limit)
+      .def_property_readonly("limit_description", &TangJiao::limit_description)
+      .def_property_readonly("maximum_internal_closure", &TangJiao::maximum_internal_closure,
+                             "Internal closure ξ at the validity limit [m]")
+      .def_property_readonly("contact_radius", &TangJiao::contact_radius,
+                             "Eq. (1): a = (3/4)√(π R σ_s) [m]")
+      .def(
+          "internal_closure",
+          [](const TangJiao& l, const DoubleArray& closure)
+          {
+            require_no_nan(closure, "closure");
+            return py::vectorize([&l](double d) { return l.internal_closure(d); })(closure);
+          },
+          py::arg("closure"), "I2: internal closure ξ [m] at observed closure Δ [m]")
+      .def(
+          "state", [](const TangJiao& l, double xi) { return state_dict(l.state(xi)); },
+          py::arg("internal_closure"), "Cell state at internal closure ξ [m] (dict)");
+
+  // Closed form of the cell and the paper's algorithm.
+  m.def("load_fraction", py::vectorize(&interaction_cell::load_fraction), py::arg("area_root"),
+        "Q(s) = (2/π)[arccos s + s√(1-s²)]");
+  m.def("interaction_fraction", py::vectorize(&interaction_cell::interaction_fraction),
+        py::arg("area_root"), "1 - Q(s), accurate for small s (≈ 4s³/(3π))");
+
+  py::class_<interaction_cell::Cell>(m, "InteractionCell",
+                                     "Closed-form self-consistent cell (theory §5), SI units")
+      .def(py::init<double, double, double, double>(), py::arg("composite_modulus"),
+           py::arg("radius"), py::arg("contact_radius"), py::arg("area_root"))
+      .def_property_readonly("territory_radius", &interaction_cell::Cell::territory_radius)
+      .def_property_readonly("mean_pressure", &interaction_cell::Cell::mean_pressure)
+      .def_property_readonly("local_approach", &interaction_cell::Cell::local_approach)
+      .def_property_readonly("hertz_load", &interaction_cell::Cell::hertz_load)
+      .def_property_readonly("interaction_load", &interaction_cell::Cell::interaction_load)
+      .def_property_readonly("load", &interaction_cell::Cell::load)
+      .def_property_readonly("closure_shift", &interaction_cell::Cell::closure_shift)
+      .def(
+          "pressure",
+          [](const interaction_cell::Cell& c, const DoubleArray& r)
+          { return py::vectorize([&c](double x) { return c.pressure(x); })(r); },
+          py::arg("r"), "p(r) [Pa] at radius r [m]");
+
+  py::class_<interaction_cell::NumericCell>(
+      m, "NumericInteractionCell",
+      "The paper's algorithm (Fig. 2): finite-fringe root find on p̄, self-consistency on δ_loc")
+      .def(py::init<double, double, double, double, int>(), py::arg("composite_modulus"),
+           py::arg("radius"), py::arg("contact_radius"), py::arg("area_root"),
+           py::arg("quadrature_order") = 32)
+      .def_property_readonly("mean_pressure",
+                             [](const interaction_cell::NumericCell& c)
+                             { return c.solution().mean_pressure; })
+      .def_property_readonly("local_approach",
+                             [](const interaction_cell::NumericCell& c)
+                             { return c.solution().local_approach; })
+      .def_property_readonly("load", [](const interaction_cell::NumericCell& c)
+                             { return c.solution().load; })
+      .def_property_readonly("iterations",
+                             [](const interaction_cell::NumericCell& c)
+                             {
+                               return py::make_tuple(c.solution().outer_iterations,
+                                                     c.solution().inner_iterations);
+                             })
+      .def_property_readonly("converged", [](const interaction_cell::NumericCell& c)
+                             { return c.solution().converged; })
+      .def(
+          "pressure",
+          [](const interaction_cell::NumericCell& c, const DoubleArray& r)
+          { return py::vectorize([&c](double x) { return c.pressure(x); })(r); },
+          py::arg("r"), "p(r) [Pa] at radius r [m]");
+}
+
+// ---- tabulation --------------------------------------------------------------------------------
+namespace
+{
+using Table = std::shared_ptr<TabulatedLaw>;
+
+TabulatedLaw::Options options(double tolerance, std::optional<double> residual_stiffness,
+                              std::size_t maximum_knots)
+{
+  TabulatedLaw::Options o;
+  o.tolerance = tolerance;
+  o.maximum_knots = maximum_knots;
+  if (residual_stiffness)
+    o.residual_stiffness = *residual_stiffness;
+  return o;
+}
+
+py::array_t<double> to_numpy(const std::vector<double>& v)
+{
+  return py::array_t<double>(static_cast<py::ssize_t>(v.size()), v.data());
+}
+
+/// A file error is bad input: ValueError (the CLI prints it as a one-line error).
+template <class F>
+auto file_errors_as_value_errors(F&& f)
+{
+  try
+  {
+    return f();
+  }
+  catch (const std::runtime_error& e)
+  {
+    throw py::value_error(e.what());
+  }
+}
+} // namespace
+
+void declare_tabulation(py::module_& m)
+{
+  py::class_<TabulatedLaw, ClosureLaw, Table>(
+      m, "TabulatedLaw",
+      "A closure law tabulated with error control (monotone C¹ Hermite, exact tangent; "
+      "first segment in √Δ). Build with from_stress/from_closure (or rockjoint.tabulate), "
+      "or load().")
+      .def_static(
+          "from_stress",
+          [](const ClosureLaw& law, double maximum_stress, double tolerance,
+             std::optional<double> residual_stiffness, std::size_t maximum_knots)
+          {
+            const auto o = options(tolerance, residual_stiffness, maximum_knots);
+            py::gil_scoped_release release;
+            return std::make_shared<TabulatedLaw>(
+                TabulatedLaw::up_to_stress(law, maximum_stress, o));
+          },
+          py::arg("law"), py::arg("maximum_stress"), py::arg("tolerance") = 1e-6,
+          py::arg("residual_stiffness") = py::none(), py::arg("maximum_knots") = 20000,
+          "Tabulate `law` up to σ_max [Pa] (Δ_max = law.closure_at_stress(σ_max)); relative "
+          "error of σ and k <= tolerance; residual_stiffness k_res [Pa/m] (None: 1e-6 "
+          "σ_max/Δ_max, 0: strict σ = k = 0 when open)")
+      .def_static(
+          "from_closure",
+          [](const ClosureLaw& law, double maximum_closure, double tolerance,
+             std::optional<double> residual_stiffness, std::size_t maximum_knots)
+          {
+            const auto o = options(tolerance, residual_stiffness, maximum_knots);
+            py::gil_scoped_release release;
+            return std::make_shared<TabulatedLaw>(
+                TabulatedLaw::over_closure_range(law, maximum_closure, o));
+          },
+          py::arg("law"), py::arg("maximum_closure"), py::arg("tolerance") = 1e-6,
+          py::arg("residual_stiffness") = py::none(), py::arg("maximum_knots") = 20000,
+          "Tabulate `law` over closures [0, Δ_max] [m] (Δ_max < law.maximum_closure)")
+      .def_static(
+          "load",
+          [](const std::string& path)
+          {
+            return file_errors_as_value_errors(
+                [&] { return std::make_shared<TabulatedLaw>(TabulatedLaw::load(path)); });
+          },
+          py::arg("path"),
+          "Read a .rjt table file; ValueError naming the file, line and field if malformed")
+      .def(
+          "save",
+          [](const TabulatedLaw& law, const std::string& path)
+          { file_errors_as_value_errors([&] { law.save(path); }); },
+          py::arg("path"), "Write the table (bit-exact round trip)")
+      .def("evaluate", &evaluate_to_numpy<TabulatedLaw>, py::arg("closure"),
+           "(σ [Pa], k [Pa/m], A/A0 (0), status) with the residual stiffness when open")
+      .def("normal_stress", &evaluate_column<0, TabulatedLaw>, py::arg("closure"), "σ(Δ) [Pa]")
+      .def("normal_stiffness", &evaluate_column<1, TabulatedLaw>, py::arg("closure"), "k(Δ) [Pa/m]")
+      .def("contact_area_ratio", &evaluate_column<2, TabulatedLaw>, py::arg("closure"), "0: no area model")
+      .def_property_readonly("knot_closure",
+                             [](const TabulatedLaw& t) { return to_numpy(t.table().closure); },
+                             "Knots Δ_i [m] (Δ_0 = 0)")
+      .def_property_readonly("knot_stress",
+                             [](const TabulatedLaw& t) { return to_numpy(t.table().normal_stress); },
+                             "σ_i at the knots [Pa]")
+      .def_property_readonly("knot_stiffness",
+                             [](const TabulatedLaw& t) { return to_numpy(t.table().stiffness); },
+                             "k_i = dσ/dΔ at the knots [Pa/m] (monotone-limited; k_0 = k(0+))")
+      .def_property_readonly("tolerance", [](const TabulatedLaw& t) { return t.table().tolerance; })
+      .def_property_readonly("checked_error_stress",
+                             [](const TabulatedLaw& t) { return t.table().checked_error_stress; },
+                             "Largest relative σ error the builder found at its check points")
+      .def_property_readonly("checked_error_stiffness",
+                             [](const TabulatedLaw& t) { return t.table().checked_error_stiffness; },
+                             "Largest relative k error the builder found at its check points")
+      .def_property_readonly("residual_stiffness", &TabulatedLaw::residual_stiffness,
+                             "k_res [Pa/m] for Δ <= 0")
+      .def_property_readonly("initial_stiffness",
+                             [](const TabulatedLaw& t) { return t.table().stiffness[0]; },
+                             "k(0+) [Pa/m]: 0 for a Hertzian onset")
+      .def_property_readonly("table_maximum_closure", &TabulatedLaw::table_maximum_closure,
+                             "Δ_max [m] (last knot)")
+      .def_property_readonly("table_maximum_stress", &TabulatedLaw::table_maximum_stress,
+                             "σ_max [Pa] (last knot)")
+      .def_property_readonly("table_end_stiffness", &TabulatedLaw::table_end_stiffness,
+                             "k at Δ_max [Pa/m], the slope of the linear extension")
+      .def_property_readonly("knot_count", &TabulatedLaw::knot_count)
+      .def_property_readonly("memory_bytes", &TabulatedLaw::memory_bytes)
+      .def_property_readonly("law_evaluations", &TabulatedLaw::law_evaluations,
+                             "Source-law calls of the build (0 if loaded)")
+      .def_property_readonly("source_model",
+                             [](const TabulatedLaw& t) { return t.table().source_model; })
+      .def_property_readonly("source_parameters",
+                             [](const TabulatedLaw& t) { return t.table().source_parameters; })
+      .def_property_readonly("source_seating_stress",
+                             [](const TabulatedLaw& t) { return t.table().source_seating_stress; })
+      .def("__repr__",
+           [](const TabulatedLaw& t)
+           {
+             return "<TabulatedLaw of " + t.table().source_model + ": "
+                    + std::to_string(t.knot_count()) + " knots, tolerance "
+                    + py::str(py::float_(t.table().tolerance)).cast<std::string>() + ">";
+           });
+}
+
+void declare_constitutive(py::module_& m)
+{
+  declare_laws(m);
+  declare_asperity_models(m);
+  declare_tang_jiao(m);
+  declare_tabulation(m);
+}
 } // namespace rockjoint::python

@@ -6,9 +6,6 @@ namespace py = pybind11;
 namespace rockjoint::python
 {
 void declare_constitutive(py::module_& m);
-void declare_asperity_models(py::module_& m);
-void declare_tang_jiao(py::module_& m);
-void declare_tabulation(py::module_& m);
 void declare_topography(py::module_& m);
 void declare_calibration(py::module_& m);
 void declare_contact(py::module_& m);
@@ -20,9 +17,6 @@ PYBIND11_MODULE(_rockjoint, m)
   m.doc() = "rockjoint C++ core: rough-rock-joint closure laws";
   py::module_ constitutive = m.def_submodule("constitutive", "Closure laws (SI units)");
   rockjoint::python::declare_constitutive(constitutive);
-  rockjoint::python::declare_asperity_models(constitutive);
-  rockjoint::python::declare_tang_jiao(constitutive);
-  rockjoint::python::declare_tabulation(constitutive);
   py::module_ topography
       = m.def_submodule("topography", "Joint-wall topography -> closure-law parameters (SI units)");
   rockjoint::python::declare_topography(topography);
