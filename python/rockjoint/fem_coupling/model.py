@@ -27,7 +27,6 @@ import numpy as np
 import ufl
 from dolfinx import fem, la
 from dolfinx.fem import petsc as fem_petsc
-from mpi4py import MPI
 from petsc4py import PETSc
 
 from .behaviours import joint_behaviours, symmetric_tangent
@@ -36,12 +35,12 @@ from .elastic_blocks import ElasticBlocks
 from .in_situ import STANDARD_GRAVITY, InSituStress
 from .joint_initial_state import initial_jump
 from .coupling import JointCoupling
-from .linear_solver import LinearSolver, LinearSolveError, resolve_kind, rigid_body_modes  # noqa: F401
+from .linear_solver import LinearSolver, resolve_kind, rigid_body_modes
 from .load_path import LoadPath
 from .loads import Load, Support
-from .newton import ConvergenceError, NewtonOptions, solve_load_path  # noqa: F401
+from .newton import NewtonOptions, solve_load_path
 from .petsc_options import check_options_prefix, check_petsc_options
-from .stages import JointedProblem, Stage, StageClock, StageResult, snes_load_path  # noqa: F401
+from .stages import JointedProblem, Stage, StageClock, StageResult, snes_load_path
 from ..validation import positive_number
 
 log = logging.getLogger(__name__)
