@@ -8,11 +8,11 @@
 /// u = K p (half_space.hpp). Solved at prescribed σ by the constrained conjugate gradients of
 /// Polonsky & Keer (1999), warm-started from the previous load.
 ///
-/// Datum of the reported closure: the approach from first contact, net of the bulk
-/// deformation the blocks of a model already carry (theory §0). Periodic kernel: mean(u) = 0,
-/// so the closure is d itself. Non-periodic kernel: d also contains the mean displacement of
-/// the scanned patch under the uniform pressure σ; that bulk part, σ·c with c = mean(K·1), is
-/// subtracted (the raw d is reported as `approach`).
+/// Datum of the reported closure: the change of the mean aperture from first contact,
+/// Δ = mean(e) - mean(g) = d - mean(u) over the scanned points, net of the bulk deformation the
+/// blocks of a model already carry (theory §0). Periodic kernel: mean(u) = 0, so the closure is
+/// d itself. Non-periodic kernel: d also contains the patch's own deformation mean(u) = mean(K p)
+/// under the actual pressure, which is subtracted (the raw d is reported as `approach`).
 /// Masked (NaN) points carry no pressure and are not counted in A0: a hole in the scan is a
 /// point that cannot touch.
 #include "half_space.hpp"
@@ -70,7 +70,8 @@ public:
                                           bool keep_fields = false);
 
   /// c = mean over the scanned points of the displacement under unit uniform pressure [m/Pa]
-  /// (0 for the periodic kernel): the bulk compliance removed from the approach.
+  /// (0 for the periodic kernel): the patch's bulk compliance under a uniform load (a check of
+  /// the kernel against Boussinesq's closed form; the closure subtracts mean(K p) instead).
   double bulk_compliance() const { return _bulk_compliance; }
   std::size_t valid_count() const { return _valid_count; }
 
