@@ -90,16 +90,19 @@ def corner_block(jm) -> str:
     return jm.names["blocks"][int(jm.cell_blocks[cell])]
 
 
-def build_model(case, dmesh, corner, variant):
+def build_model(case, dmesh, corner, variant, law=None, **model_options):
+    """The case's model, prepared (K, f, linear solver). law: the joints' (default: the Barton-Bandis
+    law of the module docstring); model_options: further JointedRockModel arguments (element_degree,
+    quadrature; used by bench_fe_speed_vs_error.py)."""
     import numpy as np
     import rockjoint
     from rockjoint.fem_coupling import JointedRockModel, NewtonOptions
-    law = rockjoint.BartonBandis(KNI, VM)
+    law = rockjoint.BartonBandis(KNI, VM) if law is None else law
     newton = NewtonOptions(verbose=True, forcing="fixed" if variant == "fixed_forcing" else "eisenstat_walker")
     petsc = {"pc_gamg_agg_nsmooths": 1} if variant == "smoothed_aggregation" else None
     model = JointedRockModel(dmesh, rock=(E, NU), joints={n: law for n in dmesh.names["joints"].values()},
                              shear_stiffness=KS, plane=None, linear_solver="iterative", newton=newton,
-                             petsc_options=petsc)
+                             petsc_options=petsc, **model_options)
     if case == "column":
         model.fix("bottom", "z")
         model.fix("left", "x")

@@ -1,0 +1,422 @@
+#!/usr/bin/env python3
+"""FE speed against error: what each setting of a jointed analysis costs and how much error it buys.
+
+One command (a few minutes on a quiet 2-core machine, see the report for the measured wall time):
+
+    bash scripts/run.sh python3 bench/bench_fe_speed_vs_error.py [--quick]
+
+Sweeps, each against a reference that does not come from the setting under test:
+- mesh size: the 3D jointed column of bench/bench_fem.py (closed form u_top = -(σH/E + 2Δ(σ)));
+  the intact tunnel of bench/bench_kirsch.py (Kirsch, quarter model, the discretisation error
+  alone); the jointed tunnel below (against a P2 fine-mesh reference computed in the same run);
+- P1 against P2 (column, Kirsch, jointed tunnel);
+- nodal against Gauss joint quadrature (P1; column, jointed tunnel);
+- table tolerance against FE error: tables of the joints' own Barton-Bandis law (rockjoint.tabulate)
+  against the untabulated law (column: closed form; tunnel: the same mesh with the law itself);
+- load-step size against Newton iterations (column, excavation stage of the jointed tunnel);
+- 1 rank against 2 ranks: a sub-run under `mpirun -n 1` and `mpirun -n 2` (column, jointed tunnel),
+  times and the answers compared.
+
+The jointed tunnel: the geometry of demos/demo_tunnel.py in a smaller section (W/a = 10): an opening
+a = 4 m at 300 m depth (σ_v = ρ g z = 7.95 MPa, K0 = 0.5), granite E = 50 GPa, ν = 0.25, rollers on the
+four sides, bedding planes (horizontal, 3 m apart, the nearest 1.5 m from the axis) and a cross set
+(dip 60°, 5 m apart, one through the axis), both with the demo's cross-set law Barton-Bandis JRC 8,
+JCS 80 MPa, aperture 0.4 mm, tabulated to 4 σ_v at tolerance 1e-6 (the demo's table setting);
+k_s = 0.1 k_n(Δ), residual stiffness 1 MPa/m. Stages: in-situ (joints pre-closed) then excavation.
+Mesh family (every size scales with 1/n): h_wall = a/n at the opening (growing over 2a), h_joint = 2a/n on
+the joints (growing over 8a/n), h_far = 8a/n elsewhere: n = 16 is the demo's default mesh.
+Errors (after excavation, relative to the excavation stage): wall = max over 72 points on the wall of
+|u - u_ref| / max |u_ref| (the wall convergence); stress = rms over 72 points on r = 1.5 a of the total
+stress components' difference / σ_v.
+
+Times: wall-clock minimum over --repeat runs (model set-up + solve, meshing excluded), each run a
+fresh model on the same distributed mesh.
+Writes bench/results/fe_speed_vs_error.{md,json} and bench/results/fe_speed_vs_error_*.png.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import logging
+import math
+import os
+import platform
+import subprocess
+import sys
+import time
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+import bench_fem  # noqa: E402  (the column case: mesh, model, closed form)
+import bench_kirsch  # noqa: E402  (the intact tunnel against Kirsch)
+
+log = logging.getLogger("bench_fe_speed_vs_error")
+
+# ---- the jointed tunnel (module docstring) ------------------------------------------------------
+A = 4.0                              # opening radius a [m]
+W = 10 * A                           # section side [m]
+CENTRE = (W / 2, W / 2)
+SIGMA_V = 2700.0 * 9.81 * 300.0      # ρ g z [Pa]
+K0 = 0.5
+ROCK = (50e9, 0.25)                  # E [Pa], ν
+SPACING = 3.0                        # bedding spacing [m], the smallest of the two sets
+SHEAR_RATIO, RESIDUAL = 0.1, 1e6     # k_s / k_n, residual stiffness [Pa/m]
+TABLE_TOP = 4.0 * SIGMA_V            # table range [Pa]
+WALL_POINTS, RING_POINTS = 72, 72
+BUDGETS = (0.1, 0.03, 0.01, 0.003)   #: error budgets (jointed tunnel wall error) for the recommendations
+DEFAULT_BUDGET = 0.01
+
+
+def tunnel_law(tolerance: float | None = 1e-6):
+    """Barton-Bandis JRC 8, JCS 80 MPa, aperture 0.4 mm; a table of it (None: the law itself)."""
+    import rockjoint
+    law = rockjoint.BartonBandis.from_joint_properties(jrc=8.0, jcs=80e6, initial_aperture=0.4e-3)
+    return law if tolerance is None else rockjoint.tabulate(law, max_stress=TABLE_TOP, tolerance=tolerance)
+
+
+def tunnel_mesh(n: int, comm):
+    """Distributed jointed section of the mesh family n (module docstring); gmsh on rank 0."""
+    from rockjoint import meshes
+    from rockjoint.fem_coupling import distribute
+    joints = (meshes.joint_set(SPACING, 0.0, 90.0, origin=(CENTRE[0], CENTRE[1] - 10.5), count=8, name="bedding")
+              + meshes.joint_set(5.0, 60.0, 90.0, origin=(CENTRE[0] - 10.0, CENTRE[1]), count=5, name="cross"))
+    jm = meshes.tunnel_section(W, W, meshes.CircularOpening(CENTRE, A), joints, mesh_size=8 * A / n,
+                               opening_mesh_size=A / n, opening_refine_distance=2 * A,
+                               joint_mesh_size=2 * A / n, joint_refine_distance=8 * A / n, comm=comm)
+    return distribute(jm, comm)
+
+
+def sample_points():
+    """(wall points, ring points): the wall at r = a + 1/16 m (inside the coarsest family member's
+    chords, sagitta (a/4)²/(8a) = 1/32 m), the ring r = 1.5 a."""
+    th = np.linspace(0.0, 2 * math.pi, WALL_POINTS, endpoint=False) + math.pi / WALL_POINTS
+    ring = lambda r: np.stack([CENTRE[0] + r * np.cos(th), CENTRE[1] + r * np.sin(th)], axis=1)  # noqa: E731
+    return ring(A + 1.0 / 16), ring(1.5 * A)
+
+
+def solve_tunnel(dmesh, degree=1, quadrature="nodal", law=None, steps=1) -> dict:
+    """In-situ, then excavation in `steps` load steps; the answer at the sample points and the cost."""
+    from mpi4py import MPI
+    from rockjoint.fem_coupling import InSituStress, JointedRockModel, NewtonOptions
+    from rockjoint.fem_coupling.probe import probe
+    from rockjoint.meshes import OPENING
+    comm = dmesh.mesh.comm
+    law = tunnel_law() if law is None else law
+    comm.barrier()
+    t0 = time.perf_counter()
+    model = JointedRockModel(dmesh, element_degree=degree, quadrature=quadrature, rock=ROCK,
+                             joints={name: law for name in dmesh.names["joints"].values()},
+                             shear_stiffness_ratio=SHEAR_RATIO, residual_stiffness=RESIDUAL, plane="strain",
+                             newton=NewtonOptions(verbose=False))
+    for side, component in (("left", "x"), ("right", "x"), ("bottom", "y"), ("top", "y")):
+        model.fix(side, component)
+    model.set_in_situ_stress(InSituStress.uniform([[-K0 * SIGMA_V, 0.0], [0.0, -SIGMA_V]]))
+    model.solve(name="in-situ")
+    model.excavate(OPENING)
+    stage = model.solve(load_steps=steps, name="excavation")
+    comm.barrier()
+    seconds = time.perf_counter() - t0
+    wall, ring = sample_points()
+    return {"dofs": model.num_dofs, "pairs": comm.allreduce(len(dmesh.pairs), op=MPI.SUM), "seconds": seconds,
+            "newton_iterations": stage.newton_iterations,
+            "load_steps_taken": sum(1 for r in stage.reports if r.converged),
+            "u_wall": probe(model.u, wall), "stress_ring": probe(model.total_stress(), ring)}
+
+
+def tunnel_errors(row, ref) -> dict:
+    du = np.linalg.norm(row["u_wall"] - ref["u_wall"], axis=1).max() / np.linalg.norm(ref["u_wall"], axis=1).max()
+    ds = np.sqrt(np.mean((row["stress_ring"] - ref["stress_ring"]) ** 2)) / SIGMA_V
+    return {"wall_error": float(du), "stress_error": float(ds)}
+
+
+def timed(fn, repeat: int) -> dict:
+    """fn() -> row with "seconds"; the first row with the minimum time over `repeat` runs."""
+    rows = [fn() for _ in range(repeat)]
+    out = dict(rows[0])
+    out["seconds"] = min(r["seconds"] for r in rows)
+    out["seconds_max"] = max(r["seconds"] for r in rows)
+    out["runs"] = repeat
+    return out
+
+
+# ---- the column (bench_fem) ---------------------------------------------------------------------
+def column_mesh(h: float, comm):
+    from rockjoint.fem_coupling import distribute
+    return distribute(bench_fem.make_mesh("column", h) if comm.rank == 0 else None, comm)
+
+
+def solve_column(dmesh, law=None, steps=1, **model_options) -> dict:
+    """bench_fem's column; error against the closed form of the exact Barton-Bandis law."""
+    import rockjoint
+    from mpi4py import MPI
+    comm = dmesh.mesh.comm
+    comm.barrier()
+    t0 = time.perf_counter()
+    model, _ = bench_fem.build_model("column", dmesh, None, "default", law=law, **model_options)
+    sol = model.solve(load_steps=steps)
+    comm.barrier()
+    seconds = time.perf_counter() - t0
+    exact = rockjoint.BartonBandis(bench_fem.KNI, bench_fem.VM)
+    return {"dofs": model.num_dofs, "pairs": comm.allreduce(model.interface.num_pairs, op=MPI.SUM),
+            "seconds": seconds, "newton_iterations": sol.newton_iterations,
+            "load_steps_taken": sum(1 for r in sol.reports if r.converged),
+            "u_top": float(model.boundary_mean_displacement("top")[2]),
+            "error": bench_fem.closed_form_error("column", "jointed", model, sol, exact)}
+
+
+# ---- sweeps (serial) ----------------------------------------------------------------------------
+def sweep_column(cfg, comm) -> dict:
+    import rockjoint
+    from rockjoint.tabulation import table_errors
+    out = {"mesh": [], "table_tolerance": [], "load_steps": []}
+    meshes_ = {}
+    for h in cfg["column_h"]:
+        meshes_[h] = column_mesh(h, comm)
+        for degree, quadrature in ((1, "nodal"), (1, "gauss"), (2, "nodal")):
+            if degree == 2 and h < cfg["column_h_p2_min"]:
+                continue
+            row = timed(lambda: solve_column(meshes_[h], element_degree=degree, quadrature=quadrature),
+                        cfg["repeat"])
+            row.update(h=h, degree=degree, quadrature=quadrature)
+            out["mesh"].append(row)
+            log.info("column h = %g P%d %s: %d dofs, error %.2e, %.2f s", h, degree, quadrature, row["dofs"],
+                     row["error"], row["seconds"])
+    dm = meshes_[cfg["column_h_fixed"]]
+    law = rockjoint.BartonBandis(bench_fem.KNI, bench_fem.VM)
+    for tol in cfg["tolerances"]:
+        table = rockjoint.tabulate(law, max_stress=2 * bench_fem.COLUMN_STRESS, tolerance=tol)
+        row = timed(lambda: solve_column(dm, law=table), cfg["repeat"])
+        row.update(tolerance=tol, knots=len(table.knot_closure), h=cfg["column_h_fixed"],
+                   table_error=float(table_errors(table, law)[1].max()))
+        out["table_tolerance"].append(row)
+        log.info("column table tolerance %g (%d knots): error %.2e, %.2f s", tol, row["knots"], row["error"],
+                 row["seconds"])
+    for steps in cfg["steps"]:
+        row = timed(lambda: solve_column(dm, steps=steps), cfg["repeat"])
+        row.update(steps=steps, h=cfg["column_h_fixed"])
+        out["load_steps"].append(row)
+        log.info("column %d load step(s): %d Newton its, error %.2e, %.2f s", steps, row["newton_iterations"],
+                 row["error"], row["seconds"])
+    return out
+
+
+def sweep_kirsch(cfg, comm) -> dict:
+    out = []
+    for degree, ns in ((1, cfg["kirsch_p1"]), (2, cfg["kirsch_p2"])):
+        for n in ns:
+            row = timed(lambda: bench_kirsch.solve_case(bench_kirsch.EXACT_RATIO, n, degree, "exact", comm),
+                        cfg["repeat"])
+            out.append(row)
+            log.info("Kirsch P%d a/h = %d: %d dofs, displacement max %.2e, stress rms %.2e, %.2f s", degree, n,
+                     row["dofs"], row["displacement_max"], row["stress_rms"], row["seconds"])
+    return {"rows": out}
+
+
+def sweep_tunnel(cfg, comm) -> dict:
+    from rockjoint.tabulation import table_errors
+    out = {"mesh": [], "table_tolerance": [], "load_steps": []}
+    t0 = time.perf_counter()
+    ref_mesh = tunnel_mesh(cfg["tunnel_ref"], comm)
+    log.info("tunnel reference mesh n = %d (%.1f s)", cfg["tunnel_ref"], time.perf_counter() - t0)
+    ref = solve_tunnel(ref_mesh, degree=2)
+    ref.update(n=cfg["tunnel_ref"], degree=2, quadrature="nodal")
+    log.info("tunnel reference P2 n = %d: %d dofs, %d Newton its, %.1f s", ref["n"], ref["dofs"],
+             ref["newton_iterations"], ref["seconds"])
+    del ref_mesh
+    meshes_ = {}
+    for n in cfg["tunnel_n"]:
+        t0 = time.perf_counter()
+        meshes_[n] = tunnel_mesh(n, comm)
+        t_mesh = time.perf_counter() - t0
+        for degree, quadrature in ((1, "nodal"), (1, "gauss"), (2, "nodal")):
+            if degree == 2 and n > cfg["tunnel_p2_max"]:
+                continue
+            row = timed(lambda: solve_tunnel(meshes_[n], degree, quadrature), cfg["repeat"])
+            row.update(n=n, degree=degree, quadrature=quadrature, mesh_seconds=t_mesh, **tunnel_errors(row, ref))
+            out["mesh"].append(row)
+            log.info("tunnel n = %d P%d %s: %d dofs, wall error %.2e, stress error %.2e, %d Newton its, %.2f s",
+                     n, degree, quadrature, row["dofs"], row["wall_error"], row["stress_error"],
+                     row["newton_iterations"], row["seconds"])
+    n = cfg["tunnel_n_fixed"]
+    law_ref = solve_tunnel(meshes_[n], law=tunnel_law(None))
+    for tol in cfg["tolerances"]:
+        table = tunnel_law(tol)
+        row = timed(lambda: solve_tunnel(meshes_[n], law=table), cfg["repeat"])
+        row.update(n=n, tolerance=tol, knots=len(table.knot_closure), **tunnel_errors(row, law_ref),
+                   table_error=float(table_errors(table, tunnel_law(None))[1].max()))
+        out["table_tolerance"].append(row)
+        log.info("tunnel table tolerance %g (%d knots): wall error vs the law %.2e, %.2f s", tol, row["knots"],
+                 row["wall_error"], row["seconds"])
+    law_ref.update(n=n, tolerance=None, **tunnel_errors(law_ref, law_ref))
+    out["table_tolerance"].append(law_ref)
+    first = None
+    for steps in cfg["steps"]:
+        row = timed(lambda: solve_tunnel(meshes_[n], steps=steps), cfg["repeat"])
+        first = first or row
+        row.update(n=n, steps=steps, **tunnel_errors(row, first))
+        row["fine_reference_wall_error"] = tunnel_errors(row, ref)["wall_error"]
+        out["load_steps"].append(row)
+        log.info("tunnel %d excavation step(s): %d taken, %d Newton its, %.2f s", steps, row["load_steps_taken"],
+                 row["newton_iterations"], row["seconds"])
+    out["reference"] = {k: v for k, v in ref.items() if not isinstance(v, np.ndarray)}
+    return out
+
+
+# ---- ranks (sub-runs under mpirun) --------------------------------------------------------------
+def ranks_worker(args) -> None:
+    """Inside `mpirun -n k`: the column and the jointed tunnel, min time over --repeat, the answers."""
+    from mpi4py import MPI
+    comm = MPI.COMM_WORLD
+    cfg = config(args.quick)
+    col = timed(lambda: solve_column(column_mesh(cfg["ranks_column_h"], comm)), 1)  # warm-up, JIT
+    dm = column_mesh(cfg["ranks_column_h"], comm)
+    col = timed(lambda: solve_column(dm), args.repeat)
+    tm = tunnel_mesh(cfg["ranks_tunnel_n"], comm)
+    tun = timed(lambda: solve_tunnel(tm), args.repeat)
+    if comm.rank == 0:
+        with open(args.json, "w") as fh:
+            json.dump({"ranks": comm.size, "column": {k: v for k, v in col.items()},
+                       "tunnel": {k: (v.tolist() if isinstance(v, np.ndarray) else v) for k, v in tun.items()}}, fh)
+
+
+def sweep_ranks(cfg, args) -> dict:
+    out = {}
+    scratch = os.path.join(os.path.dirname(HERE), ".scratch")
+    os.makedirs(scratch, exist_ok=True)
+    for k in (1, 2):
+        path = os.path.join(scratch, f"fe_speed_vs_error_ranks{k}.json")
+        cmd = ["mpirun", "-n", str(k), "--bind-to", "core", sys.executable, os.path.abspath(__file__),
+               "--ranks-worker", "--json", path, "--repeat", str(cfg["repeat"])] + (["--quick"] if args.quick else [])
+        log.info("ranks: %s", " ".join(cmd))
+        subprocess.run(cmd, check=True)
+        with open(path) as fh:
+            out[k] = json.load(fh)
+    u1, u2 = (np.asarray(out[k]["tunnel"]["u_wall"]) for k in (1, 2))
+    return {
+        "column": {"h": cfg["ranks_column_h"], "dofs": out[1]["column"]["dofs"],
+                   "seconds": [out[k]["column"]["seconds"] for k in (1, 2)],
+                   "newton_iterations": [out[k]["column"]["newton_iterations"] for k in (1, 2)],
+                   "error": [out[k]["column"]["error"] for k in (1, 2)],
+                   "difference": abs(out[1]["column"]["u_top"] - out[2]["column"]["u_top"])
+                   / abs(out[1]["column"]["u_top"])},
+        "tunnel": {"n": cfg["ranks_tunnel_n"], "dofs": out[1]["tunnel"]["dofs"],
+                   "seconds": [out[k]["tunnel"]["seconds"] for k in (1, 2)],
+                   "newton_iterations": [out[k]["tunnel"]["newton_iterations"] for k in (1, 2)],
+                   "difference": float(np.linalg.norm(u1 - u2, axis=1).max() / np.linalg.norm(u1, axis=1).max())},
+    }
+
+
+# ---- recommendations ----------------------------------------------------------------------------
+def recommend(res, budget) -> dict:
+    """The cheapest mesh/degree meeting `budget` on the jointed tunnel's wall error, and the other
+    settings read off their tables (rules in the report)."""
+    rows = res["tunnel"]["mesh"]
+    fits = [r for r in rows if r["wall_error"] <= budget and r["quadrature"] == "nodal"]
+    if not fits:
+        return {"error_budget": budget, "met": False,
+                "reason": f"no nodal mesh in the sweep reaches a wall error <= {budget:g}"}
+    best = min(fits, key=lambda r: r["seconds"])
+    n = best["n"]
+    same = {r["quadrature"]: r for r in rows if r["n"] == n and r["degree"] == 1}
+    quad = "gauss" if ("gauss" in same and same["gauss"]["wall_error"] < 0.5 * same["nodal"]["wall_error"]) \
+        else "nodal"
+    tt = [r for r in res["tunnel"]["table_tolerance"] if r["tolerance"] is not None]
+    ct = {r["tolerance"]: r for r in res["column"]["table_tolerance"]}
+    ok = [r for r in tt if r["wall_error"] <= 0.1 * budget and ct.get(r["tolerance"], {"error": 0})["error"]
+          <= 0.1 * budget]
+    tol = max(ok, key=lambda r: r["tolerance"]) if ok else min(tt, key=lambda r: r["tolerance"])
+    ls = min(res["tunnel"]["load_steps"], key=lambda r: (r["newton_iterations"], r["steps"]))
+    kirsch = [r for r in res["kirsch"]["rows"] if r["degree"] == best["degree"]
+              and r["displacement_max"] <= budget]
+    return {
+        "error_budget": budget, "met": True,
+        "error_measure": "jointed tunnel: max wall displacement difference / max wall displacement (P2 fine reference)",
+        "element_degree": best["degree"],
+        "opening_mesh_size_over_radius": 1.0 / n,
+        "joint_mesh_size_over_spacing": 2 * A / n / SPACING,
+        "far_mesh_size_over_radius": 8.0 / n,
+        "opening_refine_distance_over_radius": 2.0,
+        "joint_refine_distance_over_radius": 8.0 / n,
+        "mesh_family_n": n,
+        "wall_error": best["wall_error"], "stress_error": best["stress_error"], "seconds": best["seconds"],
+        "dofs": best["dofs"],
+        "joint_quadrature": quad if best["degree"] == 1 else "nodal",
+        "joint_quadrature_errors": {q: r["wall_error"] for q, r in same.items()},
+        "table_tolerance": tol["tolerance"],
+        "table_tolerance_error": {"tunnel_wall": tol["wall_error"], "column": ct.get(tol["tolerance"], {}).get("error")},
+        "excavation_load_steps": ls["steps"],
+        "excavation_load_steps_cost": {"newton_iterations": ls["newton_iterations"], "seconds": ls["seconds"]},
+        "intact_opening_mesh_size_over_radius": (1.0 / min(r["a/h"] for r in kirsch)) if kirsch else None,
+    }
+
+
+# ---- driver -------------------------------------------------------------------------------------
+def config(quick: bool) -> dict:
+    if quick:
+        return {"repeat": 1, "column_h": [0.25, 0.125], "column_h_p2_min": 0.125, "column_h_fixed": 0.25,
+                "tolerances": [1e-2, 1e-4, 1e-6], "steps": [1, 2, 4], "kirsch_p1": [4, 8, 16], "kirsch_p2": [4, 8],
+                "tunnel_n": [4, 8], "tunnel_p2_max": 8, "tunnel_ref": 16, "tunnel_n_fixed": 8,
+                "ranks_column_h": 0.125, "ranks_tunnel_n": 8}
+    return {"repeat": 3, "column_h": [0.25, 0.125, 0.0625, 0.04, 0.03], "column_h_p2_min": 0.0625,
+            "column_h_fixed": 0.125, "tolerances": [1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-8], "steps": [1, 2, 4, 8],
+            "kirsch_p1": [4, 8, 16, 32, 64], "kirsch_p2": [4, 8, 16, 32], "tunnel_n": [4, 8, 16, 32, 64],
+            "tunnel_p2_max": 32, "tunnel_ref": 64, "tunnel_n_fixed": 16, "ranks_column_h": 0.03,
+            "ranks_tunnel_n": 64}
+
+
+def jsonable(x):
+    if isinstance(x, dict):
+        return {str(k): jsonable(v) for k, v in x.items() if not isinstance(v, np.ndarray)}
+    if isinstance(x, (list, tuple)):
+        return [jsonable(v) for v in x]
+    if isinstance(x, (np.floating, np.integer)):
+        return x.item()
+    return x
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--quick", action="store_true", help="coarse meshes, one run each (a smoke run)")
+    ap.add_argument("--output", default=os.path.join(HERE, "results"))
+    ap.add_argument("--no-ranks", action="store_true", help="skip the mpirun -n 1 / -n 2 sub-runs")
+    ap.add_argument("--ranks-worker", action="store_true", help=argparse.SUPPRESS)
+    ap.add_argument("--json", help=argparse.SUPPRESS)
+    ap.add_argument("--repeat", type=int, default=None, help="runs per timing (default 3, --quick 1)")
+    args = ap.parse_args()
+    logging.basicConfig(level=logging.INFO, format="%(message)s")
+    from rockjoint.console import quiet_compiler_logging
+    quiet_compiler_logging()
+    for name in ("rockjoint.fem_coupling.newton", "rockjoint.fem_coupling.stages"):  # per-iteration/stage lines
+        logging.getLogger(name).setLevel(logging.WARNING)
+    from mpi4py import MPI
+    if args.ranks_worker:
+        if MPI.COMM_WORLD.rank != 0:
+            logging.getLogger().setLevel(logging.WARNING)
+        return ranks_worker(args)
+    t_start, load_start = time.perf_counter(), os.getloadavg()
+    cfg = config(args.quick)
+    if args.repeat:
+        cfg["repeat"] = args.repeat
+    comm = MPI.COMM_SELF
+    res = {"config": cfg}
+    for name, sweep in (("column", sweep_column), ("kirsch", sweep_kirsch), ("tunnel", sweep_tunnel)):
+        t0 = time.perf_counter()
+        log.info("== %s", name)
+        res[name] = sweep(cfg, comm)
+        res[name]["wall_seconds"] = time.perf_counter() - t0
+    if not args.no_ranks:
+        log.info("== 1 rank against 2 ranks")
+        res["ranks"] = sweep_ranks(cfg, args)
+    res["recommended"] = recommend(res, DEFAULT_BUDGET)
+    res["by_budget"] = [recommend(res, b) for b in BUDGETS]
+    res["machine"] = {"platform": platform.platform(), "cpus": os.cpu_count(), "load_start": load_start,
+                      "load_end": os.getloadavg(), "wall_seconds": time.perf_counter() - t_start,
+                      "date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()), "quick": args.quick}
+    import fe_speed_vs_error_report as report
+    report.write(res, args.output)
+
+
+if __name__ == "__main__":
+    main()
