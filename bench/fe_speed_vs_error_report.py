@@ -194,7 +194,15 @@ def recommended_section(rec, by_budget):
                  f"{r['joint_quadrature']} | {r['table_tolerance']:g} | {r['excavation_load_steps']} | "
                  f"{_e(r['wall_error'])} | {_e(r['stress_error'])} | {r['seconds']:.3f} | {r['dofs']} | "
                  f"{'' if intact is None else f'{intact:.4g}'} |")
+    L += ["", "Cheapest row per element and joint rule for each budget (time [s] / h_wall / a), to judge how close "
+          "the choice is (times are noisy on a loaded machine, dofs and errors are not):", ""]
+    for r in by_budget:
+        if r["met"]:
+            L.append(f"- budget {r['error_budget']:g}: " + "; ".join(
+                f"{k} {v['seconds']:.3f} s at a/{1 / v['opening_mesh_size_over_radius']:.0f} ({v['dofs']} dofs, "
+                f"error {v['wall_error']:.2e})" for k, v in r["cheapest_per_element_and_rule"].items()))
     if rec["met"]:
+        L += ["", f"Why (JSON \"justification\"): {rec['justification']}."]
         L += ["", f"Default budget {rec['error_budget']:g}: P{rec['element_degree']}, h_wall = "
               f"{rec['opening_mesh_size_over_radius']:.4g} a, h_joint = {rec['joint_mesh_size_over_spacing']:.3g} × "
               f"spacing, {rec['joint_quadrature']} joint rule, table tolerance {rec['table_tolerance']:g} (its FE error: "

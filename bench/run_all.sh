@@ -15,5 +15,6 @@ echo "== FE coupling"; /usr/bin/python3 bench/bench_fem.py --build "$build" --re
     --ratio-size 0.0235 --scaling-sizes 0.0174 0.0135 --scaling-repeat 3 --scaling-ranks 1
 echo "== direct vs iterative"; /usr/bin/python3 bench/bench_direct_vs_iterative.py
 echo "== Kirsch"; /usr/bin/python3 bench/bench_kirsch.py
+echo "== FE speed against error"; /usr/bin/python3 bench/bench_fe_speed_vs_error.py
 echo "== exact contact (BEM)"; /usr/bin/python3 bench/bench_contact.py --repeat 5
 echo "== accuracy ladder"; /usr/bin/python3 bench/bench_accuracy_ladder.py
