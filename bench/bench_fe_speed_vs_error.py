@@ -76,16 +76,21 @@ def tunnel_law(tolerance: float | None = 1e-6):
     return law if tolerance is None else rockjoint.tabulate(law, max_stress=TABLE_TOP, tolerance=tolerance)
 
 
-def tunnel_mesh(n: int, comm, intact: bool = False):
+def tunnel_mesh(n: int | None, comm, intact: bool = False, spacing: float = SPACING, sizes=None):
     """Distributed jointed section of the mesh family n (module docstring); gmsh on rank 0.
-    intact: the same triangles as one block without joints."""
+    intact: the same triangles as one block without joints. spacing: of the bedding planes [m], the
+    nearest spacing/2 from the axis, out to 10.5 m. sizes: (h_wall, h_joint, h_far) [m] instead of
+    the family's; the joint size grows to h_far over h_far, the opening's over 2 a."""
     from rockjoint import meshes
     from rockjoint.fem_coupling import distribute
-    joints = (meshes.joint_set(SPACING, 0.0, 90.0, origin=(CENTRE[0], CENTRE[1] - 10.5), count=8, name="bedding")
+    h_wall, h_joint, h_far = sizes or (A / n, 2 * A / n, 8 * A / n)
+    per_side = int((10.5 - spacing / 2) / spacing + 1e-9) + 1
+    joints = (meshes.joint_set(spacing, 0.0, 90.0, origin=(CENTRE[0], CENTRE[1] - spacing / 2 - (per_side - 1) * spacing),
+                               count=2 * per_side, name="bedding")
               + meshes.joint_set(5.0, 60.0, 90.0, origin=(CENTRE[0] - 10.0, CENTRE[1]), count=5, name="cross"))
-    jm = meshes.tunnel_section(W, W, meshes.CircularOpening(CENTRE, A), joints, mesh_size=8 * A / n,
-                               opening_mesh_size=A / n, opening_refine_distance=2 * A,
-                               joint_mesh_size=2 * A / n, joint_refine_distance=8 * A / n, intact=intact, comm=comm)
+    jm = meshes.tunnel_section(W, W, meshes.CircularOpening(CENTRE, A), joints, mesh_size=h_far,
+                               opening_mesh_size=h_wall, opening_refine_distance=2 * A,
+                               joint_mesh_size=h_joint, joint_refine_distance=h_far, intact=intact, comm=comm)
     return distribute(jm, comm)
 
 
@@ -97,7 +102,7 @@ def sample_points():
     return ring(A + 1.0 / 16), ring(1.5 * A)
 
 
-def solve_tunnel(dmesh, degree=1, quadrature="nodal", law=None, steps=1) -> dict:
+def solve_tunnel(dmesh, degree=1, quadrature="nodal", law=None, steps=1, k0=K0) -> dict:
     """In-situ, then excavation in `steps` load steps; the answer at the sample points and the cost."""
     from mpi4py import MPI
     from rockjoint.fem_coupling import InSituStress, JointedRockModel, NewtonOptions
@@ -114,7 +119,7 @@ def solve_tunnel(dmesh, degree=1, quadrature="nodal", law=None, steps=1) -> dict
                              newton=NewtonOptions(verbose=False))
     for side, component in (("left", "x"), ("right", "x"), ("bottom", "y"), ("top", "y")):
         model.fix(side, component)
-    model.set_in_situ_stress(InSituStress.uniform([[-K0 * SIGMA_V, 0.0], [0.0, -SIGMA_V]]))
+    model.set_in_situ_stress(InSituStress.uniform([[-k0 * SIGMA_V, 0.0], [0.0, -SIGMA_V]]))
     model.solve(name="in-situ")
     model.excavate(OPENING)
     stage = model.solve(load_steps=steps, name="excavation")
@@ -402,6 +407,45 @@ def recommend(res, budget) -> dict:
     }
 
 
+# ---- the recommendations on a second scene ------------------------------------------------------
+#: bedding planes twice as dense (1.5 m) and a high horizontal stress (K0 = 1.5); all else as above
+TRANSFER_SPACING, TRANSFER_K0 = 1.5, 1.5
+
+
+def sweep_transfer(cfg, comm, by_budget) -> dict:
+    """Each budget's recommended ratios applied to the second scene (sizes from a and the scene's own
+    joint spacing), its answer error against the scene's own P2 reference (the family's finest sizes)."""
+    n = cfg["tunnel_ref"]
+    ref_sizes = (A / n, 2 * A / n, 8 * A / n)
+
+    def both(sizes, degree, quadrature="nodal"):
+        row = solve_tunnel(tunnel_mesh(None, comm, spacing=TRANSFER_SPACING, sizes=sizes), degree, quadrature,
+                           k0=TRANSFER_K0)
+        row["u_intact"] = solve_tunnel(tunnel_mesh(None, comm, intact=True, spacing=TRANSFER_SPACING, sizes=sizes),
+                                       degree, k0=TRANSFER_K0)["u_wall"]
+        return row
+
+    ref = both(ref_sizes, 2)
+    log.info("second scene: reference P2 (h_wall = a/%d): %d dofs, %.1f s", n, ref["dofs"], ref["seconds"])
+    rows = []
+    for rec in by_budget:
+        if not rec["met"]:
+            continue
+        sizes = (A * rec["opening_mesh_size_over_radius"], TRANSFER_SPACING * rec["joint_mesh_size_over_spacing"],
+                 A * rec["far_mesh_size_over_radius"])
+        sizes = (sizes[0], min(sizes[1], sizes[2]), sizes[2])  # the joint size never above the far size
+        row = both(sizes, rec["element_degree"], rec["joint_quadrature"])
+        row.update(tunnel_errors(row, ref), budget=rec["error_budget"], degree=rec["element_degree"],
+                   quadrature=rec["joint_quadrature"], sizes=list(sizes))
+        row["answer_error"] = answer_error(row)
+        rows.append(row)
+        log.info("second scene, budget %g: P%d sizes %s m: answer error %.2e (%s), %.2f s", row["budget"],
+                 row["degree"], ", ".join(f"{x:.3g}" for x in sizes), row["answer_error"],
+                 "met" if row["answer_error"] <= row["budget"] else "NOT met", row["seconds"])
+    return {"bedding_spacing": TRANSFER_SPACING, "k0": TRANSFER_K0, "reference_dofs": ref["dofs"],
+            "reference_sizes": list(ref_sizes), "rows": rows}
+
+
 # ---- driver -------------------------------------------------------------------------------------
 def config(quick: bool) -> dict:
     if quick:
@@ -464,6 +508,10 @@ def main():
         res["ranks"] = sweep_ranks(cfg, args)
     res["recommended"] = recommend(res, DEFAULT_BUDGET)
     res["by_budget"] = [recommend(res, b) for b in BUDGETS]
+    t0 = time.perf_counter()
+    log.info("== the recommendations on a second scene")
+    res["transfer"] = sweep_transfer(cfg, comm, res["by_budget"])
+    res["transfer"]["wall_seconds"] = time.perf_counter() - t0
     res["machine"] = {"platform": platform.platform(), "cpus": os.cpu_count(), "load_start": load_start,
                       "load_end": os.getloadavg(), "wall_seconds": time.perf_counter() - t_start,
                       "date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()), "quick": args.quick}

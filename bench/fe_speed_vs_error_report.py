@@ -220,6 +220,23 @@ def recommended_section(rec, by_budget):
     return L
 
 
+def transfer_section(tr, radius):
+    L = ["## 8b. The recommendations on a second scene", "",
+         f"The same section with bedding planes {tr['bedding_spacing']:g} m apart (twice as dense) and K0 = {tr['k0']:g}; "
+         "each budget's recommended ratios turned into sizes with a and this scene's own bedding spacing, against the "
+         f"scene's own P2 reference (h_wall = a/{round(radius / tr['reference_sizes'][0])}, h_joint = "
+         f"{tr['reference_sizes'][1]:.3g} m, {tr['reference_dofs']} dofs). Answer error = max(wall error, joint share "
+         "error) as in section 3.", "",
+         "| budget | element | joint rule | h_wall, h_joint, h_far [m] | dofs | wall error | joint share error | "
+         "stress error | answer error | met | time [s] |", "|---:|---|---|---|---:|---:|---:|---:|---:|---|---:|"]
+    for r in tr["rows"]:
+        L.append(f"| {r['budget']:g} | P{r['degree']} | {r['quadrature']} | "
+                 + ", ".join(f"{x:.3g}" for x in r["sizes"]) + f" | {r['dofs']} | {_e(r['wall_error'])} | "
+                 f"{_e(r['joint_share_error'])} | {_e(r['stress_error'])} | {_e(r['answer_error'])} | "
+                 f"{'yes' if r['answer_error'] <= r['budget'] else '**no**'} | {r['seconds']:.3f} |")
+    return L
+
+
 def surprises(res):
     """Observations computed from the tables: errors that do not fall with h, Gauss vs nodal."""
     out = []
@@ -285,6 +302,8 @@ def write(res, output):
     if "ranks" in res:
         L += [""] + ranks_section(res["ranks"])
     L += [""] + recommended_section(res["recommended"], res["by_budget"])
+    if "transfer" in res:
+        L += [""] + transfer_section(res["transfer"], bench.A)
     L += ["", "## 9. Observations computed from the tables", ""] + [f"- {s}" for s in surprises(res)]
     text = "\n".join(L) + "\n"
     print(text, flush=True)
