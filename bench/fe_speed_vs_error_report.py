@@ -221,11 +221,14 @@ def recommended_section(rec, by_budget):
 
 
 def transfer_section(tr, radius):
+    if "failed" in tr:
+        return ["## 8b. The recommendations on a second scene", "", f"Failed: {tr['failed']}"]
     L = ["## 8b. The recommendations on a second scene", "",
          f"The same section with bedding planes {tr['bedding_spacing']:g} m apart (twice as dense) and K0 = {tr['k0']:g}; "
          "each budget's recommended ratios turned into sizes with a and this scene's own bedding spacing, against the "
          f"scene's own P2 reference (h_wall = a/{round(radius / tr['reference_sizes'][0])}, h_joint = "
-         f"{tr['reference_sizes'][1]:.3g} m, {tr['reference_dofs']} dofs). Answer error = max(wall error, joint share "
+         f"{tr['reference_sizes'][1]:.3g} m, {tr['reference_dofs']} dofs, MUMPS, {tr['reference_newton_iterations']} Newton "
+         f"its, {tr['reference_seconds']:.1f} s; tables to 8 σ_v). Answer error = max(wall error, joint share "
          "error) as in section 3.", "",
          "| budget | element | joint rule | h_wall, h_joint, h_far [m] | dofs | wall error | joint share error | "
          "stress error | answer error | met | time [s] |", "|---:|---|---|---|---:|---:|---:|---:|---:|---|---:|"]
