@@ -353,7 +353,7 @@ def recommend(res, budget) -> dict:
     second = {(r["n"], r["degree"]): r for r in res.get("second", {}).get("mesh", [])}
     fits = [r for r in rows if answer_error(r) <= budget and r["quadrature"] == "nodal"]
     if "mesh" in res.get("second", {}):  # and on the second scene (rows not run there are not eligible)
-        fits = [r for r in fits if (r["n"], r["degree"]) in second
+        fits = [r for r in fits if (r["n"], r["degree"]) in second and "failed" not in second[(r["n"], r["degree"])]
                 and second[(r["n"], r["degree"])]["answer_error"] <= budget]
     if not fits:
         return {"error_budget": budget, "met": False,
@@ -449,7 +449,13 @@ def sweep_second_scene(cfg, comm) -> dict:
     rows = []
     for degree, n_max in ((1, cfg["second_p1_max"]), (2, cfg["second_p2_max"])):
         for n in [n for n in cfg["tunnel_n"] if n <= n_max]:
-            row = both(second_sizes(n), degree, solver="direct")
+            try:
+                row = both(second_sizes(n), degree, solver="direct")
+            except RuntimeError as err:  # ConvergenceError, LinearSolveError: a row that failed, kept as such
+                log.warning("second scene n = %d P%d failed: %s", n, degree, err)
+                rows.append({"n": n, "degree": degree, "quadrature": "nodal", "sizes": list(second_sizes(n)),
+                             "failed": str(err), "answer_error": None})
+                continue
             row.update(tunnel_errors(row, ref), n=n, degree=degree, quadrature="nodal", sizes=list(second_sizes(n)))
             row["answer_error"] = answer_error(row)
             rows.append(row)

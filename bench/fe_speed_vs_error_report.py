@@ -239,6 +239,10 @@ def second_section(sc, first, radius, spacing):
     for r in sc["mesh"]:
         f = firsts.get((r["n"], r["degree"]))
         fe = None if f is None else max(f["wall_error"], f["joint_share_error"])
+        if "failed" in r:
+            L.append(f"| {r['n']} | P{r['degree']} | " + ", ".join(f"{x:.3g}" for x in r["sizes"])
+                     + f" | | **failed**: {r['failed']} | | | | {_e(fe)} | | |")
+            continue
         L.append(f"| {r['n']} | P{r['degree']} | " + ", ".join(f"{x:.3g}" for x in r["sizes"]) + f" | {r['dofs']} | "
                  f"{_e(r['wall_error'])} | {_e(r['joint_share_error'])} | {_e(r['stress_error'])} | "
                  f"{_e(r['answer_error'])} | {_e(fe)} | {r['newton_iterations']} | {r['seconds']:.3f} |")
