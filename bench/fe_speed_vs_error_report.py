@@ -209,6 +209,8 @@ def recommended_section(rec, by_budget):
             L.append(f"- budget {r['error_budget']:g}: " + "; ".join(
                 f"{k} {v['seconds']:.3f} s at a/{1 / v['opening_mesh_size_over_radius']:.0f} ({v['dofs']} dofs, "
                 f"error {v['answer_error']:.2e})" for k, v in r["cheapest_per_element_and_rule"].items()))
+    if "note" in rec:
+        L += ["", f"JSON \"recommended\": {rec['note']}."]
     if rec["met"]:
         L += ["", f"Why (JSON \"justification\"): {rec['justification']}."]
         L += ["", f"Default budget {rec['error_budget']:g}: P{rec['element_degree']}, h_wall = "
@@ -259,6 +261,16 @@ def surprises(res):
             for h0, h1, e0, e1 in _not_falling(rows, "h", key):
                 out.append(f"jointed tunnel P{d} {q}: {key} did not fall from h_wall = {h0:.4g} a to {h1:.4g} a "
                            f"({e0:.2e} → {e1:.2e})")
+    sc = res.get("second", {}).get("mesh", [])
+    for d in (1, 2):
+        rows = [dict(r, h=1.0 / r["n"]) for r in sc if r["degree"] == d and "failed" not in r]
+        for key in ("wall_error", "joint_share_error"):
+            for h0, h1, e0, e1 in _not_falling(rows, "h", key):
+                out.append(f"second scene P{d}: {key} did not fall from h_wall = {h0:.4g} a to {h1:.4g} a "
+                           f"({e0:.2e} → {e1:.2e})")
+    for r in sc:
+        if "failed" in r:
+            out.append(f"second scene P{r['degree']} n = {r['n']}: the solve failed ({r['failed']})")
     k = res["kirsch"]["rows"]
     for d in (1, 2):
         rows = [r for r in k if r["degree"] == d]
