@@ -12,9 +12,16 @@ log = logging.getLogger("rockjoint.scenes")
 def source_law(scene, set_name: str, plan, reduced: bool = False):
     """The closure law of a joint set (before tabulation; a saved table is returned as it is)."""
     import rockjoint
-    from rockjoint import calibration, laws
+    from rockjoint import calibration, law_registry, laws
     spec = scene.data["joints"][set_name]["law"]
     rock = scene.data["rock"]
+    if "model" in spec and law_registry.get(spec["model"]).asperity:
+        p = spec["parameters"]
+        stats = rockjoint.AsperityParameters(
+            composite_modulus=rockjoint.composite_modulus(rock["young"], rock["poisson"]),
+            summit_density=p["summit_density"], summit_radius=p["summit_radius"],
+            summit_height_std=p["summit_height_std"])
+        return laws.make_law(spec["model"], stats)
     if "model" in spec:
         return laws.make_law(spec["model"], **spec["parameters"])
     if "table" in spec:

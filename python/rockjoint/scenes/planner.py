@@ -84,13 +84,26 @@ def stage_stresses(scene) -> list:
     return out
 
 
+def concentration(scene) -> tuple:
+    """(factor, words): the stress-concentration bound of the scene's geometry: Kirsch's 3 at an
+    opening, block corners where joint sets of different orientation cross, else 1."""
+    g = scene.data["geometry"]
+    if "opening" in g:
+        return defaults.OPENING_CONCENTRATION, "x 3 Kirsch concentration at the opening"
+    orientations = {(round(s["dip"], 6), round(s["dip_direction"], 6)) for s in g.get("joint_sets", [])}
+    if len(orientations) > 1:
+        return (defaults.BLOCK_CORNER_CONCENTRATION,
+                f"x {defaults.BLOCK_CORNER_CONCENTRATION:g} at block corners where joint sets cross")
+    return 1.0, "no concentration: a homogeneous field"
+
+
 def normal_stress_bound(scene) -> float:
     """Upper bound [Pa] of any joint's normal stress over the stages."""
-    opening = "opening" in scene.data["geometry"]
+    factor = concentration(scene)[0]
     bound = 0.0
     for _, s, pressure in stage_stresses(scene):
         compression = max(0.0, -float(np.linalg.eigvalsh(s).min()))
-        bound = max(bound, compression * (defaults.OPENING_CONCENTRATION if opening else 1.0) + pressure)
+        bound = max(bound, compression * factor + pressure)
     return bound
 
 
@@ -187,9 +200,8 @@ def make_plan(scene, reduced: bool = False) -> Plan:
                        f"{defaults.TABLE_MARGIN * bound * 1e-6:.3g} MPa",
                        text=lambda v: f"normal stress 0 - {v * 1e-6:.3g} MPa",
                        why=(f"upper bound of joint normal stress {bound * 1e-6:.3g} MPa (largest "
-                            "compressive principal stress of in-situ + all loads"
-                            + (", x 3 Kirsch concentration at the opening" if opening else "")
-                            + f"), x {defaults.TABLE_MARGIN} margin"),
+                            "compressive principal stress of in-situ + all loads, "
+                            + concentration(scene)[1] + f"), x {defaults.TABLE_MARGIN} margin"),
                        cost="knots grow with log(range); a table evaluation costs ~0.05 µs whatever the law",
                        error="the loads cannot take a joint outside it (checked after the run)")
     tol = choose("table tolerance", "table_tolerance", defaults.TABLE_TOLERANCE,

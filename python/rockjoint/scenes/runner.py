@@ -196,7 +196,8 @@ def summary_table(result: SceneResult) -> str:
     """Jointed beside intact, per stage: monitored displacements [mm], max |u| [mm], joints."""
     stages = [r.stage for r in result.rows if r.model == "jointed"]
     has_intact = any(r.model == "intact" for r in result.rows)
-    lines = [f"{'stage':14}{'quantity':28}{'jointed':>14}{'intact':>14}{'joints share':>14}"]
+    w = max([len(s) for s in stages] + [5]) + 2
+    lines = [f"{'stage':{w}}{'quantity':28}{'jointed':>14}{'intact':>14}{'joints share':>14}"]
     for stage in stages:
         j = result.row("jointed", stage)
         i = result.row("intact", stage) if has_intact else None
@@ -207,8 +208,8 @@ def summary_table(result: SceneResult) -> str:
         for name, a, b in quantities:
             share = f"{(a - b) * 1e3:14.5g}" if b is not None else f"{'':>14}"
             other = f"{b * 1e3:14.5g}" if b is not None else f"{'-':>14}"
-            lines.append(f"{stage:14}{name:28}{a * 1e3:14.5g}{other}{share}")
-        lines.append(f"{stage:14}{'joints: max closure [mm]':28}{j.max_closure * 1e3:14.5g}")
-        lines.append(f"{stage:14}{'joints: max σ_n [MPa]':28}{j.max_normal_stress * 1e-6:14.5g}")
-        lines.append(f"{stage:14}{'joints: slipping points':28}{j.slipping:14d}")
+            lines.append(f"{stage:{w}}{name:28}{a * 1e3:14.5g}{other}{share}")
+        lines.append(f"{stage:{w}}{'joints: max closure [mm]':28}{j.max_closure * 1e3:14.5g}")
+        lines.append(f"{stage:{w}}{'joints: max σ_n [MPa]':28}{j.max_normal_stress * 1e-6:14.5g}")
+        lines.append(f"{stage:{w}}{'joints: slipping points':28}{j.slipping:14d}")
     return "\n".join(lines)

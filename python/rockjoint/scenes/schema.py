@@ -63,7 +63,7 @@ GEOMETRY = Mapping({
     "length": Quantity("length", required=False, **POSITIVE),
     "size": ListOf(_LENGTH, length=(2, 3), required=False),
     "joint_heights": ListOf(Quantity("length", **POSITIVE), required=False, min_length=1),
-    "joint_sets": ListOf(JOINT_SET, required=False, default=[]),
+    "joint_sets": ListOf(JOINT_SET, required=False),
     "opening": Mapping({"shape": Text(choices=("circle",)), "centre": _POINT,
                         "radius": Quantity("length", **POSITIVE)}, required=False),
 }, rule=_geometry_rule)
@@ -91,6 +91,11 @@ STRENGTH = Mapping({
     "dilation_limit": Quantity("length", low=0.0, required=False)})
 
 
+_ASPERITY_STATISTICS = (law_registry.Quantity("summit_density", "η", "1/mm²"),
+                        law_registry.Quantity("summit_radius", "β", "mm"),
+                        law_registry.Quantity("summit_height_std", "σ_s", "mm"))
+
+
 def _law_rule(law, path, c):
     given = [k for k in ("model", "topography", "curve", "table") if k in law]
     if len(given) != 1:
@@ -98,12 +103,12 @@ def _law_rule(law, path, c):
                      f"got {', '.join(given) or 'none'}")
     if "model" in law:
         record = law_registry.REGISTRY.get(law["model"])
-        if record is None or not record.parameters:
-            usable = sorted(k for k, r in law_registry.REGISTRY.items() if r.parameters)
-            c.fail(path + ("model",), f"{law['model']!r} is not a law built from its own "
-                   f"parameters; one of {', '.join(usable)} (asperity laws: give a topography)")
+        if record is None or not (record.parameters or record.asperity):
+            c.fail(path + ("model",), f"{law['model']!r} is not a registered law; one of "
+                   f"{', '.join(sorted(law_registry.REGISTRY))}")
         params = law.get("parameters") or {}
-        names = {q.name: q for q in record.parameters}
+        # asperity laws: the summit statistics (E* comes from the rock)
+        names = {q.name: q for q in (_ASPERITY_STATISTICS if record.asperity else record.parameters)}
         for key in params:
             if key not in names:
                 c.fail(path + ("parameters", key), f"unknown parameter {key!r} of {record.key}; "
