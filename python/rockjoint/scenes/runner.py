@@ -31,6 +31,7 @@ class StageRow:
     max_closure: float = 0.0       # [m], all joints
     max_normal_stress: float = 0.0  # [Pa]
     slipping: int = 0              # joint points in the slip state
+    per_set: dict = dataclasses.field(default_factory=dict)  # set -> (max closure [m], max σ_n [Pa])
 
 
 @dataclasses.dataclass
@@ -40,6 +41,7 @@ class SceneResult:
     tables: dict
     files: list
     seconds: float
+    gdim: int = 0                  # geometric dimension of the meshes solved
 
     def row(self, model: str, stage: str) -> StageRow:
         return next(r for r in self.rows if r.model == model and r.stage == stage)
@@ -110,6 +112,12 @@ def _record(scene, model, label, stage, solution) -> StageRow:
     if np.asarray(state.get("closure", [])).size:
         row.max_closure = float(np.max(state["closure"]))
         row.max_normal_stress = float(np.max(state["normal_stress"]))
+        names = model.dmesh.names["joints"]
+        sets = np.array([geometry.joint_set_of(scene, names[int(t)]) for t in state["tag"]])
+        for name in np.unique(sets):
+            at = sets == name
+            row.per_set[str(name)] = (float(np.max(state["closure"][at])),
+                                      float(np.max(state["normal_stress"][at])))
         if "shear_state" in state:
             from rockjoint.fem_coupling import ShearState
             row.slipping = int(np.sum(np.asarray(state["shear_state"]) == int(ShearState.slip)))
@@ -175,7 +183,8 @@ def run_scene(scene, plan, output: str, comm=None, reduced: bool = False) -> Sce
                 files += model.write_xdmf(os.path.join(tmp, f"{label}.xdmf"))
         if scene.data["outputs"]["pictures"] and plan.dimension == 2:
             files += pictures.draw(models, scene, os.path.join(tmp, "scene.png"))
-        result = SceneResult(plan, rows, tables, [], time.perf_counter() - t0)
+        result = SceneResult(plan, rows, tables, [], time.perf_counter() - t0,
+                             meshes["jointed"].mesh.geometry.dim)
         if comm.rank == 0:
             with open(os.path.join(tmp, "summary.txt"), "w", encoding="utf-8") as f:
                 f.write(summary_table(result) + "\n")

@@ -220,13 +220,13 @@ def _cross_checks(d: dict, c: Checker) -> None:
     """Relations between sections: joint sets have laws, loads name boundaries that exist."""
     g = d["geometry"]
     sets = [s["name"] for s in g.get("joint_sets", [])] if g["kind"] != "column" else ["joint"]
-    for name in sets:
-        if name not in d["joints"]:
-            c.fail(("joints",), f"joint set {name!r} of the geometry has no entry")
     for name in d["joints"]:
         if name not in sets:
             c.fail(("joints", name), f"no joint set {name!r} in the geometry (sets: "
                                      f"{', '.join(sets) or 'none'})")
+    for name in sets:
+        if name not in d["joints"]:
+            c.fail(("joints",), f"joint set {name!r} of the geometry has no entry")
     faces = ["bottom", "top", "left", "right"] + (["front", "back"] if g["dimension"] == 3 else [])
     if g["kind"] == "tunnel":
         faces.append("opening")
