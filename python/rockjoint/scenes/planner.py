@@ -97,13 +97,43 @@ def concentration(scene) -> tuple:
     return 1.0, "no concentration: a homogeneous field"
 
 
+def _extent(g) -> np.ndarray:
+    if g["kind"] == "block":
+        return np.array(g["size"])
+    if g["kind"] == "column":
+        return np.array([g["width"]] * (g["dimension"] - 1) + [g["height"]])
+    return np.array([g["width"], g["height"]] + ([g["length"]] if "length" in g else []))
+
+
+def bending(scene) -> list:
+    """Per stage, the bending stress [Pa] a shear traction on a face adds on a joint section:
+    the moment τ W H of a shear τ on a face of width W at lever arm H, over the section modulus
+    W²/6 (beam theory: 6 τ H/W), H the scene's extent normal to the face, W the smallest along it."""
+    g = scene.data["geometry"]
+    ext, dim = _extent(g), g["dimension"]
+    out, loads = [], {}
+    for stage in scene.data["stages"]:
+        loads.update(stage["loads"])
+        extra = 0.0
+        for face, load in loads.items():
+            if "traction" not in load or face not in _AXIS:
+                continue
+            axis = dim - 1 if face in ("bottom", "top") else (0 if face in ("left", "right") else 1)
+            t = np.asarray(load["traction"], float)
+            tau = float(np.linalg.norm(np.delete(t, axis)))
+            along = np.delete(ext, axis).min()
+            extra += 6.0 * tau * ext[axis] / along
+        out.append(extra)
+    return out
+
+
 def normal_stress_bound(scene) -> float:
     """Upper bound [Pa] of any joint's normal stress over the stages."""
     factor = concentration(scene)[0]
     bound = 0.0
-    for _, s, pressure in stage_stresses(scene):
+    for (_, s, pressure), extra in zip(stage_stresses(scene), bending(scene)):
         compression = max(0.0, -float(np.linalg.eigvalsh(s).min()))
-        bound = max(bound, compression * factor + pressure)
+        bound = max(bound, compression * factor + pressure + extra)
     return bound
 
 
@@ -156,13 +186,7 @@ def _joint_sets(scene) -> list:
 
 
 def _estimate_dofs(scene, dim, h, hj, ho) -> float:
-    g = scene.data["geometry"]
-    if g["kind"] == "block":
-        extent = np.array(g["size"])
-    elif g["kind"] == "column":
-        extent = np.array([g["width"]] * (dim - 1) + [g["height"]])
-    else:
-        extent = np.array([g["width"], g["height"]] + ([g["length"]] if dim == 3 else []))
+    extent = _extent(scene.data["geometry"])
     # triangles ~ 2 A/h², tetrahedra ~ 6 V/h³; vertices ~ cells/2 (2D), cells/5 (3D); the refined
     # bands near joints and openings roughly double that at h/4 - h/8.
     cells = (2.0 if dim == 2 else 6.0) * float(np.prod(extent / h))
@@ -200,7 +224,9 @@ def make_plan(scene, reduced: bool = False) -> Plan:
                        f"{defaults.TABLE_MARGIN * bound * 1e-6:.3g} MPa",
                        text=lambda v: f"normal stress 0 - {v * 1e-6:.3g} MPa",
                        why=(f"upper bound of joint normal stress {bound * 1e-6:.3g} MPa (largest "
-                            "compressive principal stress of in-situ + all loads, "
+                            "compressive principal stress of in-situ + all loads"
+                            + (" + bending 6 τ H/W of shear tractions" if max(bending(scene)) > 0 else "")
+                            + ", "
                             + concentration(scene)[1] + f"), x {defaults.TABLE_MARGIN} margin"),
                        cost="knots grow with log(range); a table evaluation costs ~0.05 µs whatever the law",
                        error="the loads cannot take a joint outside it (checked after the run)")
