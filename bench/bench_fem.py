@@ -70,16 +70,8 @@ def make_mesh(case: str, h: float):
 
 def glued(jm):
     """The intact mesh: the jointed one with its split nodes glued back (no joints)."""
-    import numpy as np
-    from rockjoint import meshes
-    n0, g = jm.num_original_nodes, jm.glue
-    return meshes.JointedMesh(
-        points=jm.points[:n0], cells=g[jm.cells], cell_type=jm.cell_type, cell_blocks=jm.cell_blocks,
-        glue=np.arange(n0), joint_facets_minus=np.zeros((0, 3), np.int64),
-        joint_facets_plus=np.zeros((0, 3), np.int64), joint_facet_cells=np.zeros((0, 2), np.int64),
-        joint_tags=np.zeros(0, np.int32), boundary_facets=g[jm.boundary_facets],
-        boundary_tags=jm.boundary_tags,
-        names={"blocks": jm.names["blocks"], "joints": {}, "boundaries": jm.names["boundaries"]})
+    from rockjoint.scenes.geometry import glued as glue
+    return glue(jm)
 
 
 def corner_block(jm) -> str:

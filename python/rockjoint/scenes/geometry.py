@@ -1,0 +1,62 @@
+"""Meshes of a scene through rockjoint.meshes (column, jointed_block, tunnel_section), and the
+intact mesh: the same mesh with its split nodes glued back (no joints), so that jointed minus
+intact is the joints' share and nothing else."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+
+def joint_objects(scene):
+    """The scene's joint sets as rockjoint.meshes.Joint lists (names <set>_<i>)."""
+    from rockjoint import meshes
+    out = []
+    for s in scene.data["geometry"].get("joint_sets", []):
+        out += meshes.joint_set(s["spacing"], math.degrees(s["dip"]), math.degrees(s["dip_direction"]),
+                                origin=tuple(s["point"]), count=s["count"], name=s["name"])
+    return out
+
+
+def jointed_mesh(scene, plan, comm):
+    """The jointed mesh of the scene (a JointedMesh on rank 0, None elsewhere)."""
+    from rockjoint import meshes
+    g = scene.data["geometry"]
+    h, hj = plan.mesh_size, plan.joint_size
+    if g["kind"] == "column":
+        return meshes.column(g["width"], g["height"], g["joint_heights"], dim=plan.dimension,
+                             mesh_size=h, joint_mesh_size=hj, comm=comm)
+    if g["kind"] == "block":
+        return meshes.jointed_block(g["size"], joint_objects(scene), dim=plan.dimension, mesh_size=h,
+                                    joint_mesh_size=hj, comm=comm)
+    o = g["opening"]
+    opening = meshes.CircularOpening(tuple(o["centre"][:2]), o["radius"])
+    return meshes.tunnel_section(g["width"], g["height"], opening, joint_objects(scene), mesh_size=h,
+                                 opening_mesh_size=plan.opening_size,
+                                 opening_refine_distance=2 * o["radius"] if plan.opening_size else None,
+                                 joint_mesh_size=hj, joint_refine_distance=h if hj else None,
+                                 length=g.get("length") if plan.dimension == 3 else None, comm=comm)
+
+
+def glued(jm):
+    """The intact mesh: `jm` with its split nodes glued back (one node where the joint had two),
+    its blocks and boundaries kept, no joints."""
+    if jm is None:
+        return None
+    from rockjoint import meshes
+    n0, g = jm.num_original_nodes, jm.glue
+    nf = jm.joint_facets_minus.shape[1]
+    return meshes.JointedMesh(
+        points=jm.points[:n0], cells=g[jm.cells], cell_type=jm.cell_type, cell_blocks=jm.cell_blocks,
+        glue=np.arange(n0), joint_facets_minus=np.zeros((0, nf), np.int64),
+        joint_facets_plus=np.zeros((0, nf), np.int64), joint_facet_cells=np.zeros((0, 2), np.int64),
+        joint_tags=np.zeros(0, np.int32), boundary_facets=g[jm.boundary_facets],
+        boundary_tags=jm.boundary_tags,
+        names={"blocks": jm.names["blocks"], "joints": {}, "boundaries": jm.names["boundaries"]})
+
+
+def joint_set_of(scene, joint_name: str) -> str:
+    """The scene's joint set of a mesh joint (column: 'joint'; sets: '<set>_<i>' -> '<set>')."""
+    if scene.data["geometry"]["kind"] == "column":
+        return "joint"
+    return joint_name.rsplit("_", 1)[0]

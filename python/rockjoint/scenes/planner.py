@@ -1,0 +1,322 @@
+"""`rockjoint plan`: decide what a scene needs to model, each choice with its cost and error.
+
+Rules (docs/scenes.md §planner):
+- dimension: the scene's own (a 2D section is solved in 2D plane strain, never in 3D);
+- joint normal-stress bound: the largest compressive principal stress of in-situ + loads (every
+  load added in full: an upper bound), times the Kirsch concentration 3 at an opening; the tables
+  cover it with a margin (defaults.TABLE_MARGIN);
+- law: from a topography, the cheapest law of the accuracy ladder (ladder.py) whose closure
+  error is within the error budget; a law given by name, curve or table is kept;
+- slip: only for joint sets with a strength whose mobilised friction τ/τ_max can reach
+  defaults.SLIP_MARGIN under the bound (at an opening: the wall's uniaxial state, every plane);
+- mesh: refined only near joints and openings; the intact model on the same mesh (glued nodes).
+Any choice can be overridden in the scene's `plan:` section; the plan then says so.
+"""
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+
+from . import defaults, ladder
+
+_AXIS = {"left": (0, -1), "right": (0, 1), "bottom": (1, -1), "top": (1, 1),
+         "front": (None, -1), "back": (None, 1)}
+
+
+@dataclasses.dataclass
+class Choice:
+    topic: str
+    choice: str
+    cost: str
+    error: str
+    why: str
+
+
+@dataclasses.dataclass
+class Plan:
+    dimension: int
+    element_degree: int
+    quadrature: str
+    mesh_size: float
+    joint_size: float | None
+    opening_size: float | None
+    normal_stress_bound: float          # [Pa]
+    table_max_stress: float             # [Pa]
+    table_tolerance: float
+    laws: dict                          # joint set -> ladder key / "given"
+    slip: dict                          # joint set -> bool
+    load_steps: int
+    intact: bool
+    choices: list
+    reduced: bool = False               # the scene's reduced size (coarse mesh, small scans)
+
+    def text(self) -> str:
+        rows = [f"{c.topic}: {c.choice}\n    why: {c.why}\n    cost: {c.cost}\n    error: {c.error}"
+                for c in self.choices]
+        return "\n".join(rows)
+
+
+def stage_stresses(scene) -> list:
+    """Per stage, the homogeneous stress tensor (tension positive [Pa]) of in-situ + the loads
+    in force: a traction on an axis-aligned face gives σ·n = t there (the far field of the
+    section); pressures on an opening are counted in the normal-stress bound only."""
+    d = scene.data
+    dim = d["geometry"]["dimension"]
+    s0 = np.zeros((dim, dim))
+    if "in_situ" in d:
+        sv, k = d["in_situ"]["vertical"], d["in_situ"]["horizontal_ratio"]
+        s0 = -k * sv * np.eye(dim)
+        s0[dim - 1, dim - 1] = -sv
+    loads, out = {}, []
+    for stage in d["stages"]:
+        loads.update(stage["loads"])
+        s = s0.copy()
+        for face, load in loads.items():
+            if "traction" in load and face in _AXIS:
+                axis, sign = _AXIS[face]
+                axis = dim - 1 if face in ("bottom", "top") else (axis if axis is not None else 1)
+                s[:, axis] = sign * np.asarray(load["traction"])
+                s[axis, :] = s[:, axis]
+        pressure = max((abs(v["pressure"]) for v in loads.values() if "pressure" in v), default=0.0)
+        out.append((stage["name"], s, pressure))
+    return out
+
+
+def concentration(scene) -> tuple:
+    """(factor, words): the stress-concentration bound of the scene's geometry: Kirsch's 3 at an
+    opening, block corners where joint sets of different orientation cross, else 1."""
+    g = scene.data["geometry"]
+    if "opening" in g:
+        return defaults.OPENING_CONCENTRATION, "x 3 Kirsch concentration at the opening"
+    orientations = {(round(s["dip"], 6), round(s["dip_direction"], 6)) for s in g.get("joint_sets", [])}
+    if len(orientations) > 1:
+        return (defaults.BLOCK_CORNER_CONCENTRATION,
+                f"x {defaults.BLOCK_CORNER_CONCENTRATION:g} at block corners where joint sets cross")
+    return 1.0, "no concentration: a homogeneous field"
+
+
+def _extent(g) -> np.ndarray:
+    if g["kind"] == "block":
+        return np.array(g["size"])
+    if g["kind"] == "column":
+        return np.array([g["width"]] * (g["dimension"] - 1) + [g["height"]])
+    return np.array([g["width"], g["height"]] + ([g["length"]] if "length" in g else []))
+
+
+def bending(scene) -> list:
+    """Per stage, the bending stress [Pa] a shear traction on a face adds on a joint section:
+    the moment τ W H of a shear τ on a face of width W at lever arm H, over the section modulus
+    W²/6 (beam theory: 6 τ H/W), H the scene's extent normal to the face, W the smallest along it."""
+    g = scene.data["geometry"]
+    ext, dim = _extent(g), g["dimension"]
+    out, loads = [], {}
+    for stage in scene.data["stages"]:
+        loads.update(stage["loads"])
+        extra = 0.0
+        for face, load in loads.items():
+            if "traction" not in load or face not in _AXIS:
+                continue
+            axis = dim - 1 if face in ("bottom", "top") else (0 if face in ("left", "right") else 1)
+            t = np.asarray(load["traction"], float)
+            tau = float(np.linalg.norm(np.delete(t, axis)))
+            along = np.delete(ext, axis).min()
+            extra += 6.0 * tau * ext[axis] / along
+        out.append(extra)
+    return out
+
+
+def normal_stress_bound(scene) -> float:
+    """Upper bound [Pa] of any joint's normal stress over the stages."""
+    factor = concentration(scene)[0]
+    bound = 0.0
+    for (_, s, pressure), extra in zip(stage_stresses(scene), bending(scene)):
+        compression = max(0.0, -float(np.linalg.eigvalsh(s).min()))
+        bound = max(bound, compression * factor + pressure + extra)
+    return bound
+
+
+def friction(strength: dict, normal_stress: float) -> float:
+    """tan of the mobilised friction angle at `normal_stress` (Coulomb, or Barton's
+    φ_r + JRC log10(JCS/σ_n), capped at 70° as in docs/joint-strength.md)."""
+    phi = strength["friction_angle"]
+    if strength["model"] == "barton" and normal_stress > 0:
+        phi += math.radians(strength.get("jrc", 0.0) * math.log10(
+            max(strength.get("jcs", normal_stress) / normal_stress, 1.0)))
+    return math.tan(min(phi, math.radians(70.0)))
+
+
+def mobilised_friction(strength: dict, normal: np.ndarray, stress: np.ndarray) -> float:
+    """τ / (c + σ_n tan φ) on the plane of unit `normal` under `stress` (tension positive)."""
+    t = stress @ normal
+    sn = -float(t @ normal)
+    tau = float(np.linalg.norm(t + sn * normal))
+    capacity = strength["cohesion"] + max(sn, 0.0) * friction(strength, sn)
+    return math.inf if capacity <= 0 else tau / capacity
+
+
+def wall_mobilised_friction(strength: dict, hoop: float) -> float:
+    """The largest τ/(c + σ_n tan φ) over every plane through the uniaxial wall state σ_θ = hoop,
+    σ_r = 0 (a joint meets the wall at every angle): planes at angle α to the wall carry σ_n =
+    σ_θ sin²α, τ = σ_θ sinα cosα."""
+    alpha = np.linspace(1e-3, math.pi / 2, 400)
+    sn, tau = hoop * np.sin(alpha) ** 2, hoop * np.sin(alpha) * np.cos(alpha)
+    cap = np.array([strength["cohesion"] + s * friction(strength, s) for s in sn])
+    return float(np.max(tau / np.maximum(cap, 1e-300)))
+
+
+def _normal(joint_set: dict, dim: int) -> np.ndarray:
+    dip, direction = joint_set["dip"], joint_set["dip_direction"]
+    if dim == 2:
+        return np.array([-math.sin(dip) * math.copysign(1.0, math.sin(direction)), math.cos(dip)])
+    return np.array([math.sin(dip) * math.sin(direction), math.sin(dip) * math.cos(direction),
+                     math.cos(dip)])
+
+
+def _ratio(r: float) -> str:
+    return f"{r:.2f}" if r < 10 else "more than 10 (no cohesion: planes nearly along the wall)"
+
+
+def _joint_sets(scene) -> list:
+    g = scene.data["geometry"]
+    if g["kind"] == "column":
+        return [{"name": "joint", "dip": 0.0, "dip_direction": math.pi / 2}]
+    return g.get("joint_sets", [])
+
+
+def _estimate_dofs(scene, dim, h, hj, ho) -> float:
+    extent = _extent(scene.data["geometry"])
+    # triangles ~ 2 A/h², tetrahedra ~ 6 V/h³; vertices ~ cells/2 (2D), cells/5 (3D); the refined
+    # bands near joints and openings roughly double that at h/4 - h/8.
+    cells = (2.0 if dim == 2 else 6.0) * float(np.prod(extent / h))
+    refine = 1.0 + (1.0 if hj else 0.0) + (1.0 if ho else 0.0)
+    return dim * cells * refine / (2.0 if dim == 2 else 5.0)
+
+
+def make_plan(scene, reduced: bool = False) -> Plan:
+    d = scene.data
+    over = d["plan"]
+    g = d["geometry"]
+    budget = d["error_budget"]
+    choices = []
+
+    def choose(topic, key, value, auto, **words):
+        if key in over:
+            words["why"] = f"set in the scene's plan ({key}); the planner would choose {auto}"
+            value = over[key]
+        choices.append(Choice(topic, words.pop("text")(value), **words))
+        return value
+
+    dim = choose("dimension", "dimension", g["dimension"], g["dimension"],
+                 text=lambda v: "2D plane strain" if v == 2 else "3D",
+                 why="the scene is a " + ("2D section: plane strain, no 3D solve"
+                                          if g["dimension"] == 2 else "3D block"),
+                 cost="2D: ~1/20 of a 3D model's dofs at the same element size" if g["dimension"] == 2
+                 else "3D: the full cost", error="exact for a long opening / plane section (plane strain)")
+    if dim != g["dimension"]:
+        scene.fail(("plan", "dimension"), f"a {g['dimension']}D geometry cannot be solved in {dim}D")
+
+    bound = normal_stress_bound(scene)
+    opening = "opening" in g
+    sets = _joint_sets(scene)
+    table_top = choose("table range", "table_max_stress", defaults.TABLE_MARGIN * bound,
+                       f"{defaults.TABLE_MARGIN * bound * 1e-6:.3g} MPa",
+                       text=lambda v: f"normal stress 0 - {v * 1e-6:.3g} MPa",
+                       why=(f"upper bound of joint normal stress {bound * 1e-6:.3g} MPa (largest "
+                            "compressive principal stress of in-situ + all loads"
+                            + (" + bending 6 τ H/W of shear tractions" if max(bending(scene)) > 0 else "")
+                            + ", "
+                            + concentration(scene)[1] + f"), x {defaults.TABLE_MARGIN} margin"),
+                       cost="knots grow with log(range); a table evaluation costs ~0.05 µs whatever the law",
+                       error="the loads cannot take a joint outside it (checked after the run)")
+    tol = choose("table tolerance", "table_tolerance", defaults.TABLE_TOLERANCE,
+                 f"{defaults.TABLE_TOLERANCE:g}", text=lambda v: f"{v:g} relative on σ and k",
+                 why="far below the error budget and the Newton tolerance (defaults.py)",
+                 cost="a few hundred knots, built in well under a second",
+                 error=f"closure error <= {defaults.TABLE_TOLERANCE:g} relative (convex law)")
+
+    laws = {}
+    for s in sets:
+        law = d["joints"][s["name"]]["law"]
+        if "topography" in law:
+            rung, met = ladder.cheapest_within(budget)
+            auto = rung.key
+            key = over.get("law", auto)
+            if key not in ladder.BY_KEY:
+                scene.fail(("plan", "law"), f"{key!r} is not on the accuracy ladder; one of "
+                           f"{', '.join(ladder.BY_KEY)}")
+            r = ladder.BY_KEY[key]
+            why = ("set in the scene's plan (law)" if "law" in over else
+                   f"cheapest law of the accuracy ladder within the {budget:.0%} budget" if met else
+                   f"no law meets the {budget:.0%} budget: the most accurate one")
+            choices.append(Choice(f"law of {s['name']}", f"{key} ({r.row.replace('**', '')})", why=why,
+                                  cost=f"{r.cost * 1e6:.2f} µs per evaluation, only while tabulating",
+                                  error=f"closure vs exact contact: {r.error_granite:.1%} granite-like, "
+                                        f"{r.error_sandstone:.1%} sandstone-like (bench/results/accuracy_ladder.md)"))
+            laws[s["name"]] = key
+        else:
+            how = next(k for k in ("model", "curve", "table") if k in law)
+            laws[s["name"]] = "given"
+            choices.append(Choice(f"law of {s['name']}", f"the scene's {how}",
+                                  why="a law given by the user is kept", cost="tabulated once",
+                                  error="the law's own (not on the ladder); table error above"))
+
+    slip = {}
+    tensors = stage_stresses(scene)
+    for s in sets:
+        strength = d["joints"][s["name"]].get("strength")
+        if strength is None:
+            slip[s["name"]] = False
+            continue
+        if opening:
+            hoop = max(defaults.OPENING_CONCENTRATION * max(0.0, -float(np.linalg.eigvalsh(t).min()))
+                       for _, t, _ in tensors)
+            ratio, where = wall_mobilised_friction(strength, hoop), "at the opening's wall (σ_r = 0)"
+        else:
+            n = _normal(s, dim)
+            ratio, where = max(mobilised_friction(strength, n, t) for _, t, _ in tensors), "on its plane"
+        auto = ratio >= defaults.SLIP_MARGIN
+        value = over.get("slip", auto)
+        slip[s["name"]] = value
+        choices.append(Choice(
+            f"slip of {s['name']}", "joint strength and slip" if value else "elastic joints (no slip)",
+            why=("set in the scene's plan (slip)" if "slip" in over else
+                 f"mobilised friction τ/τ_max up to {_ratio(ratio)} {where} under the stress bound "
+                 f"({'>=' if auto else '<'} {defaults.SLIP_MARGIN})"),
+            cost=("a non-symmetric Jacobian (LU/GMRES) and small load steps" if value
+                  else "none: symmetric Jacobian, one load step"),
+            error=("path-dependent slip resolved per load step" if value else
+                   f"joints stay below {defaults.SLIP_MARGIN:.0%} of their strength: slip cannot occur "
+                   "unless stresses concentrate beyond the bound")))
+
+    h = d["mesh"]["size"]
+    if reduced and "mesh_size" in d["reduced"]:
+        h = d["reduced"]["mesh_size"]
+    refine = over.get("refine", True)
+    hj = d["mesh"].get("joint_size", defaults.JOINT_REFINEMENT * h) if (refine and sets) else None
+    ho = d["mesh"].get("opening_size", defaults.OPENING_REFINEMENT * h) if (refine and opening) else None
+    degree = over.get("element_degree", defaults.ELEMENT_DEGREE)
+    quadrature = over.get("quadrature", defaults.QUADRATURE)
+    dofs = _estimate_dofs(scene, dim, h, hj, ho)
+    choices.append(Choice(
+        "mesh", f"P{degree}, {h:g} m far" + (f", {hj:g} m on joints" if hj else "")
+        + (f", {ho:g} m on the opening" if ho else "") + f", {quadrature} joint rule",
+        why="refined only where the stress varies fast (joints, openings)" + (
+            "; refinement switched off in the scene's plan" if not refine else ""),
+        cost=f"~{dofs:.2g} dofs, ~{dofs * defaults.SECONDS_PER_DOF:.2g} s per Newton load step "
+             "(bench/results/fem.md rate)",
+        error="discretisation: see bench/results/fem.md; uniform stress fields are exact with P1"))
+    any_slip = any(slip.values())
+    steps = over.get("load_steps", defaults.LOAD_STEPS_SLIP if any_slip else defaults.LOAD_STEPS_ELASTIC)
+    if reduced and "load_steps" in d["reduced"]:
+        steps = d["reduced"]["load_steps"]
+    choices.append(Choice("load steps", f"{steps} per stage (unless the stage sets its own)",
+                          why="slip is path dependent" if any_slip else "elastic joints: Newton from one step",
+                          cost=f"~6 Newton iterations per step", error="none for elastic joints"))
+    intact = over.get("intact", True)
+    choices.append(Choice("intact model", "on the same mesh (split nodes glued)" if intact else "left out",
+                          why="the joints' share of every answer is jointed minus intact",
+                          cost="one linear solve per load step", error="none: same mesh, same solver"))
+    return Plan(dim, degree, quadrature, h, hj, ho, bound, table_top, tol, laws, slip, steps,
+                intact, choices, reduced)

@@ -1,0 +1,224 @@
+"""`rockjoint run`: a scene through the staged API, jointed beside intact on the same mesh.
+
+Outputs go to a fresh temporary folder beside the output folder and are moved in only when the
+whole run succeeded, so a failed run leaves nothing half-written.
+"""
+from __future__ import annotations
+
+import dataclasses
+import logging
+import os
+import shutil
+import tempfile
+import time
+
+import numpy as np
+
+from . import geometry, joint_laws
+
+log = logging.getLogger("rockjoint.scenes")
+
+
+@dataclasses.dataclass
+class StageRow:
+    """One stage of one model: monitored mean displacements [m] and the joints' state."""
+
+    model: str
+    stage: str
+    newton_iterations: int
+    monitors: dict                 # boundary -> mean displacement vector [m]
+    max_displacement: float        # max |u| [m]
+    max_closure: float = 0.0       # [m], all joints
+    max_normal_stress: float = 0.0  # [Pa]
+    slipping: int = 0              # joint points in the slip state
+    per_set: dict = dataclasses.field(default_factory=dict)  # set -> (max closure [m], max σ_n [Pa])
+
+
+@dataclasses.dataclass
+class SceneResult:
+    plan: object
+    rows: list
+    tables: dict
+    files: list
+    seconds: float
+    gdim: int = 0                  # geometric dimension of the meshes solved
+
+    def row(self, model: str, stage: str) -> StageRow:
+        return next(r for r in self.rows if r.model == model and r.stage == stage)
+
+
+def _components(text: str):
+    return "all" if text in ("all", "xyz") else (text if len(text) == 1 else list(text))
+
+
+def build_model(scene, plan, dmesh, tables: dict | None):
+    """A JointedRockModel of the scene on `dmesh` (tables None: the intact model)."""
+    from rockjoint.fem_coupling import InSituStress, JointedRockModel, NewtonOptions
+    d = scene.data
+    rock = d["rock"]
+    blocks = dmesh.names["blocks"].values()
+    unknown = set(rock.get("blocks", {})) - set(blocks)
+    if unknown:
+        scene.fail(("rock", "blocks", sorted(unknown)[0]), f"no such block; blocks: {', '.join(blocks)}")
+    own = {b: rock.get("blocks", {}).get(b, rock) for b in blocks}
+    rocks = {b: (v["young"], v["poisson"]) for b, v in own.items()}
+    kw = {}
+    if tables is not None:
+        names = list(dmesh.names["joints"].values())
+        of = {n: geometry.joint_set_of(scene, n) for n in names}
+        j = d["joints"]
+        kw = dict(joints={n: tables[of[n]] for n in names},
+                  shear_stiffness_ratio={n: j[of[n]]["shear_stiffness_ratio"] for n in names},
+                  residual_stiffness={n: j[of[n]]["residual_stiffness"] for n in names},
+                  strength={n: _strength(j[of[n]]["strength"]) if plan.slip.get(of[n]) else None
+                            for n in names})
+    model = JointedRockModel(dmesh, element_degree=plan.element_degree, rock=rocks,
+                             plane="strain" if plan.dimension == 2 else None,
+                             quadrature=plan.quadrature, newton=NewtonOptions(verbose=False), **kw)
+    for face, comps in d["supports"].items():
+        model.fix(face, _components(comps))
+    if "in_situ" in d:
+        sv, k = d["in_situ"]["vertical"], d["in_situ"]["horizontal_ratio"]
+        s0 = -k * sv * np.eye(plan.dimension)
+        s0[-1, -1] = -sv
+        model.set_in_situ_stress(InSituStress.uniform(s0.tolist()))
+    return model
+
+
+def _strength(spec):
+    return None if spec is None else dict(spec)
+
+
+def mean_normal_displacement(model, boundary: str) -> float:
+    """∫ u·n ds / ∫ ds over a named boundary, n the rock's outward normal [m] (into an opening:
+    its convergence; on a loaded face: its outward movement)."""
+    import ufl
+    from dolfinx import fem
+    from rockjoint.fem_coupling.distributed_mesh import lookup
+    ds = ufl.Measure("ds", domain=model.mesh, subdomain_data=model.dmesh.boundaries)(
+        lookup(model.dmesh, "boundaries", boundary))
+    n = ufl.FacetNormal(model.mesh)
+    area = model.comm.allreduce(fem.assemble_scalar(fem.form(fem.Constant(model.mesh, 1.0) * ds)))
+    return model.comm.allreduce(fem.assemble_scalar(fem.form(ufl.dot(model.u, n) * ds))) / area
+
+
+def _record(scene, model, label, stage, solution) -> StageRow:
+    monitors = {b: np.r_[model.boundary_mean_displacement(b), mean_normal_displacement(model, b)]
+                for b in scene.data["outputs"]["monitor"]}
+    u = model.u.x.array.reshape(-1, model.gdim)
+    umax = model.comm.allreduce(float(np.linalg.norm(u, axis=1).max(initial=0.0)), op=_max())
+    row = StageRow(label, stage, solution.newton_iterations, monitors, umax)
+    state = solution.gather_joints()
+    if np.asarray(state.get("closure", [])).size:
+        row.max_closure = float(np.max(state["closure"]))
+        row.max_normal_stress = float(np.max(state["normal_stress"]))
+        names = model.dmesh.names["joints"]
+        sets = np.array([geometry.joint_set_of(scene, names[int(t)]) for t in state["tag"]])
+        for name in np.unique(sets):
+            at = sets == name
+            row.per_set[str(name)] = (float(np.max(state["closure"][at])),
+                                      float(np.max(state["normal_stress"][at])))
+        if "shear_state" in state:
+            from rockjoint.fem_coupling import ShearState
+            row.slipping = int(np.sum(np.asarray(state["shear_state"]) == int(ShearState.slip)))
+    return row
+
+
+def _max():
+    from mpi4py import MPI
+    return MPI.MAX
+
+
+def run_stages(scene, plan, model, label: str) -> list:
+    """In-situ (when given), then every stage; a StageRow after each."""
+    rows = []
+    if "in_situ" in scene.data:
+        rows.append(_record(scene, model, label, "in-situ", model.solve(name="in-situ")))
+    handles = {}
+    for stage in scene.data["stages"]:
+        t0 = time.perf_counter()
+        if "excavate" in stage:
+            model.excavate(stage["excavate"])
+        for face, load in stage["loads"].items():
+            kind = "traction" if "traction" in load else "pressure"
+            value = load[kind]
+            if (face, kind) in handles:
+                handles[face, kind].value = value
+            else:
+                add = model.add_traction if kind == "traction" else model.add_pressure
+                handles[face, kind] = add(face, value)
+        steps = plan.load_steps if plan.reduced else stage.get("steps", plan.load_steps)
+        solution = model.solve(load_steps=steps, name=stage["name"])
+        rows.append(_record(scene, model, label, stage["name"], solution))
+        log.info("%s: stage %s, %d load step(s), %d Newton iterations (%.1f s)", label, stage["name"],
+                 steps, solution.newton_iterations, time.perf_counter() - t0)
+    return rows
+
+
+def run_scene(scene, plan, output: str, comm=None, reduced: bool = False) -> SceneResult:
+    """Run the scene as planned; write its outputs to `output` (created; files replaced)."""
+    from mpi4py import MPI
+    from rockjoint.fem_coupling import distribute
+    from . import pictures
+    comm = comm or MPI.COMM_WORLD
+    t0 = time.perf_counter()
+    tables = joint_laws.tables(scene, plan, reduced)
+    jm = geometry.jointed_mesh(scene, plan, comm)
+    meshes = {"jointed": distribute(jm, comm)}
+    if plan.intact:
+        meshes["intact"] = distribute(geometry.glued(jm), comm)
+    log.info("mesh: %d cells, %d joint facet pairs", comm.allreduce(
+        meshes["jointed"].mesh.topology.index_map(plan.dimension).size_local),
+        comm.allreduce(len(meshes["jointed"].pairs)))
+    parent = os.path.dirname(os.path.abspath(output)) or "."
+    os.makedirs(parent, exist_ok=True)
+    tmp = comm.bcast(tempfile.mkdtemp(prefix=".rockjoint-run-", dir=parent) if comm.rank == 0 else None)
+    try:
+        rows, files, models = [], [], {}
+        for label, dmesh in meshes.items():
+            model = build_model(scene, plan, dmesh, tables if label == "jointed" else None)
+            rows += run_stages(scene, plan, model, label)
+            models[label] = model
+            if scene.data["outputs"]["xdmf"]:
+                files += model.write_xdmf(os.path.join(tmp, f"{label}.xdmf"))
+        if scene.data["outputs"]["pictures"] and plan.dimension == 2:
+            files += pictures.draw(models, scene, os.path.join(tmp, "scene.png"))
+        result = SceneResult(plan, rows, tables, [], time.perf_counter() - t0,
+                             meshes["jointed"].mesh.geometry.dim)
+        if comm.rank == 0:
+            with open(os.path.join(tmp, "summary.txt"), "w", encoding="utf-8") as f:
+                f.write(summary_table(result) + "\n")
+        comm.barrier()
+        if comm.rank == 0:
+            os.makedirs(output, exist_ok=True)
+            for name in sorted(os.listdir(tmp)):
+                os.replace(os.path.join(tmp, name), os.path.join(output, name))
+        comm.barrier()
+        result.files = sorted(os.listdir(output)) if comm.rank == 0 else []
+        return result
+    finally:
+        if comm.rank == 0:
+            shutil.rmtree(tmp, ignore_errors=True)
+
+
+def summary_table(result: SceneResult) -> str:
+    """Jointed beside intact, per stage: monitored displacements [mm], max |u| [mm], joints."""
+    stages = [r.stage for r in result.rows if r.model == "jointed"]
+    has_intact = any(r.model == "intact" for r in result.rows)
+    w = max([len(s) for s in stages] + [5]) + 2
+    lines = [f"{'stage':{w}}{'quantity':28}{'jointed':>14}{'intact':>14}{'joints share':>14}"]
+    for stage in stages:
+        j = result.row("jointed", stage)
+        i = result.row("intact", stage) if has_intact else None
+        quantities = [("max |u| [mm]", j.max_displacement, i and i.max_displacement)]
+        for b, v in j.monitors.items():
+            for k, axis in enumerate(["x", "y", "z"][:len(v) - 1] + ["n"]):
+                quantities.append((f"mean u_{axis} {b} [mm]", v[k], i and i.monitors[b][k]))
+        for name, a, b in quantities:
+            share = f"{(a - b) * 1e3:14.5g}" if b is not None else f"{'':>14}"
+            other = f"{b * 1e3:14.5g}" if b is not None else f"{'-':>14}"
+            lines.append(f"{stage:{w}}{name:28}{a * 1e3:14.5g}{other}{share}")
+        lines.append(f"{stage:{w}}{'joints: max closure [mm]':28}{j.max_closure * 1e3:14.5g}")
+        lines.append(f"{stage:{w}}{'joints: max σ_n [MPa]':28}{j.max_normal_stress * 1e-6:14.5g}")
+        lines.append(f"{stage:{w}}{'joints: slipping points':28}{j.slipping:14d}")
+    return "\n".join(lines)

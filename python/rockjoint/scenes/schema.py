@@ -1,0 +1,274 @@
+"""The scene file schema (docs/scenes.md) and `load_scene`: a YAML file checked whole, in SI.
+
+Every value is checked before anything is built or run: unknown keys, missing values, wrong units
+and out-of-range values raise SceneError naming the key path and its line. Law parameters are
+checked against the law registry (rockjoint.law_registry: a law's parameters and their units).
+"""
+from __future__ import annotations
+
+import dataclasses
+import math
+import os
+
+from .. import law_registry
+from .fields import (Anything, Checker, Flag, Integer, ListOf, Mapping, NamedMapping, Quantity,
+                     Text)
+from .units import LAW_UNIT_DIMENSION, parse_quantity
+from .yamlnodes import SceneError, compose
+
+POSITIVE = dict(low=0.0, open_low=True)
+_LENGTH = Quantity("length", **POSITIVE)
+_POINT = ListOf(Quantity("length"), length=(2, 3))
+_COMPONENTS = ("x", "y", "z", "xy", "xz", "yz", "xyz", "all")
+
+
+def _geometry_rule(g, path, c):
+    kind = g["kind"]
+    need = {"column": ("width", "height", "joint_heights"), "block": ("size",),
+            "tunnel": ("width", "height", "opening")}[kind]
+    for key in need:
+        if key not in g:
+            c.fail(path, f"missing key {key!r} (needed for kind {kind})")
+    unused = {"column": ("size", "opening", "joint_sets", "length"),
+              "block": ("width", "height", "joint_heights", "opening", "length"),
+              "tunnel": ("size", "joint_heights")}[kind]
+    for key in unused:
+        if key in g:
+            c.fail(path + (key,), f"not used by kind {kind}")
+    if kind == "column":
+        g["dimension"] = g.get("dimension", 2)
+    elif kind == "block":
+        g["dimension"] = len(g["size"])
+    else:
+        g["dimension"] = 3 if "length" in g else 2
+    for i, s in enumerate(g.get("joint_sets", [])):
+        if len(s["point"]) != g["dimension"]:
+            c.fail(path + ("joint_sets", i, "point"), f"{len(s['point'])} coordinates in a "
+                   f"{g['dimension']}D scene")
+
+
+JOINT_SET = Mapping({
+    "name": Text(), "point": _POINT,
+    "dip": Quantity("angle", low=0.0, high=math.pi / 2 + 1e-12, required=False, default=0.0),
+    "dip_direction": Quantity("angle", low=0.0, high=2 * math.pi, required=False,
+                              default=math.pi / 2),
+    "spacing": Quantity("length", required=False, default=1.0, **POSITIVE),
+    "count": Integer(low=1, high=200, required=False, default=1)})
+
+GEOMETRY = Mapping({
+    "kind": Text(choices=("column", "block", "tunnel")),
+    "dimension": Integer(low=2, high=3, required=False),
+    "width": Quantity("length", required=False, **POSITIVE),
+    "height": Quantity("length", required=False, **POSITIVE),
+    "length": Quantity("length", required=False, **POSITIVE),
+    "size": ListOf(_LENGTH, length=(2, 3), required=False),
+    "joint_heights": ListOf(Quantity("length", **POSITIVE), required=False, min_length=1),
+    "joint_sets": ListOf(JOINT_SET, required=False),
+    "opening": Mapping({"shape": Text(choices=("circle",)), "centre": _POINT,
+                        "radius": Quantity("length", **POSITIVE)}, required=False),
+}, rule=_geometry_rule)
+
+ELASTIC = Mapping({"young": Quantity("stress", **POSITIVE),
+                   "poisson": Quantity("number", low=-0.99, high=0.499),
+                   "density": Quantity("density", required=False, **POSITIVE)})
+ROCK = Mapping({**ELASTIC.fields, "blocks": NamedMapping(ELASTIC, required=False)})
+
+TOPOGRAPHY = Mapping({
+    "hurst": Quantity("number", low=0.0, high=1.0, open_low=True),
+    "rms_height": Quantity("length", **POSITIVE),
+    "points": Integer(low=16, high=4096),
+    "spacing": Quantity("length", **POSITIVE),
+    "matedness": Quantity("length", **POSITIVE),
+    "seed": Integer(low=0, required=False, default=1)})
+
+STRENGTH = Mapping({
+    "model": Text(choices=("coulomb", "barton")),
+    "friction_angle": Quantity("angle", low=0.0, high=math.radians(89.0)),
+    "cohesion": Quantity("stress", low=0.0, required=False, default=0.0),
+    "jrc": Quantity("number", low=0.0, high=20.0, required=False),
+    "jcs": Quantity("stress", required=False, **POSITIVE),
+    "dilation_angle": Quantity("angle", low=0.0, high=math.radians(60.0), required=False),
+    "dilation_limit": Quantity("length", low=0.0, required=False)})
+
+
+_ASPERITY_STATISTICS = (law_registry.Quantity("summit_density", "η", "1/mm²"),
+                        law_registry.Quantity("summit_radius", "β", "mm"),
+                        law_registry.Quantity("summit_height_std", "σ_s", "mm"))
+
+
+def _law_rule(law, path, c):
+    given = [k for k in ("model", "topography", "curve", "table") if k in law]
+    if len(given) != 1:
+        c.fail(path, "give exactly one of model (with parameters), topography, curve or table; "
+                     f"got {', '.join(given) or 'none'}")
+    if "model" in law:
+        record = law_registry.REGISTRY.get(law["model"])
+        if record is None or not (record.parameters or record.asperity):
+            c.fail(path + ("model",), f"{law['model']!r} is not a registered law; one of "
+                   f"{', '.join(sorted(law_registry.REGISTRY))}")
+        params = law.get("parameters") or {}
+        # asperity laws: the summit statistics (E* comes from the rock)
+        names = {q.name: q for q in (_ASPERITY_STATISTICS if record.asperity else record.parameters)}
+        for key in params:
+            if key not in names:
+                c.fail(path + ("parameters", key), f"unknown parameter {key!r} of {record.key}; "
+                       f"expected {', '.join(names)}")
+        out = {}
+        for key, q in names.items():
+            if key not in params:
+                c.fail(path + ("parameters",), f"missing parameter {key!r} ({q.symbol}, {q.unit})")
+            try:
+                out[key] = parse_quantity(params[key], LAW_UNIT_DIMENSION[q.unit])
+            except ValueError as err:
+                c.fail(path + ("parameters", key), str(err))
+            if out[key] <= 0:
+                c.fail(path + ("parameters", key), f"{params[key]!r} is out of range: must be > 0")
+        law["parameters"] = out
+    elif "parameters" in law:
+        c.fail(path + ("parameters",), "parameters go with model")
+    for key in ("curve", "table"):
+        if key in law:
+            law[key] = os.path.join(c.base, law[key])
+            if not os.path.isfile(law[key]):
+                c.fail(path + (key,), f"no file {law[key]}")
+    if "curve" in law and "fit" not in law:
+        c.fail(path, "a curve needs fit: the law to calibrate (e.g. barton_bandis)")
+
+
+LAW = Mapping({
+    "model": Text(required=False), "parameters": Anything(required=False),
+    "topography": TOPOGRAPHY.__class__(TOPOGRAPHY.fields, required=False),
+    "curve": Text(required=False), "fit": Text(required=False),
+    "intact_length": Quantity("length", required=False, **POSITIVE),
+    "table": Text(required=False)}, rule=_law_rule)
+
+JOINT = Mapping({
+    "law": LAW,
+    "shear_stiffness_ratio": Quantity("number", low=0.0, required=False, default=0.1),
+    "residual_stiffness": Quantity("stiffness", low=0.0, required=False, default=0.0),
+    "strength": STRENGTH.__class__(STRENGTH.fields, required=False)})
+
+IN_SITU = Mapping({"vertical": Quantity("stress", low=0.0),
+                   "horizontal_ratio": Quantity("number", low=0.0, high=10.0, required=False,
+                                                default=1.0)}, required=False)
+
+LOAD = Mapping({"traction": ListOf(Quantity("stress"), length=(2, 3), required=False),
+                "pressure": Quantity("stress", required=False)},
+               rule=lambda v, p, c: None if len(v) == 1 else
+               c.fail(p, "give exactly one of traction or pressure"))
+
+STAGE = Mapping({"name": Text(), "steps": Integer(low=1, high=1000, required=False),
+                 "excavate": Text(required=False),
+                 "loads": NamedMapping(LOAD, required=False, default={})})
+
+MESH = Mapping({"size": Quantity("length", **POSITIVE),
+                "joint_size": Quantity("length", required=False, **POSITIVE),
+                "opening_size": Quantity("length", required=False, **POSITIVE)})
+
+PLAN = Mapping({"dimension": Integer(low=2, high=3, required=False),
+                "law": Text(required=False),
+                "table_max_stress": Quantity("stress", required=False, **POSITIVE),
+                "table_tolerance": Quantity("fraction", required=False, **POSITIVE),
+                "slip": Flag(), "refine": Flag(), "intact": Flag(),
+                "element_degree": Integer(low=1, high=2, required=False),
+                "quadrature": Text(choices=("nodal", "gauss"), required=False),
+                "load_steps": Integer(low=1, high=1000, required=False)}, required=False,
+               default={})
+
+OUTPUTS = Mapping({"pictures": Flag(default=True), "xdmf": Flag(default=True),
+                   "monitor": ListOf(Text(), required=False, default=[])},
+                  required=False, default={"pictures": True, "xdmf": True, "monitor": []})
+
+REDUCED = Mapping({"mesh_size": Quantity("length", required=False, **POSITIVE),
+                   "topography_points": Integer(low=16, high=4096, required=False),
+                   "load_steps": Integer(low=1, high=1000, required=False)},
+                  required=False, default={})
+
+SCENE = Mapping({
+    "name": Text(), "description": Text(required=False),
+    "geometry": GEOMETRY, "rock": ROCK,
+    "joints": NamedMapping(JOINT, required=False, default={}),
+    "in_situ": IN_SITU,
+    "supports": NamedMapping(Text(choices=_COMPONENTS)),
+    "stages": ListOf(STAGE, min_length=1),
+    "error_budget": Quantity("fraction", low=0.0, high=1.0, open_low=True),
+    "mesh": MESH, "outputs": OUTPUTS, "plan": PLAN, "reduced": REDUCED})
+
+
+@dataclasses.dataclass
+class Scene:
+    """A checked scene: `data` in SI, where it came from (file, lines) for later messages."""
+
+    data: dict
+    source: str
+    lines: dict
+
+    def fail(self, path: tuple, message: str):
+        _checker(self.source, self.lines).fail(path, message)
+
+    def __getitem__(self, key):
+        return self.data[key]
+
+
+def _checker(source, lines):
+    c = Checker(source, lines)
+    c.base = os.path.dirname(os.path.abspath(source))
+    return c
+
+
+def _cross_checks(d: dict, c: Checker) -> None:
+    """Relations between sections: joint sets have laws, loads name boundaries that exist."""
+    g = d["geometry"]
+    sets = [s["name"] for s in g.get("joint_sets", [])] if g["kind"] != "column" else ["joint"]
+    for name in d["joints"]:
+        if name not in sets:
+            c.fail(("joints", name), f"no joint set {name!r} in the geometry (sets: "
+                                     f"{', '.join(sets) or 'none'})")
+    for name in sets:
+        if name not in d["joints"]:
+            c.fail(("joints",), f"joint set {name!r} of the geometry has no entry")
+    faces = ["bottom", "top", "left", "right"] + (["front", "back"] if g["dimension"] == 3 else [])
+    if g["kind"] == "tunnel":
+        faces.append("opening")
+    where = [(("supports", k), k) for k in d["supports"]]
+    for i, stage in enumerate(d["stages"]):
+        where += [(("stages", i, "loads", k), k) for k in stage["loads"]]
+        if "excavate" in stage:
+            where.append((("stages", i, "excavate"), stage["excavate"]))
+        for k, load in stage["loads"].items():
+            if "traction" in load and len(load["traction"]) != g["dimension"]:
+                c.fail(("stages", i, "loads", k, "traction"),
+                       f"{len(load['traction'])} components in a {g['dimension']}D scene")
+    for path, face in where:
+        if face not in faces:
+            c.fail(path, f"no boundary {face!r}; one of {', '.join(faces)}")
+    for i, h in enumerate(g.get("joint_heights", [])):
+        if h >= g["height"]:
+            c.fail(("geometry", "joint_heights", i), f"{h:g} m is not inside the column "
+                                                     f"(height {g['height']:g} m)")
+    if g["kind"] == "tunnel":
+        o = g["opening"]
+        x, y = o["centre"][:2]
+        if not (o["radius"] < x < g["width"] - o["radius"] and o["radius"] < y < g["height"] - o["radius"]):
+            c.fail(("geometry", "opening"), "the opening is not inside the section")
+    if d["mesh"]["size"] > max(g.get("size", [g.get("width", 0), g.get("height", 0)])):
+        c.fail(("mesh", "size"), "larger than the whole scene")
+
+
+def check_scene(data, lines: dict, source: str) -> Scene:
+    c = _checker(source, lines)
+    d = SCENE.check(data, (), c)
+    _cross_checks(d, c)
+    return Scene(d, source, lines)
+
+
+def load_scene(path) -> Scene:
+    """Read and check a scene file (SceneError naming the key and line for any mistake)."""
+    path = os.fspath(path)
+    try:
+        with open(path, encoding="utf-8") as f:
+            text = f.read()
+    except OSError as err:
+        raise SceneError(f"{path}: cannot read the scene: {err.strerror}") from err
+    data, lines = compose(text, path)
+    return check_scene(data, lines, path)

@@ -1,0 +1,33 @@
+"""A scene on 2 ranks gives the serial answer: the blocky rock mass (reduced) run on
+MPI.COMM_WORLD (2 ranks) and on COMM_SELF (each rank alone), summary numbers equal to solver
+tolerance; the outputs are written once, complete."""
+import os
+
+import numpy as np
+import pytest
+
+pytest.importorskip("dolfinx")
+pytest.importorskip("rockjoint._rockjoint_fem_coupling")
+from mpi4py import MPI  # noqa: E402
+
+from rockjoint.scenes import load_scene, make_plan, run_scene  # noqa: E402
+from scene_cases import SCENES  # noqa: E402
+
+
+@pytest.mark.mpi
+def test_blocky_scene_on_two_ranks_equals_serial(tmp_path_factory):
+    comm = MPI.COMM_WORLD
+    root = comm.bcast(str(tmp_path_factory.mktemp("scene")) if comm.rank == 0 else None)
+    scene = load_scene(os.path.join(SCENES, "blocky_rock_mass.yaml"))
+    plan = make_plan(scene, reduced=True)
+    parallel = run_scene(scene, plan, os.path.join(root, "parallel"), comm=comm, reduced=True)
+    serial = run_scene(scene, plan, os.path.join(root, f"serial{comm.rank}"), comm=MPI.COMM_SELF,
+                       reduced=True)
+    assert len(parallel.rows) == len(serial.rows)
+    for p, s in zip(parallel.rows, serial.rows):
+        assert (p.model, p.stage, p.slipping) == (s.model, s.stage, s.slipping)
+        for b in p.monitors:
+            np.testing.assert_allclose(p.monitors[b], s.monitors[b], rtol=1e-7, atol=1e-12)
+        assert p.max_closure == pytest.approx(s.max_closure, rel=1e-7)
+    if comm.rank == 0:
+        assert {"summary.txt", "scene.png", "jointed.xdmf", "intact.xdmf"} <= set(parallel.files)

@@ -1,0 +1,64 @@
+"""Scene files are checked whole before anything runs: ten malformed scenes, each failing with a
+message that names the key path and its line in the file, and `rockjoint plan|run` exiting with 2.
+
+The expected line is found in the malformed text itself (the line holding the marker), not taken
+from the code under test.
+"""
+import pytest
+
+from rockjoint.scenes import SceneError, load_scene
+from scene_cases import COLUMN, cli, write
+
+
+def test_the_valid_column_loads_in_si(tmp_path):
+    scene = load_scene(write(tmp_path, COLUMN))
+    assert scene["rock"]["young"] == pytest.approx(50e9)
+    assert scene["geometry"]["joint_heights"] == [pytest.approx(0.05)]
+    law = scene["joints"]["joint"]["law"]["parameters"]
+    assert law["initial_normal_stiffness"] == pytest.approx(20e9)      # 20 MPa/mm in Pa/m
+    assert scene["joints"]["joint"]["strength"]["friction_angle"] == pytest.approx(0.5235987756)
+    assert scene["error_budget"] == pytest.approx(0.05)
+    assert scene["geometry"]["dimension"] == 2
+
+
+# (name, old text, new text, key path the message names, marker of the line it must name)
+MALFORMED = [
+    ("unknown key", "error_budget: 5 %", "error_budget: 5 %\ncolour: red", "colour", "colour: red"),
+    ("missing value", "  young: 50 GPa", "  young:", "rock.young", "  young:"),
+    ("wrong unit", "  young: 50 GPa", "  young: 50 mm", "rock.young", "  young: 50 mm"),
+    ("no unit", "width: 100 mm", "width: 100", "geometry.width", "width: 100,"),
+    ("out of range", "  poisson: 0.25", "  poisson: 0.7", "rock.poisson", "  poisson: 0.7"),
+    ("unknown law parameter", "initial_normal_stiffness: 20 MPa/mm",
+     "normal_stiffness: 20 MPa/mm", "joints.joint.law.parameters.normal_stiffness", "normal_stiffness"),
+    ("unknown law", "model: barton_bandis", "model: hooke", "joints.joint.law.model", "model: hooke"),
+    ("unknown boundary", "loads: {top:", "loads: {roof:", "stages[0].loads.roof", "roof"),
+    ("traction of the wrong size", "[0 MPa, -10 MPa]", "[0 MPa, 0 MPa, -10 MPa]",
+     "stages[0].loads.top.traction", "-10 MPa]"),
+    ("budget out of range", "error_budget: 5 %", "error_budget: 150 %", "error_budget", "150 %"),
+    ("missing section", "supports: {bottom: y, left: x}\n", "", "missing key 'supports'", "name: column"),
+    ("joint without a law", "joints:\n  joint:\n", "joints:\n  other:\n", "joints.other", "  other:"),
+]
+
+
+@pytest.mark.parametrize("name,old,new,key,marker", MALFORMED, ids=[m[0] for m in MALFORMED])
+def test_malformed_scene_names_key_and_line(tmp_path, name, old, new, key, marker):
+    assert old in COLUMN
+    text = COLUMN.replace(old, new, 1)
+    line = next(i + 1 for i, t in enumerate(text.splitlines()) if marker in t)
+    path = write(tmp_path, text)
+    with pytest.raises(SceneError) as err:
+        load_scene(path)
+    message = str(err.value)
+    assert key in message and f"line {line}:" in message, message
+    code, out, errors = cli("plan", path)
+    assert code == 2, out + errors
+    assert key in errors and f"line {line}" in errors and "\n" not in errors.strip(), errors
+
+
+def test_not_yaml_and_missing_file(tmp_path):
+    path = write(tmp_path, COLUMN.replace("rock:\n", "rock: [\n"))
+    with pytest.raises(SceneError, match="not valid YAML"):
+        load_scene(path)
+    code, _, errors = cli("run", tmp_path / "nothing.yaml", "--output", tmp_path / "out")
+    assert code == 2 and "cannot read" in errors
+    assert not (tmp_path / "out").exists()   # nothing written for a bad scene
