@@ -131,6 +131,9 @@ def _law_rule(law, path, c):
             law[key] = os.path.join(c.base, law[key])
             if not os.path.isfile(law[key]):
                 c.fail(path + (key,), f"no file {law[key]}")
+    for key in ("fit", "intact_length"):
+        if key in law and "curve" not in law:
+            c.fail(path + (key,), "goes with curve (a measured curve to calibrate)")
     if "curve" in law and "fit" not in law:
         c.fail(path, "a curve needs fit: the law to calibrate (e.g. barton_bandis)")
 
