@@ -8,10 +8,8 @@ wall displacement a (σ_v + σ_h) / (4 G) for the tunnel (tolerance 10 %: an 8 m
 chords on a W/a = 20 section); the joint law's own closure at the applied stress (the FE model
 uses its 1e-6 table: rtol 1e-5).
 """
-import math
 import os
 
-import numpy as np
 import pytest
 
 pytest.importorskip("dolfinx")

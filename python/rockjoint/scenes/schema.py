@@ -81,6 +81,13 @@ TOPOGRAPHY = Mapping({
     "matedness": Quantity("length", **POSITIVE),
     "seed": Integer(low=0, required=False, default=1)})
 
+def _strength_rule(v, path, c):
+    if v["model"] == "barton":
+        for key in ("jrc", "jcs"):
+            if key not in v:
+                c.fail(path, f"missing key {key!r} (needed for Barton's strength)")
+
+
 STRENGTH = Mapping({
     "model": Text(choices=("coulomb", "barton")),
     "friction_angle": Quantity("angle", low=0.0, high=math.radians(89.0)),
@@ -88,7 +95,7 @@ STRENGTH = Mapping({
     "jrc": Quantity("number", low=0.0, high=20.0, required=False),
     "jcs": Quantity("stress", required=False, **POSITIVE),
     "dilation_angle": Quantity("angle", low=0.0, high=math.radians(60.0), required=False),
-    "dilation_limit": Quantity("length", low=0.0, required=False)})
+    "dilation_limit": Quantity("length", low=0.0, required=False)}, rule=_strength_rule)
 
 
 _ASPERITY_STATISTICS = (law_registry.Quantity("summit_density", "η", "1/mm²"),
@@ -140,7 +147,7 @@ def _law_rule(law, path, c):
 
 LAW = Mapping({
     "model": Text(required=False), "parameters": Anything(required=False),
-    "topography": TOPOGRAPHY.__class__(TOPOGRAPHY.fields, required=False),
+    "topography": Mapping(TOPOGRAPHY.fields, required=False),
     "curve": Text(required=False), "fit": Text(required=False),
     "intact_length": Quantity("length", required=False, **POSITIVE),
     "table": Text(required=False)}, rule=_law_rule)
@@ -149,7 +156,7 @@ JOINT = Mapping({
     "law": LAW,
     "shear_stiffness_ratio": Quantity("number", low=0.0, required=False, default=0.1),
     "residual_stiffness": Quantity("stiffness", low=0.0, required=False, default=0.0),
-    "strength": STRENGTH.__class__(STRENGTH.fields, required=False)})
+    "strength": Mapping(STRENGTH.fields, required=False, rule=_strength_rule)})
 
 IN_SITU = Mapping({"vertical": Quantity("stress", low=0.0),
                    "horizontal_ratio": Quantity("number", low=0.0, high=10.0, required=False,
