@@ -46,7 +46,7 @@ def test_closure_test_scenes_give_the_law(tmp_path, name):
     assert i.monitors["top"][-1] == pytest.approx(-uniaxial, rel=1e-8)
     closure = source_law(scene, "joint", plan, reduced=True).closure_at_stress(stress)
     assert j.monitors["top"][-1] - i.monitors["top"][-1] == pytest.approx(-closure, rel=1e-5)
-    assert (tmp_path / name / "jointed_joints.xdmf").exists()
+    assert (tmp_path / name / "jointed_joints.xdmf").exists() and (tmp_path / name / "scene.png").exists()
 
 
 def test_blocky_scene_intact_biaxial_and_slip(tmp_path):
