@@ -90,3 +90,13 @@ def test_cli_runs_a_scene_clean(tmp_path):
     for f in ("summary.txt", "scene.png", "jointed.xdmf", "intact.xdmf", "jointed_joints.xdmf"):
         assert (tmp_path / "o" / f).exists(), f
     assert not [f for f in os.listdir(tmp_path) if f.startswith(".rockjoint-run-")]
+
+
+def test_a_run_that_fails_writes_nothing(tmp_path):
+    # 6 MPa shear over 10 MPa normal load on a 30° joint with no lateral support: the upper block
+    # slides away (no equilibrium), the solve fails; no output folder, no temporary folder left
+    from scene_cases import COLUMN, write
+    text = COLUMN.replace("[0 MPa, -10 MPa]", "[6 MPa, -10 MPa]").replace("left: x", "left: y")
+    code, out, err = cli("run", write(tmp_path, text), "--output", tmp_path / "out")
+    assert code == 1 and "could not be solved, nothing was written" in err, out + err
+    assert sorted(os.listdir(tmp_path)) == ["scene.yaml"]
