@@ -41,10 +41,18 @@ def _geometry_rule(g, path, c):
         g["dimension"] = len(g["size"])
     else:
         g["dimension"] = 3 if "length" in g else 2
+    box = {"block": g.get("size"), "tunnel": [g.get("width"), g.get("height")] + (
+        [g["length"]] if "length" in g else [])}.get(kind)
     for i, s in enumerate(g.get("joint_sets", [])):
         if len(s["point"]) != g["dimension"]:
             c.fail(path + ("joint_sets", i, "point"), f"{len(s['point'])} coordinates in a "
                    f"{g['dimension']}D scene")
+        if box is not None and not all(0.0 < x < b for x, b in zip(s["point"], box)):
+            c.fail(path + ("joint_sets", i, "point"), "the point is not inside the geometry")
+        if g["dimension"] == 2 and not any(abs(s["dip_direction"] - math.radians(a)) < 1e-9
+                                           for a in (90.0, 270.0)):
+            c.fail(path + ("joint_sets", i, "dip_direction"), "in 2D a joint dips toward +x "
+                   "(90 deg) or -x (270 deg)")
 
 
 JOINT_SET = Mapping({
@@ -249,6 +257,7 @@ def _cross_checks(d: dict, c: Checker) -> None:
             if "traction" in load and len(load["traction"]) != g["dimension"]:
                 c.fail(("stages", i, "loads", k, "traction"),
                        f"{len(load['traction'])} components in a {g['dimension']}D scene")
+    where += [(("outputs", "monitor", i), face) for i, face in enumerate(d["outputs"]["monitor"])]
     for path, face in where:
         if face not in faces:
             c.fail(path, f"no boundary {face!r}; one of {', '.join(faces)}")
