@@ -43,6 +43,7 @@ from rockjoint.console import quiet_compiler_logging, say
 from rockjoint import meshes
 from rockjoint.fem_coupling import JointedRockModel, NewtonOptions, ShearState, distribute, make_strength
 from rockjoint.fem_coupling.output import gather_triangles
+from rockjoint.scenes import geometry as scene_geometry, load_scene
 
 COMM = MPI.COMM_WORLD
 quiet_compiler_logging()  # DOLFINx's form compiler would log every command
@@ -50,12 +51,16 @@ quiet_compiler_logging()  # DOLFINx's form compiler would log every command
 
 
 # %% The rock mass -----------------------------------------------------------------------------
-WIDTH, HEIGHT = 12.0, 8.0            # [m]
-YOUNG, POISSON = 50e9, 0.25          # granite [Pa], [-]
-HORIZONTAL_STRESS = 5e6              # on the right face, both stages [Pa]
+# The set-up is the scene demos/scenes/blocky_rock_mass.yaml (`python3 -m rockjoint run` runs it
+# with the planner's choices); this script adds the elastic/slipping comparison and the pictures.
+SCENE = load_scene(os.path.join(os.path.dirname(os.path.abspath(__file__)), "scenes",
+                                "blocky_rock_mass.yaml"))
+WIDTH, HEIGHT = SCENE["geometry"]["size"]                            # [m]
+YOUNG, POISSON = SCENE["rock"]["young"], SCENE["rock"]["poisson"]   # granite [Pa], [-]
+HORIZONTAL_STRESS = -SCENE["stages"][0]["loads"]["right"]["traction"][0]  # right face, both stages [Pa]
 # The load path: (stage name, vertical stress on top [Pa], load steps)
-STAGES = (("biaxial", 10e6, 4), ("raised vertical load", 20e6, 4))
-SHEAR_RATIO = 0.1                    # joint shear stiffness k_s = 0.1 k_n(Δ)
+STAGES = tuple((s["name"], -s["loads"]["top"]["traction"][1], s["steps"]) for s in SCENE["stages"])
+SHEAR_RATIO = SCENE["joints"]["cross"]["shear_stiffness_ratio"]     # k_s = 0.1 k_n(Δ)
 CROSS_JRC, CROSS_JCS, CROSS_APERTURE = 10.0, 100e6, 0.5e-3   # [-], [Pa], [m]
 
 # Joint strength of the slipping model, both sets: Coulomb with the basic friction angle of wet
@@ -64,14 +69,15 @@ CROSS_JRC, CROSS_JCS, CROSS_APERTURE = 10.0, 100e6, 0.5e-3   # [-], [Pa], [m]
 # tensile strength). This is the strength of a planar or sheared-through (past-peak) joint, the
 # lower bound: the rough cross joints' peak from the same JRC/JCS (Barton's criterion with
 # φ_r = φ_b) is higher, and is printed beside it for comparison.
-FRICTION_ANGLE = math.radians(30.0)  # [rad]
-COHESION = 0.0                       # [Pa]
+FRICTION_ANGLE = SCENE["joints"]["cross"]["strength"]["friction_angle"]  # [rad]
+COHESION = SCENE["joints"]["cross"]["strength"]["cohesion"]              # [Pa]
 STRENGTH = {"model": "coulomb", "friction_angle": FRICTION_ANGLE, "cohesion": COHESION}
 
 # Bedding: horizontal, 2 m apart. Cross joints: dip 70° toward +x, 3 m apart along their normal;
 # both sets persist across the section (crossings make the blocks).
-BEDDING = meshes.joint_set(2.0, 0.0, 90.0, origin=(WIDTH / 2, 2.0), count=3, name="bedding")
-CROSS = meshes.joint_set(3.0, 70.0, 90.0, origin=(3.0, HEIGHT / 2), count=3, name="cross")
+_SETS = scene_geometry.joint_objects(SCENE)
+BEDDING = [j for j in _SETS if j.name.startswith("bedding_")]
+CROSS = [j for j in _SETS if j.name.startswith("cross_")]
 JOINT_SETS = ("bedding", "cross")
 MODELS = {"intact": "intact", "jointed": "elastic joints", "slip": "slipping joints"}
 
@@ -79,7 +85,10 @@ MODELS = {"intact": "intact", "jointed": "elastic joints", "slip": "slipping joi
 def joint_laws():
     """Bedding: Tang & Jiao over Tang's substrate law; cross joints: Barton-Bandis from JRC/JCS."""
     e_star = rockjoint.composite_modulus(YOUNG, POISSON)
-    bedding = rockjoint.TangJiao(rockjoint.TangSubstrate(e_star, 0.3e6, 2.5e-3, 0.05e-3))
+    summits = SCENE["joints"]["bedding"]["law"]["parameters"]   # η, β, σ_s of the scene
+    bedding = rockjoint.TangJiao(rockjoint.TangSubstrate(e_star, summits["summit_density"],
+                                                         summits["summit_radius"],
+                                                         summits["summit_height_std"]))
     cross = rockjoint.BartonBandis.from_joint_properties(jrc=CROSS_JRC, jcs=CROSS_JCS,
                                                          initial_aperture=CROSS_APERTURE)
     say(f"cross joints (Bandis 1983): K_ni = {cross.initial_normal_stiffness * 1e-9:.2f} MPa/mm, "

@@ -28,24 +28,31 @@ from rockjoint.console import quiet_compiler_logging, say
 from rockjoint import contact, meshes
 from rockjoint import topography as topo
 from rockjoint.fem_coupling import JointedRockModel, NewtonOptions, distribute
+from rockjoint.scenes import load_scene, make_plan
 
 COMM = MPI.COMM_WORLD
 quiet_compiler_logging()  # DOLFINx's form compiler would log every command
 
 
 
-# %% Parameters ------------------------------------------------------------------------------
-SIDE = 0.150             # cube side [m]
-SPACING = 0.5e-3         # scan interval [m]
-YOUNG, POISSON = 50e9, 0.25   # granite [Pa], [-]
-MAX_STRESS = 30e6        # [Pa]
+# %% Parameters: from the scene file demos/scenes/lab_closure_test.yaml ---------------------
+# The scene states the set-up (`python3 -m rockjoint run demos/scenes/lab_closure_test.yaml` runs
+# it at its top load); this script adds the load levels, the BEM yardstick and the curves.
+SCENE = load_scene(os.path.join(os.path.dirname(os.path.abspath(__file__)), "scenes",
+                                "lab_closure_test.yaml"))
+PLAN = make_plan(SCENE)
+SIDE = SCENE["geometry"]["size"][0]                              # cube side [m]
+SCAN = SCENE["joints"]["joint"]["law"]["topography"]             # the synthetic scan
+SPACING = SCAN["spacing"]                                        # scan interval [m]
+YOUNG, POISSON = SCENE["rock"]["young"], SCENE["rock"]["poisson"]   # granite [Pa], [-]
+MAX_STRESS = -SCENE["stages"][-1]["loads"]["top"]["traction"][-1]   # [Pa]
 STRESS_LEVELS = np.array([0.05, 0.1, 0.2, 0.5, 1, 2, 4, 7, 10, 15, 20, 25, 30]) * 1e6  # [Pa]
-TOLERANCE = 1e-6         # relative error of the table against the law
+TOLERANCE = PLAN.table_tolerance  # relative error of the table against the law
 # The table must cover every joint normal stress the loads reach. Under uniaxial compression with
-# rollers the joint carries the applied stress exactly, so the bound is MAX_STRESS, and round-off
-# puts about half the joint points a hair above it: the table extends 25 % past the bound (a few
-# knots more), and the model's own range check (a warning naming the joint) finds no point beyond.
-TABLE_STRESS = 1.25 * MAX_STRESS   # [Pa]
+# rollers the joint carries the applied stress exactly, so the planner's bound is MAX_STRESS, and
+# round-off puts about half the joint points a hair above it: its table extends 25 % past the
+# bound (a few knots more), and the model's own range check finds no point beyond.
+TABLE_STRESS = PLAN.table_max_stress   # [Pa]
 
 
 def joint_law():
@@ -54,8 +61,8 @@ def joint_law():
     # few grains), independent below it. H = 0.8 and 1 mm rms over the specimen are typical
     # of granite fractures. Deterministic for the seed.
     n = int(round(SIDE / SPACING))
-    spec = topo.SelfAffineSpec(hurst_exponent=0.8, rms_height=1.0e-3)
-    upper, lower = topo.mated_pair(spec, (n, n), SPACING, 2.5e-3, seed=1)
+    spec = topo.SelfAffineSpec(hurst_exponent=SCAN["hurst"], rms_height=SCAN["rms_height"])
+    upper, lower = topo.mated_pair(spec, (n, n), SPACING, SCAN["matedness"], seed=SCAN["seed"])
     # Contact state: mated (zero offset); the composite topography of the aperture field.
     joint = topo.composite_topography(upper, lower, offset=(0, 0))
     analysis = topo.analyse(joint.composite)
@@ -109,14 +116,14 @@ def top_displacement(dmesh, law, stress):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--output", default=".", help="output folder")
-    ap.add_argument("--mesh-size", type=float, default=0.025, help="element size [m]")
+    ap.add_argument("--mesh-size", type=float, default=SCENE["mesh"]["size"], help="element size [m]")
     args = ap.parse_args()
     os.makedirs(args.output, exist_ok=True)
     out = lambda name: os.path.join(args.output, name)  # noqa: E731
 
     # %% 1. Micro: the joint's roughness gives its closure law ------------------------------
     laws, params, closure_bem = joint_law()
-    law = laws[rockjoint.laws.RECOMMENDED].law
+    law = laws[PLAN.laws["joint"]].law   # the planner's pick within the scene's error budget
     table = tabulated(law, out("granite_tang_jiao.rjt"))
 
     # %% 2. Macro: jointed and intact cubes under the same loads ----------------------------
@@ -176,7 +183,7 @@ def plot(rows, laws, path):
     stress = np.linspace(0.0, MAX_STRESS, 200)[1:]
     for key, named in laws.items():
         # At A/A0 ~ 1 % Tang & Jiao lies on Tang (theory §5): thin lines, the FE law thick.
-        in_fe = key == rockjoint.laws.RECOMMENDED
+        in_fe = key == PLAN.laws["joint"]
         a2.plot(np.r_[0, named.law.closure_at_stress(stress)] * 1e3, np.r_[0, stress] * 1e-6,
                 "-", lw=2.5 if in_fe else 1.0, alpha=1.0 if in_fe else 0.7,
                 label=named.label + (": table in the FE model" if in_fe else ""))

@@ -48,6 +48,7 @@ from rockjoint.fem_coupling import InSituStress, JointedRockModel, NewtonOptions
 from rockjoint.fem_coupling.output import gather_triangles
 from rockjoint.fem_coupling.probe import probe
 from rockjoint.reference import KirschSolution
+from rockjoint.scenes import geometry as scene_geometry, load_scene
 
 COMM = MPI.COMM_WORLD
 quiet_compiler_logging()  # DOLFINx's form compiler would log every command
@@ -57,38 +58,44 @@ log.addHandler(logging.StreamHandler())
 log.handlers[0].setFormatter(logging.Formatter("%(message)s"))
 log.setLevel(logging.INFO if COMM.rank == 0 else logging.WARNING)
 
-# %% The scene ---------------------------------------------------------------------------------
-RADIUS = 4.0                       # tunnel radius a [m] (8 m diameter)
-DEPTH = 300.0                      # depth of the axis [m]
-DENSITY, GRAVITY = 2700.0, 9.81    # [kg/m³], [m/s²]
-SIGMA_V = DENSITY * GRAVITY * DEPTH  # 7.95 MPa
-K0 = 0.5                           # σ_h / σ_v
-WIDTH = HEIGHT = 80.0              # section [m], W/a = 20
-CENTRE = (WIDTH / 2, HEIGHT / 2)
-YOUNG, POISSON = 50e9, 0.25        # granite
-LINING_PRESSURE = 0.5e6            # [Pa]
-SHEAR_RATIO = 0.1                  # joint shear stiffness k_s = 0.1 k_n(Δ)
-RESIDUAL_STIFFNESS = 1e6           # [Pa/m], keeps a block held only by open joints from being singular
+# %% The scene: demos/scenes/tunnel.yaml ------------------------------------------------------
+# The scene file states the set-up (`python3 -m rockjoint run demos/scenes/tunnel.yaml` runs it with
+# the planner's choices); this script adds the slipping/elastic comparison, Kirsch and the pictures.
+SCENE = load_scene(os.path.join(os.path.dirname(os.path.abspath(__file__)), "scenes", "tunnel.yaml"))
+_OPENING = SCENE["geometry"]["opening"]
+RADIUS = _OPENING["radius"]        # tunnel radius a [m] (8 m diameter)
+SIGMA_V = SCENE["in_situ"]["vertical"]  # ρ g z = 2700 kg/m³ x 9.81 m/s² x 300 m = 7.95 MPa
+K0 = SCENE["in_situ"]["horizontal_ratio"]  # σ_h / σ_v
+DEPTH = 300.0                      # depth of the axis [m] (titles; the scene's σ_v is ρ g z there)
+WIDTH, HEIGHT = SCENE["geometry"]["width"], SCENE["geometry"]["height"]  # section [m], W/a = 20
+CENTRE = tuple(_OPENING["centre"])
+YOUNG, POISSON = SCENE["rock"]["young"], SCENE["rock"]["poisson"]        # granite
+LINING_PRESSURE = SCENE["stages"][-1]["loads"]["opening"]["pressure"]    # [Pa]
+_JOINT = SCENE["joints"]["bedding"]
+SHEAR_RATIO = _JOINT["shear_stiffness_ratio"]     # joint shear stiffness k_s = 0.1 k_n(Δ)
+RESIDUAL_STIFFNESS = _JOINT["residual_stiffness"]  # [Pa/m], keeps a block held only by open joints from being singular
 # Strength of the slipping model, both sets: Coulomb with the basic friction angle of wet
 # fine-grained granite, φ_b = 29-31° (Barton & Choubey 1977, Table 2: 31-35° dry, 29-31° wet),
 # taken as 30°, and no cohesion (Barton 1973: natural unfilled joints have no reliable cohesion or
 # tensile strength): the strength of a planar or sheared-through joint, the lower bound.
-FRICTION_ANGLE = math.radians(30.0)  # [rad]
-COHESION = 0.0                       # [Pa]
+FRICTION_ANGLE = _JOINT["strength"]["friction_angle"]  # [rad]
+COHESION = _JOINT["strength"]["cohesion"]              # [Pa]
 STRENGTH = {"model": "coulomb", "friction_angle": FRICTION_ANGLE, "cohesion": COHESION}
 MODELS = {"intact": "intact", "jointed": "elastic joints", "slip": "slipping joints"}
 
 # Bedding: horizontal, 3 m apart, the nearest 1.5 m above and below the axis (none tangent to the
 # opening); cross set: dip 60° toward +x, 5 m apart, one through the axis.
-BEDDING = meshes.joint_set(3.0, 0.0, 90.0, origin=(CENTRE[0], CENTRE[1] - 10.5), count=8, name="bedding")
-CROSS = meshes.joint_set(5.0, 60.0, 90.0, origin=(CENTRE[0] - 10.0, CENTRE[1]), count=5, name="cross")
+_SETS = scene_geometry.joint_objects(SCENE)
+BEDDING = [j for j in _SETS if j.name.startswith("bedding_")]
+CROSS = [j for j in _SETS if j.name.startswith("cross_")]
 
 
 def joint_laws():
     """Bedding: Tang & Jiao from a synthetic mated granite joint; cross set: Barton-Bandis (JRC/JCS)."""
-    n, spacing = 128, 0.5e-3  # a 64 mm scan at 0.5 mm
-    spec = topo.SelfAffineSpec(hurst_exponent=0.8, rms_height=1.0e-3)
-    upper, lower = topo.mated_pair(spec, (n, n), spacing, 2.5e-3, seed=1)
+    scan = SCENE["joints"]["bedding"]["law"]["topography"]  # a 64 mm scan at 0.5 mm
+    n, spacing = scan["points"], scan["spacing"]
+    spec = topo.SelfAffineSpec(hurst_exponent=scan["hurst"], rms_height=scan["rms_height"])
+    upper, lower = topo.mated_pair(spec, (n, n), spacing, scan["matedness"], seed=scan["seed"])
     analysis = topo.analyse(topo.composite_topography(upper, lower, offset=(0, 0)).composite)
     params = topo.closure_parameters(analysis, young=YOUNG, poisson=POISSON)
     bedding = rockjoint.laws.laws_from_topography(params, summits=analysis, empirical=False)

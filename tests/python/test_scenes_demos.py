@@ -8,10 +8,8 @@ wall displacement a (σ_v + σ_h) / (4 G) for the tunnel (tolerance 10 %: an 8 m
 chords on a W/a = 20 section); the joint law's own closure at the applied stress (the FE model
 uses its 1e-6 table: rtol 1e-5).
 """
-import math
 import os
 
-import numpy as np
 import pytest
 
 pytest.importorskip("dolfinx")
@@ -48,7 +46,7 @@ def test_closure_test_scenes_give_the_law(tmp_path, name):
     assert i.monitors["top"][-1] == pytest.approx(-uniaxial, rel=1e-8)
     closure = source_law(scene, "joint", plan, reduced=True).closure_at_stress(stress)
     assert j.monitors["top"][-1] - i.monitors["top"][-1] == pytest.approx(-closure, rel=1e-5)
-    assert (tmp_path / name / "jointed_joints.xdmf").exists()
+    assert (tmp_path / name / "jointed_joints.xdmf").exists() and (tmp_path / name / "scene.png").exists()
 
 
 def test_blocky_scene_intact_biaxial_and_slip(tmp_path):
@@ -92,3 +90,13 @@ def test_cli_runs_a_scene_clean(tmp_path):
     for f in ("summary.txt", "scene.png", "jointed.xdmf", "intact.xdmf", "jointed_joints.xdmf"):
         assert (tmp_path / "o" / f).exists(), f
     assert not [f for f in os.listdir(tmp_path) if f.startswith(".rockjoint-run-")]
+
+
+def test_a_run_that_fails_writes_nothing(tmp_path):
+    # 6 MPa shear over 10 MPa normal load on a 30° joint with no lateral support: the upper block
+    # slides away (no equilibrium), the solve fails; no output folder, no temporary folder left
+    from scene_cases import COLUMN, write
+    text = COLUMN.replace("[0 MPa, -10 MPa]", "[6 MPa, -10 MPa]").replace("left: x", "left: y")
+    code, out, err = cli("run", write(tmp_path, text), "--output", tmp_path / "out")
+    assert code == 1 and "could not be solved, nothing was written" in err, out + err
+    assert sorted(os.listdir(tmp_path)) == ["scene.yaml"]

@@ -114,3 +114,16 @@ def test_slip_bound_below_the_margin_is_left_out(tmp_path):
     assert make_plan(load_scene(write(tmp_path, SHEARED))).slip == {"joint": True}
     calm = COLUMN.replace("[0 MPa, -10 MPa]", "[2 MPa, -10 MPa]")
     assert make_plan(load_scene(write(tmp_path, calm, "calm.yaml"))).slip == {"joint": False}
+
+
+def test_refinement_only_near_joints_and_openings(tmp_path):
+    tunnel = make_plan(load_scene(os.path.join(SCENES, "tunnel.yaml")))
+    assert tunnel.joint_size < tunnel.mesh_size and tunnel.opening_size < tunnel.mesh_size
+    plain = COLUMN.replace("geometry: {kind: column, width: 100 mm, height: 100 mm, joint_heights: [50 mm]}",
+                           "geometry: {kind: block, size: [100 mm, 100 mm]}")
+    start, end = plain.index("joints:\n"), plain.index("supports:")
+    plain = plain[:start] + plain[end:]
+    plan = make_plan(load_scene(write(tmp_path, plain)))
+    assert plan.joint_size is None and plan.opening_size is None and plan.laws == {}
+    off = make_plan(load_scene(write(tmp_path, COLUMN + "plan: {refine: false}\n", "off.yaml")))
+    assert off.joint_size is None

@@ -4,6 +4,8 @@ message that names the key path and its line in the file, and `rockjoint plan|ru
 The expected line is found in the malformed text itself (the line holding the marker), not taken
 from the code under test.
 """
+import re
+
 import pytest
 
 from rockjoint.scenes import SceneError, load_scene
@@ -37,6 +39,7 @@ MALFORMED = [
     ("budget out of range", "error_budget: 5 %", "error_budget: 150 %", "error_budget", "150 %"),
     ("missing section", "supports: {bottom: y, left: x}\n", "", "missing key 'supports'", "name: column"),
     ("joint without a law", "joints:\n  joint:\n", "joints:\n  other:\n", "joints.other", "  other:"),
+    ("monitor of no boundary", "monitor: [top]", "monitor: [roof]", "outputs.monitor[0]", "[roof]"),
 ]
 
 
@@ -53,6 +56,23 @@ def test_malformed_scene_names_key_and_line(tmp_path, name, old, new, key, marke
     code, out, errors = cli("plan", path)
     assert code == 2, out + errors
     assert key in errors and f"line {line}" in errors and "\n" not in errors.strip(), errors
+
+
+BLOCK = COLUMN.replace("geometry: {kind: column, width: 100 mm, height: 100 mm, joint_heights: [50 mm]}",
+                       "geometry:\n  kind: block\n  size: [100 mm, 100 mm]\n  joint_sets:\n"
+                       "    - {name: joint, point: [50 mm, 50 mm], dip: 30 deg}")
+
+
+@pytest.mark.parametrize("old,new,key", [
+    ("point: [50 mm, 50 mm]", "point: [50 mm, 150 mm]", "geometry.joint_sets[0].point"),
+    ("dip: 30 deg}", "dip: 30 deg, dip_direction: 45 deg}", "geometry.joint_sets[0].dip_direction"),
+    ("dip: 30 deg}", "dip: 100 deg}", "geometry.joint_sets[0].dip")])
+def test_joint_sets_are_checked_against_the_geometry(tmp_path, old, new, key):
+    load_scene(write(tmp_path, BLOCK, "good.yaml"))
+    text = BLOCK.replace(old, new)
+    line = next(i + 1 for i, t in enumerate(text.splitlines()) if "point:" in t)
+    with pytest.raises(SceneError, match=rf"line {line}: {re.escape(key)}:"):
+        load_scene(write(tmp_path, text))
 
 
 def test_not_yaml_and_missing_file(tmp_path):

@@ -26,6 +26,7 @@ def main(args) -> int:
     scene, plan = checked
     from mpi4py import MPI
     from ..console import quiet_compiler_logging, say
+    from ..fem_coupling import ConvergenceError, LinearSolveError
     from ..scenes.runner import run_scene, summary_table
     quiet_compiler_logging()
     log = logging.getLogger("rockjoint.scenes")
@@ -41,6 +42,10 @@ def main(args) -> int:
     except SceneError as err:  # found while building (e.g. a block name the mesh does not have)
         print(f"rockjoint run: bad scene: {err}", file=sys.stderr)
         return 2
+    except (ConvergenceError, LinearSolveError) as err:  # a valid scene the FE model cannot solve
+        print(f"rockjoint run: the scene could not be solved, nothing was written: {err}",
+              file=sys.stderr)
+        return 1
     say(summary_table(result))
     say(f"wrote {', '.join(result.files)} in {output} ({result.seconds:.1f} s)")
     return 0

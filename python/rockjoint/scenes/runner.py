@@ -181,7 +181,7 @@ def run_scene(scene, plan, output: str, comm=None, reduced: bool = False) -> Sce
             models[label] = model
             if scene.data["outputs"]["xdmf"]:
                 files += model.write_xdmf(os.path.join(tmp, f"{label}.xdmf"))
-        if scene.data["outputs"]["pictures"] and plan.dimension == 2:
+        if scene.data["outputs"]["pictures"]:
             files += pictures.draw(models, scene, os.path.join(tmp, "scene.png"))
         result = SceneResult(plan, rows, tables, [], time.perf_counter() - t0,
                              meshes["jointed"].mesh.geometry.dim)

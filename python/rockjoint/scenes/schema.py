@@ -41,10 +41,18 @@ def _geometry_rule(g, path, c):
         g["dimension"] = len(g["size"])
     else:
         g["dimension"] = 3 if "length" in g else 2
+    box = {"block": g.get("size"), "tunnel": [g.get("width"), g.get("height")] + (
+        [g["length"]] if "length" in g else [])}.get(kind)
     for i, s in enumerate(g.get("joint_sets", [])):
         if len(s["point"]) != g["dimension"]:
             c.fail(path + ("joint_sets", i, "point"), f"{len(s['point'])} coordinates in a "
                    f"{g['dimension']}D scene")
+        if box is not None and not all(0.0 < x < b for x, b in zip(s["point"], box)):
+            c.fail(path + ("joint_sets", i, "point"), "the point is not inside the geometry")
+        if g["dimension"] == 2 and not any(abs(s["dip_direction"] - math.radians(a)) < 1e-9
+                                           for a in (90.0, 270.0)):
+            c.fail(path + ("joint_sets", i, "dip_direction"), "in 2D a joint dips toward +x "
+                   "(90 deg) or -x (270 deg)")
 
 
 JOINT_SET = Mapping({
@@ -81,6 +89,13 @@ TOPOGRAPHY = Mapping({
     "matedness": Quantity("length", **POSITIVE),
     "seed": Integer(low=0, required=False, default=1)})
 
+def _strength_rule(v, path, c):
+    if v["model"] == "barton":
+        for key in ("jrc", "jcs"):
+            if key not in v:
+                c.fail(path, f"missing key {key!r} (needed for Barton's strength)")
+
+
 STRENGTH = Mapping({
     "model": Text(choices=("coulomb", "barton")),
     "friction_angle": Quantity("angle", low=0.0, high=math.radians(89.0)),
@@ -88,7 +103,7 @@ STRENGTH = Mapping({
     "jrc": Quantity("number", low=0.0, high=20.0, required=False),
     "jcs": Quantity("stress", required=False, **POSITIVE),
     "dilation_angle": Quantity("angle", low=0.0, high=math.radians(60.0), required=False),
-    "dilation_limit": Quantity("length", low=0.0, required=False)})
+    "dilation_limit": Quantity("length", low=0.0, required=False)}, rule=_strength_rule)
 
 
 _ASPERITY_STATISTICS = (law_registry.Quantity("summit_density", "η", "1/mm²"),
@@ -131,13 +146,16 @@ def _law_rule(law, path, c):
             law[key] = os.path.join(c.base, law[key])
             if not os.path.isfile(law[key]):
                 c.fail(path + (key,), f"no file {law[key]}")
+    for key in ("fit", "intact_length"):
+        if key in law and "curve" not in law:
+            c.fail(path + (key,), "goes with curve (a measured curve to calibrate)")
     if "curve" in law and "fit" not in law:
         c.fail(path, "a curve needs fit: the law to calibrate (e.g. barton_bandis)")
 
 
 LAW = Mapping({
     "model": Text(required=False), "parameters": Anything(required=False),
-    "topography": TOPOGRAPHY.__class__(TOPOGRAPHY.fields, required=False),
+    "topography": Mapping(TOPOGRAPHY.fields, required=False),
     "curve": Text(required=False), "fit": Text(required=False),
     "intact_length": Quantity("length", required=False, **POSITIVE),
     "table": Text(required=False)}, rule=_law_rule)
@@ -146,7 +164,7 @@ JOINT = Mapping({
     "law": LAW,
     "shear_stiffness_ratio": Quantity("number", low=0.0, required=False, default=0.1),
     "residual_stiffness": Quantity("stiffness", low=0.0, required=False, default=0.0),
-    "strength": STRENGTH.__class__(STRENGTH.fields, required=False)})
+    "strength": Mapping(STRENGTH.fields, required=False, rule=_strength_rule)})
 
 IN_SITU = Mapping({"vertical": Quantity("stress", low=0.0),
                    "horizontal_ratio": Quantity("number", low=0.0, high=10.0, required=False,
@@ -239,6 +257,7 @@ def _cross_checks(d: dict, c: Checker) -> None:
             if "traction" in load and len(load["traction"]) != g["dimension"]:
                 c.fail(("stages", i, "loads", k, "traction"),
                        f"{len(load['traction'])} components in a {g['dimension']}D scene")
+    where += [(("outputs", "monitor", i), face) for i, face in enumerate(d["outputs"]["monitor"])]
     for path, face in where:
         if face not in faces:
             c.fail(path, f"no boundary {face!r}; one of {', '.join(faces)}")
