@@ -15,7 +15,9 @@ Sweeps, each against a reference that does not come from the setting under test:
   against the untabulated law (column: closed form; tunnel: the same mesh with the law itself);
 - load-step size against Newton iterations (column, excavation stage of the jointed tunnel);
 - 1 rank against 2 ranks: a sub-run under `mpirun -n 1` and `mpirun -n 2` (column, jointed tunnel),
-  times and the answers compared.
+  times and the answers compared;
+- a second jointed scene (bedding 1.5 m apart, K0 = 1.5) in the same mesh ratios against its own P2
+  reference: the recommended settings (the cheapest mesh meeting an error budget) must meet it on both.
 
 The jointed tunnel: the geometry of demos/demo_tunnel.py in a smaller section (W/a = 10): an opening
 a = 4 m at 300 m depth (σ_v = ρ g z = 7.95 MPa, K0 = 0.5), granite E = 50 GPa, ν = 0.25, rollers on the
