@@ -185,6 +185,16 @@ def _joint_sets(scene) -> list:
     return g.get("joint_sets", [])
 
 
+def _joint_spacing(scene) -> float:
+    """Smallest distance between parallel joints of the scene (a column's: between its joints and
+    ends), the length the report's joint mesh size is relative to."""
+    g = scene.data["geometry"]
+    if g["kind"] == "column":
+        z = sorted([0.0, g["height"]] + list(g["joint_heights"]))
+        return min(b - a for a, b in zip(z, z[1:]) if b > a)
+    return min((s["spacing"] for s in g.get("joint_sets", [])), default=float(max(_extent(g))))
+
+
 def _estimate_dofs(scene, dim, h, hj, ho) -> float:
     extent = _extent(scene.data["geometry"])
     # triangles ~ 2 A/h², tetrahedra ~ 6 V/h³; vertices ~ cells/2 (2D), cells/5 (3D); the refined
@@ -230,11 +240,18 @@ def make_plan(scene, reduced: bool = False) -> Plan:
                             + concentration(scene)[1] + f"), x {defaults.TABLE_MARGIN} margin"),
                        cost="knots grow with log(range); a table evaluation costs ~0.05 µs whatever the law",
                        error="the loads cannot take a joint outside it (checked after the run)")
-    tol = choose("table tolerance", "table_tolerance", defaults.TABLE_TOLERANCE,
-                 f"{defaults.TABLE_TOLERANCE:g}", text=lambda v: f"{v:g} relative on σ and k",
-                 why="far below the error budget and the Newton tolerance (defaults.py)",
-                 cost="a few hundred knots, built in well under a second",
-                 error=f"closure error <= {defaults.TABLE_TOLERANCE:g} relative (convex law)")
+    fe, met = defaults.fe_settings(budget)
+    measured = (f"the report's tunnels got {fe.measured_error:.2g} and {fe.measured_error_second_scene:.2g} "
+                f"with these settings (bench/results/fe_speed_vs_error.md §8, budget {fe.error_budget:.0%})")
+    if not met:
+        measured += f"; no mesh of its sweep met {budget:.0%}: an error that small is not demonstrated"
+    tol = choose("table tolerance", "table_tolerance", fe.table_tolerance, f"{fe.table_tolerance:g}",
+                 text=lambda v: f"{v:g} relative on σ and k",
+                 why=(f"the largest tolerance whose FE error stays below a tenth of a {fe.error_budget:.0%} "
+                      "budget on the report's column and tunnel"),
+                 cost="tens to hundreds of knots, built in well under a second",
+                 error="the table's share of the answer: 1.2e-4 on the report's tunnel at 0.01, "
+                       "1e-8 at 1e-6 (fe_speed_vs_error.md §5)")
 
     laws = {}
     for s in sets:
@@ -294,21 +311,30 @@ def make_plan(scene, reduced: bool = False) -> Plan:
     if reduced and "mesh_size" in d["reduced"]:
         h = d["reduced"]["mesh_size"]
     refine = over.get("refine", True)
-    hj = d["mesh"].get("joint_size", defaults.JOINT_REFINEMENT * h) if (refine and sets) else None
-    ho = d["mesh"].get("opening_size", defaults.OPENING_REFINEMENT * h) if (refine and opening) else None
-    degree = over.get("element_degree", defaults.ELEMENT_DEGREE)
-    quadrature = over.get("quadrature", defaults.QUADRATURE)
+    spacing = _joint_spacing(scene)
+    radius = g["opening"]["radius"] if opening else None
+    hj = d["mesh"].get("joint_size", min(h, fe.joint_size_over_spacing * spacing)) \
+        if (refine and sets) else None
+    ho = d["mesh"].get("opening_size", min(h, fe.opening_size_over_radius * radius)) \
+        if (refine and opening) else None
+    degree = over.get("element_degree", fe.element_degree)
+    quadrature = over.get("quadrature", fe.quadrature)
     dofs = _estimate_dofs(scene, dim, h, hj, ho)
+    sizes = ", ".join(f for f in (
+        f"{fe.joint_size_over_spacing:.3g} x joint spacing on joints" if hj else "",
+        f"{fe.opening_size_over_radius:.3g} x radius on the opening" if ho else "") if f)
     choices.append(Choice(
         "mesh", f"P{degree}, {h:g} m far" + (f", {hj:g} m on joints" if hj else "")
         + (f", {ho:g} m on the opening" if ho else "") + f", {quadrature} joint rule",
-        why="refined only where the stress varies fast (joints, openings)" + (
-            "; refinement switched off in the scene's plan" if not refine else ""),
+        why=(f"the cheapest settings of the FE speed-vs-error report within {fe.error_budget:.0%}"
+             + (f" ({sizes}; never coarser than the scene's size)" if sizes else "")
+             + "; refined only near joints and openings"
+             + ("; refinement switched off in the scene's plan" if not refine else "")),
         cost=f"~{dofs:.2g} dofs, ~{dofs * defaults.SECONDS_PER_DOF:.2g} s per Newton load step "
-             "(bench/results/fem.md rate)",
-        error="discretisation: see bench/results/fem.md; uniform stress fields are exact with P1"))
+             "(fe_speed_vs_error.md §3 rate)",
+        error=measured + "; uniform stress fields are exact with P1 (§1)"))
     any_slip = any(slip.values())
-    steps = over.get("load_steps", defaults.LOAD_STEPS_SLIP if any_slip else defaults.LOAD_STEPS_ELASTIC)
+    steps = over.get("load_steps", defaults.LOAD_STEPS_SLIP if any_slip else fe.load_steps)
     if reduced and "load_steps" in d["reduced"]:
         steps = d["reduced"]["load_steps"]
     choices.append(Choice("load steps", f"{steps} per stage (unless the stage sets its own)",
