@@ -332,6 +332,14 @@ void InterfaceAssembler::set_initial_jump(std::span<const double> initial_jump)
                                   + ", component " + std::to_string(i % _gdim) + ") is "
                                   + std::to_string(initial_jump[i]) + "; it must be finite [m]");
   std::copy(initial_jump.begin(), initial_jump.end(), _initial_jump.begin());
+  // A joint pre-closed by the in-situ stress was loaded to that closure on its virgin curve:
+  // a hysteretic law unloads from there (largest closure reached >= the initial closure).
+  for (std::size_t p = 0; p < _converged.size(); ++p)
+  {
+    const double closure = -_initial_jump[p * _gdim];
+    _converged[p].maximum_closure = std::max(_converged[p].maximum_closure, closure);
+    _trial[p].maximum_closure = std::max(_trial[p].maximum_closure, closure);
+  }
   _cache_valid = false;
 }
 
@@ -350,6 +358,8 @@ void InterfaceAssembler::revert_state()
 void InterfaceAssembler::reset_state()
 {
   std::fill(_converged.begin(), _converged.end(), joint::JointPointState{});
+  for (std::size_t p = 0; p < _converged.size(); ++p) // the in-situ closure was reached (above)
+    _converged[p].maximum_closure = std::max(0.0, -_initial_jump[p * _gdim]);
   revert_state();
 }
 

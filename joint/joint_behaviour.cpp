@@ -21,22 +21,37 @@ void validate(const JointBehaviour& behaviour, const std::string& label)
   v::non_negative(owner, "shear_stiffness_ratio", behaviour.shear_stiffness_ratio, "-");
   v::non_negative(owner, "residual_stiffness", behaviour.residual_stiffness, "Pa/m");
   validate(behaviour.strength, owner);
+  if (behaviour.hysteresis && behaviour.hysteresis->virgin_law() != behaviour.law)
+    throw std::invalid_argument(owner + ": the hysteresis's virgin law is not the joint's law");
 }
 
 namespace
 {
+/// The law's response at Δ: the hysteretic one at the converged Δ_m if the joint has one.
+constitutive::ClosureResponse law_response(const JointBehaviour& b, double closure,
+                                           double maximum_closure, double* permanent = nullptr)
+{
+  if (!b.hysteresis)
+    return b.law->evaluate(closure);
+  const constitutive::HysteresisResponse h = b.hysteresis->evaluate(closure, maximum_closure);
+  if (permanent)
+    *permanent = h.on_virgin_curve ? 0.0 : h.permanent_closure;
+  return h.response;
+}
+
 /// dk/dΔ by a central difference of the law's analytic tangent (one-sided near the
-/// maximum closure). Needed only for the consistent tangent of the proportional shear model:
-/// the ClosureLaw interface exposes σ and k, not k'.
-double stiffness_derivative(const constitutive::ClosureLaw& law, double closure)
+/// maximum closure), on the branch in force. Needed only for the consistent tangent of the
+/// proportional shear model: the ClosureLaw interface exposes σ and k, not k'.
+double stiffness_derivative(const JointBehaviour& b, double closure, double maximum_closure)
 {
   if (!(closure > 0.0))
     return 0.0;
+  auto k = [&](double x) { return law_response(b, x, maximum_closure).normal_stiffness; };
   const double h = 1e-6 * closure;
   const double up = closure + h;
-  if (up < law.maximum_closure())
-    return (law.normal_stiffness(up) - law.normal_stiffness(closure - h)) / (2.0 * h);
-  return (law.normal_stiffness(closure) - law.normal_stiffness(closure - h)) / h;
+  if (up < b.law->maximum_closure())
+    return (k(up) - k(closure - h)) / (2.0 * h);
+  return (k(closure) - k(closure - h)) / h;
 }
 
 /// k(0+) + k_r: the contact-side tangent at Δ = 0 (finite, or 0 if the law has none).
@@ -47,24 +62,30 @@ double contact_side_stiffness(const JointBehaviour& b)
 }
 } // namespace
 
-NormalResponse normal_response(const JointBehaviour& b, double closure, bool bonded)
+NormalResponse normal_response(const JointBehaviour& b, double closure, bool bonded,
+                               double maximum_closure)
 {
   NormalResponse r;
   // Through the base interface: a law's own opening branch (TabulatedLaw's residual stiffness
-  // k_res) comes in via the ClosureLaw::evaluate_open hook.
-  const constitutive::ClosureResponse law = b.law->evaluate(closure);
+  // k_res) comes in via the ClosureLaw::evaluate_open hook (shifted by Δ_p on a hysteretic
+  // branch: the joint opens at its permanent closure, normal_hysteresis.hpp (H3)).
+  const constitutive::ClosureResponse law
+      = law_response(b, closure, maximum_closure, &r.permanent_closure);
   r.status = law.status;
   r.stress = law.normal_stress + b.residual_stiffness * closure;
   r.stiffness = law.normal_stiffness + b.residual_stiffness;
-  r.in_contact = closure >= 0.0 || std::isnan(closure);
-  if (closure == 0.0)
+  r.in_contact = closure >= r.permanent_closure || std::isnan(closure);
+  // The kink at Δ = 0 and the tensile bond belong to the virgin joint; on an unloading branch
+  // (Δ_p > 0) the joint simply opens below Δ_p.
+  const bool virgin = r.permanent_closure == 0.0;
+  if (virgin && closure == 0.0)
   {
     // At the kink Δ = 0 (e.g. the untouched initial state) take the contact-side tangent
     // k(0+), an element of the generalized derivative: with k = 0 there, the first Newton
     // step of a column held by its joints would face a singular matrix.
     r.stiffness = contact_side_stiffness(b);
   }
-  else if (closure < 0.0 && bonded && b.strength.tensile_strength > 0.0)
+  else if (virgin && closure < 0.0 && bonded && b.strength.tensile_strength > 0.0)
   {
     // Bonded joint in tension: the contact-side spring continued into tension (continuous
     // traction and tangent at Δ = 0) while its tension stays within T (tension cut-off).
@@ -82,13 +103,13 @@ NormalResponse normal_response(const JointBehaviour& b, double closure, bool bon
 }
 
 ShearStiffness shear_stiffness(const JointBehaviour& b, const NormalResponse& normal,
-                               double closure)
+                               double closure, double maximum_closure)
 {
   if (!normal.in_contact)
     return {normal.stiffness, 0.0}; // open: the isotropic residual spring k_open + k_r
   if (b.shear_model == ShearModel::proportional)
   {
-    const double slope = closure > 0.0 ? stiffness_derivative(*b.law, closure) : 0.0;
+    const double slope = stiffness_derivative(b, closure, maximum_closure);
     return {b.shear_stiffness_ratio * normal.stiffness, b.shear_stiffness_ratio * slope};
   }
   return {b.shear_stiffness, 0.0};

@@ -25,6 +25,7 @@
 #include "joint_strength.hpp"
 
 #include <rockjoint/constitutive/closure_law.hpp>
+#include <rockjoint/constitutive/normal_hysteresis.hpp>
 
 #include <array>
 #include <memory>
@@ -49,6 +50,10 @@ struct JointBehaviour
   double shear_stiffness_ratio = 0.0; ///< α [-] (ShearModel::proportional), >= 0
   double residual_stiffness = 0.0;    ///< k_r [Pa/m], >= 0
   JointStrength strength{};           ///< shear strength (default none: elastic joint)
+  /// Normal closure with history (docs/hysteresis.md): unloading/reloading branches set by the
+  /// largest closure reached (JointPointState::maximum_closure). Null: the law is elastic.
+  /// Its virgin law must be `law` (the in-situ pre-closure follows the virgin curve).
+  std::shared_ptr<const constitutive::NormalHysteresis> hysteresis;
 };
 
 /// Throw std::invalid_argument (naming the joint `label`, the parameter, value and range)
@@ -94,23 +99,26 @@ struct NormalResponse
   constitutive::Status status = constitutive::Status::open;
   bool in_contact = false;             ///< Δ_e >= 0, or bonded in tension: carries shear
   bool bond_fails = false;             ///< the tension exceeded the tensile strength here
+  double permanent_closure = 0.0;      ///< Δ_p of the hysteretic branch in force (0: virgin) [m]
 };
 
-/// Normal response at elastic closure Δ_e; `bonded`: the tensile bond is still intact. At
+/// Normal response at elastic closure Δ_e; `bonded`: the tensile bond is still intact;
+/// `maximum_closure`: the converged Δ_m of a hysteretic law (ignored without one). At
 /// Δ_e = 0 exactly the tangent is the contact-side one, k(0+) (semismooth Newton from an
 /// untouched joint). A bonded joint (tensile strength T > 0) in tension is a spring of that
 /// contact-side stiffness until its tension reaches T; past it the bond fails and the joint
 /// is open.
 NormalResponse normal_response(const JointBehaviour& behaviour, double elastic_closure,
-                               bool bonded);
+                               bool bonded, double maximum_closure = 0.0);
 
-/// Shear stiffness k_s [Pa/m] and dk_s/dΔ_e [Pa/m²] for a normal response at Δ_e.
+/// Shear stiffness k_s [Pa/m] and dk_s/dΔ_e [Pa/m²] for a normal response at Δ_e (with the
+/// converged Δ_m of a hysteretic law: the proportional model follows the branch's stiffness).
 struct ShearStiffness
 {
   double value = 0.0;
   double closure_derivative = 0.0;
 };
 ShearStiffness shear_stiffness(const JointBehaviour& behaviour, const NormalResponse& normal,
-                               double elastic_closure);
+                               double elastic_closure, double maximum_closure = 0.0);
 
 } // namespace rockjoint::joint

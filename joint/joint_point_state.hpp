@@ -15,6 +15,7 @@ struct JointPointState
   double dilation = 0.0;         ///< normal opening produced by slip (dilatancy) [m]
   double accumulated_slip = 0.0; ///< path length of the slip, ∫|d slip| [m]
   bool bond_broken = false;      ///< tensile strength exceeded once: bond (c, T) lost for good
+  double maximum_closure = 0.0;  ///< largest elastic closure reached, Δ_m [m] (hysteretic normal law)
 };
 
 } // namespace rockjoint::joint

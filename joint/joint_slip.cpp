@@ -21,14 +21,14 @@ struct SlipPoint
   ShearStrength strength;
 };
 
-SlipPoint slip_point(const JointBehaviour& b, double trial_closure, double accumulated_slip,
+SlipPoint slip_point(const JointBehaviour& b, double trial_closure, const JointPointState& converged,
                      double increment, bool bonded)
 {
   SlipPoint s;
-  s.dilation = dilation_increment(b.strength, accumulated_slip, increment);
+  s.dilation = dilation_increment(b.strength, converged.accumulated_slip, increment);
   s.closure = trial_closure + s.dilation.opening;
-  s.normal = normal_response(b, s.closure, bonded);
-  s.shear = shear_stiffness(b, s.normal, s.closure);
+  s.normal = normal_response(b, s.closure, bonded, converged.maximum_closure);
+  s.shear = shear_stiffness(b, s.normal, s.closure, converged.maximum_closure);
   s.strength = shear_strength(b.strength, s.normal.stress, bonded);
   return s;
 }
@@ -55,14 +55,17 @@ LocalResponse joint_response(const JointBehaviour& b, int gdim, const std::array
   // Elastic predictor at the converged slip and dilation.
   bool bonded = !converged.bond_broken;
   const double trial_closure = r.closure + converged.dilation;
-  NormalResponse normal = normal_response(b, trial_closure, bonded);
+  NormalResponse normal = normal_response(b, trial_closure, bonded, converged.maximum_closure);
+  // Δ_m of a hysteretic normal law follows the closure (the slip branch below updates it again).
+  if (b.hysteresis)
+    trial.maximum_closure = std::max(converged.maximum_closure, trial_closure);
   if (normal.bond_fails)
   {
     trial.bond_broken = true; // tension cut-off: the bond (c, T) is lost for good
     bonded = false;
   }
   set_normal(r, normal);
-  const ShearStiffness ks = shear_stiffness(b, normal, trial_closure);
+  const ShearStiffness ks = shear_stiffness(b, normal, trial_closure, converged.maximum_closure);
   std::array<double, 2> elastic_slip{};
   double e = 0.0;
   for (int i = 0; i < shear_components; ++i)
@@ -106,7 +109,7 @@ LocalResponse joint_response(const JointBehaviour& b, int gdim, const std::array
   };
   auto residual = [&](double increment)
   {
-    const SlipPoint s = slip_point(b, trial_closure, converged.accumulated_slip, increment, bonded);
+    const SlipPoint s = slip_point(b, trial_closure, converged, increment, bonded);
     return constitutive::root_finding::Residual{
         s.strength.strength - s.shear.value * (e - increment), slope(s, increment)};
   };
@@ -118,7 +121,7 @@ LocalResponse joint_response(const JointBehaviour& b, int gdim, const std::array
                                                           std::min(yield / ks.value, e), options,
                                                           -yield, top);
   const double increment = root.bracketed ? root.x : std::numeric_limits<double>::quiet_NaN();
-  const SlipPoint s = slip_point(b, trial_closure, converged.accumulated_slip, increment, bonded);
+  const SlipPoint s = slip_point(b, trial_closure, converged, increment, bonded);
 
   r.shear_state = ShearState::slip;
   set_normal(r, s.normal);
@@ -134,6 +137,8 @@ LocalResponse joint_response(const JointBehaviour& b, int gdim, const std::array
     r.traction[i + 1] = shear * m[i];
   }
   trial.dilation = converged.dilation + s.dilation.opening;
+  if (b.hysteresis)
+    trial.maximum_closure = std::max(converged.maximum_closure, s.closure);
   trial.accumulated_slip = converged.accumulated_slip + increment;
 
   // Consistent tangent by implicit differentiation of G(Δλ; j_n, e) = 0:

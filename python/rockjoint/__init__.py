@@ -15,6 +15,7 @@ from ._rockjoint.constitutive import (  # noqa: F401
     ClosureLaw,
     ExponentialLaw,
     LogarithmicLaw,
+    NormalHysteresis,
     Parameter,
     Status,
     composite_modulus,

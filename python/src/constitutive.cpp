@@ -12,6 +12,7 @@
 #include <rockjoint/constitutive/hertz.hpp>
 #include <rockjoint/constitutive/interaction_cell.hpp>
 #include <rockjoint/constitutive/interaction_cell_numeric.hpp>
+#include <rockjoint/constitutive/normal_hysteresis.hpp>
 #include <rockjoint/constitutive/substrate.hpp>
 #include <rockjoint/constitutive/summit_population_law.hpp>
 #include <rockjoint/constitutive/tabulated_law.hpp>
@@ -20,6 +21,7 @@
 
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <stdexcept>
@@ -103,6 +105,54 @@ void declare_laws(py::module_& m)
       m, "ExponentialLaw", "Δ = V_m (1 - exp(-σ/σ_c))")
       .def(py::init<double, double>(), py::arg("maximum_closure"),
            py::arg("characteristic_stress"));
+
+  py::class_<NormalHysteresis, std::shared_ptr<NormalHysteresis>>(
+      m, "NormalHysteresis",
+      "Virgin closure law with Bandis-type unloading/reloading branches set by the largest "
+      "closure reached (docs/hysteresis.md, H1-H4)")
+      .def(py::init<std::shared_ptr<const ClosureLaw>, double, double>(), py::arg("virgin"),
+           py::arg("permanent_fraction"), py::arg("unloading_exponent"))
+      .def_property_readonly("virgin", [](const NormalHysteresis& h)
+                             { return std::const_pointer_cast<ClosureLaw>(h.virgin_law()); })
+      .def_property_readonly("permanent_fraction", &NormalHysteresis::permanent_fraction)
+      .def_property_readonly("unloading_exponent", &NormalHysteresis::unloading_exponent)
+      .def("parameters", [](const NormalHysteresis& h)
+           {
+             py::dict d;
+             for (const Parameter& p : h.parameters())
+               d[py::str(p.name)] = p.value;
+             return d;
+           })
+      .def("permanent_closure", &NormalHysteresis::permanent_closure, py::arg("maximum_closure"),
+           "Δ_p = r Δ_m [m]")
+      .def(
+          "evaluate",
+          [](const NormalHysteresis& h, double closure, double maximum_closure)
+          {
+            const HysteresisResponse r = h.evaluate(closure, maximum_closure);
+            py::dict d;
+            d["normal_stress"] = r.response.normal_stress;
+            d["normal_stiffness"] = r.response.normal_stiffness;
+            d["on_virgin_curve"] = r.on_virgin_curve;
+            d["maximum_closure"] = r.maximum_closure;
+            d["permanent_closure"] = r.permanent_closure;
+            d["status"] = std::string(to_string(r.response.status));
+            return d;
+          },
+          py::arg("closure"), py::arg("maximum_closure"),
+          "σ [Pa], k = ∂σ/∂Δ [Pa/m] at closure Δ [m] given the largest closure reached before")
+      .def(
+          "closure_path",
+          [](const NormalHysteresis& h, const DoubleArray& stress, double maximum_closure)
+          {
+            require_no_nan(stress, "stress");
+            const std::vector<double> c = h.closure_path(as_span(stress), maximum_closure);
+            DoubleArray out = empty_like(stress);
+            std::copy(c.begin(), c.end(), out.mutable_data());
+            return out;
+          },
+          py::arg("stress"), py::arg("maximum_closure") = 0.0,
+          "closures [m] along a path of normal stresses [Pa] (load cycles), from Δ_m");
 
   m.def("composite_modulus", py::overload_cast<double, double>(&composite_modulus),
         py::arg("young"), py::arg("poisson"), "E* = E / (2(1-ν²)) [Pa] of two walls of one rock");

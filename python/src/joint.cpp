@@ -81,7 +81,7 @@ void declare_joint(py::module_& m)
   py::class_<JointPointState>(m, "JointPointState", "Path-dependent state of one joint point")
       .def(py::init(
                [](const std::vector<double>& slip, double dilation, double accumulated,
-                  bool broken)
+                  bool broken, double maximum_closure)
                {
                  if (slip.size() > 2)
                    throw py::value_error("JointPointState: slip has " + std::to_string(slip.size())
@@ -91,15 +91,18 @@ void declare_joint(py::module_& m)
                  s.dilation = dilation;
                  s.accumulated_slip = accumulated;
                  s.bond_broken = broken;
+                 s.maximum_closure = maximum_closure;
                  return s;
                }),
            py::arg("slip") = std::vector<double>{}, py::arg("dilation") = 0.0,
-           py::arg("accumulated_slip") = 0.0, py::arg("bond_broken") = false)
+           py::arg("accumulated_slip") = 0.0, py::arg("bond_broken") = false,
+           py::arg("maximum_closure") = 0.0)
       .def_property_readonly("slip", [](const JointPointState& s)
                              { return std::vector<double>(s.slip.begin(), s.slip.end()); })
       .def_readonly("dilation", &JointPointState::dilation)
       .def_readonly("accumulated_slip", &JointPointState::accumulated_slip)
-      .def_readonly("bond_broken", &JointPointState::bond_broken);
+      .def_readonly("bond_broken", &JointPointState::bond_broken)
+      .def_readonly("maximum_closure", &JointPointState::maximum_closure);
 
   py::class_<JointBehaviour>(m, "JointBehaviour",
                              "Closure law + shear stiffness + residual stiffness + strength of "
@@ -107,20 +110,27 @@ void declare_joint(py::module_& m)
       .def(py::init(
                [](std::shared_ptr<const rockjoint::constitutive::ClosureLaw> law,
                   ShearModel model, double ks, double ratio, double kr,
-                  std::optional<JointStrength> strength)
+                  std::optional<JointStrength> strength,
+                  std::shared_ptr<const rockjoint::constitutive::NormalHysteresis> hysteresis)
                {
-                 JointBehaviour b{law, model, ks, ratio, kr, strength.value_or(JointStrength{})};
+                 if (hysteresis && !law)
+                   law = hysteresis->virgin_law(); // the virgin curve is the joint's law
+                 JointBehaviour b{law, model, ks, ratio, kr, strength.value_or(JointStrength{}),
+                                  hysteresis};
                  validate(b, law ? law->name() : std::string("?"));
                  return b;
                }),
            py::arg("law"), py::arg("shear_model") = ShearModel::constant,
            py::arg("shear_stiffness") = 0.0, py::arg("shear_stiffness_ratio") = 0.0,
-           py::arg("residual_stiffness") = 0.0, py::arg("strength") = py::none())
+           py::arg("residual_stiffness") = 0.0, py::arg("strength") = py::none(),
+           py::arg("hysteresis") = py::none())
       .def_readonly("shear_model", &JointBehaviour::shear_model)
       .def_readonly("shear_stiffness", &JointBehaviour::shear_stiffness)
       .def_readonly("shear_stiffness_ratio", &JointBehaviour::shear_stiffness_ratio)
       .def_readonly("residual_stiffness", &JointBehaviour::residual_stiffness)
       .def_readonly("strength", &JointBehaviour::strength)
+      .def_property_readonly("hysteresis", [](const JointBehaviour& b)
+                             { return std::const_pointer_cast<rockjoint::constitutive::NormalHysteresis>(b.hysteresis); })
       .def_property_readonly("law", [](const JointBehaviour& b)
                              { return std::const_pointer_cast<rockjoint::constitutive::ClosureLaw>(b.law); });
 
