@@ -1,0 +1,67 @@
+"""FE column with a hysteretic joint (docs/hysteresis.md) loaded, unloaded and reloaded: the
+joint closure equals the closed form at every stage (virgin, branch, permanent closure, reload,
+virgin again), the top keeps the permanent closure at zero load, the Newton Jacobian matches
+finite differences on both sides of the branch switch, and an in-situ pre-closed joint unloads
+on its branch."""
+import numpy as np
+import pytest
+
+pytest.importorskip("dolfinx")
+pytest.importorskip("rockjoint._rockjoint_fem_coupling")
+
+from jacobian_checks import assert_jacobian_matches_fd  # noqa: E402
+from hysteresis_cases import (KNI, M, PEAK, R, VM, check_cycle, expected_closures,  # noqa: E402
+                              hysteretic_column, run_cycle, virgin_closure)
+
+from rockjoint.fem_coupling import InSituStress  # noqa: E402
+
+
+def test_column_follows_the_hysteretic_law_through_a_cycle():
+    check_cycle(*run_cycle(hysteretic_column()))
+
+
+def test_jacobian_on_both_sides_of_the_branch_switch():
+    """Converged at the peak (Δ_m set), then u scaled to 0.9 (on the branch) and 1.1 (past Δ_m,
+    virgin): the assembled tangent equals central differences of the residual on each side."""
+    model = hysteretic_column()
+    model.advance(1.0, load_steps=2)
+    u_peak = model.u.x.array.copy()
+    for scale in (0.9, 1.1):
+        u = scale * u_peak
+        assert_jacobian_matches_fd(model, u, relative_step=1e-7, label=f"u = {scale} u_peak: ")
+
+
+def test_branch_tangent_is_stiffer_than_the_virgin_one_at_the_peak():
+    """A 1 % unloading from the peak moves the top less than a 1 % loading: (H4) ratio
+    m σ_m / ((1 - r) Δ_m k_v) > 1 for these parameters."""
+    model = hysteretic_column()
+    model.advance(1.0, load_steps=2)
+    top = model.boundary_mean_displacement("top")[1]
+    model.advance(0.99)
+    down = abs(model.boundary_mean_displacement("top")[1] - top)
+    model.advance(1.0)
+    model.advance(1.01)
+    up = abs(model.boundary_mean_displacement("top")[1] - top)
+    dm = virgin_closure(PEAK)
+    ratio = M * PEAK / ((1 - R) * dm) / (KNI / (1 - dm / VM) ** 2)
+    assert ratio > 1 and down < up
+
+
+def test_in_situ_pre_closure_unloads_on_the_branch():
+    """A joint closed by an in-situ σ_v = 8 MPa was loaded to that closure on its virgin curve:
+    excavation-like unloading to σ_v/4 and to σ_v/100 follows the branch from Δ(σ_v) down toward
+    the permanent closure r Δ(σ_v), not toward zero."""
+    model = hysteretic_column(top_traction=False)
+    model.set_in_situ_stress(InSituStress.uniform(np.diag([-2e6, -PEAK])))
+    joints = model.solve(name="in-situ").gather_joints()
+    if joints is not None:
+        np.testing.assert_allclose(joints["closure"], virgin_closure(PEAK), rtol=1e-10)
+    release = model.excavate("top", fraction_left=0.25)
+    expected = expected_closures([PEAK, 0.25 * PEAK, 0.01 * PEAK])
+    for stage, target in ((1, 0.25), (2, 0.01)):
+        release.value = target
+        joints = model.solve(load_steps=2).gather_joints()
+        if joints is not None:
+            np.testing.assert_allclose(joints["closure"], expected[stage], rtol=1e-8)
+    # an elastic joint would spring back to Δ(σ_v/100) = 8e-6 m; this one stays above r Δ(σ_v)
+    assert expected[2] > R * virgin_closure(PEAK) > 10 * virgin_closure(0.01 * PEAK)
