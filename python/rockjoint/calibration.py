@@ -145,6 +145,14 @@ def read_closure_curve(path, *, intact_length: Optional[float] = None,
     u - σ L/E (theory §0). An optional ``closure_std`` column weights the fit by 1/std².
     Lines starting with '#' and blank lines are skipped. Errors name the file and line.
     """
+    return ClosureCurve(*read_columns(path, intact_length=intact_length,
+                                      young_modulus=young_modulus))
+
+
+def read_columns(path, *, intact_length: Optional[float] = None,
+                 young_modulus: Optional[float] = None) -> tuple:
+    """(stress [Pa], closure [m], closure_std [m] or None, line numbers, source) of a closure CSV
+    file in file order (read_closure_curve's format; also load cycles, cycle_calibration.py)."""
     path = str(path)
     try:
         with open(path, newline="", encoding="utf-8") as f:
@@ -199,7 +207,7 @@ def read_closure_curve(path, *, intact_length: Optional[float] = None,
     else:
         closure = np.array(data["closure"])
         source = path
-    return ClosureCurve(stress, closure, std, np.array(lines), source)
+    return stress, closure, std, np.array(lines), source
 
 
 # ---- what a calibration fits: the law registry's CalibrationSpec of each law -----------------

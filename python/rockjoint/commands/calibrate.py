@@ -11,6 +11,11 @@ The CSV header names the columns and their units, e.g.::
 or ``displacement [mm]`` of the jointed specimen with ``--intact-length`` and ``--young`` (the
 intact specimen's own deformation σL/E is removed). An optional ``closure_std [mm]`` column
 weights the fit by 1/std². See rockjoint.calibration for what each law fits.
+
+With ``--cycles`` the file holds load cycles in test order (loading, unloading, reloading ...):
+the law is fitted as the virgin curve of a hysteretic law together with its unloading branches
+(permanent fraction r, branch exponent m; rockjoint.cycle_calibration, docs/hysteresis.md); the
+report gives the rms of each branch, the permanent closure of each cycle and the uncertainties.
 """
 from __future__ import annotations
 
@@ -53,6 +58,9 @@ def add_parser(subparsers) -> None:
                      help="also fit a closure offset Δ_0 (default for GW-type laws)")
     off.add_argument("--no-fit-offset", dest="fit_offset", action="store_false",
                      help="the curve starts at the law's datum (default for empirical laws)")
+    p.add_argument("--cycles", action="store_true",
+                   help="the file holds load cycles (test order): fit the law with unloading "
+                        "branches (permanent closure, branch exponent)")
     p.add_argument("--plot", metavar="PNG", help="plot file (default <curve>_<law>.png)")
     p.add_argument("--table", metavar="RJT", help="table file (default <curve>_<law>.rjt)")
     p.add_argument("--max-stress", type=float, metavar="MPA",
@@ -63,6 +71,9 @@ def add_parser(subparsers) -> None:
 def run(args) -> int:
     import rockjoint
     from rockjoint.calibration import calibrate, read_closure_curve
+
+    if args.cycles:
+        return run_cycles(args)
 
     young = args.young * GPA if args.young is not None else None
     curve = read_closure_curve(
@@ -88,4 +99,17 @@ def run(args) -> int:
     table.save(str(table_path))
     print(f"wrote {plot} (data, fit, residuals) and {table_path} (the fitted law tabulated "
           f"up to {table.knot_stress[-1] * 1e-6:.4g} MPa)")
+    return 0
+
+
+def run_cycles(args) -> int:
+    from rockjoint.cycle_calibration import calibrate_cycles, read_load_cycles
+
+    if args.intact_length is not None:
+        raise ValueError("--cycles reads a 'closure' column; remove the intact deformation first")
+    e_star = None if args.composite_modulus is None else args.composite_modulus * GPA
+    result = calibrate_cycles(read_load_cycles(args.curve), args.law, composite_modulus=e_star,
+                              summit_radius=None if args.summit_radius is None
+                              else args.summit_radius * MM)
+    print(result.report())
     return 0

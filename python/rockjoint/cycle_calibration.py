@@ -1,0 +1,218 @@
+"""Calibration of a hysteretic closure law to measured load cycles (docs/hysteresis.md §calibration).
+
+A laboratory closure test loads and unloads a joint one or more times: the stress path σ_i (the
+controlled variable, in test order) and the closure Δ_i (the measured one). The model is a
+NormalHysteresis: a virgin law (any calibratable law of the registry) with unloading/reloading
+branches, permanent closure r Δ_m and branch exponent m (H1-H2). All of it is fitted at once:
+residuals r_i = Δ_model(σ_0..σ_i; p) - Δ_i along the path (NormalHysteresis.closure_path), by
+the same Levenberg-Marquardt as calibration.py (GSL through fit_curve). The virgin law's positive
+parameters are fitted as logarithms, r as a logit (0 < r < 1) and m - 1 as a logarithm (m > 1), so
+the search space has no boundary; standard uncertainties are carried back to first order
+(σ_p = p σ_ln p, σ_r = r (1 - r) σ_logit, σ_m = (m - 1) σ_ln(m-1)). The path starts at the law's
+datum (Δ = 0 at σ = 0; no closure offset).
+
+The report gives the rms residual of each branch (virgin loading, unloading, reloading), the
+permanent closure of each cycle (r Δ_m at the end of each unloading) and the parameters with
+their uncertainties.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Dict, List, Optional
+
+import numpy as np
+
+from ._rockjoint import calibration as _cpp_calibration
+from ._rockjoint.constitutive import NormalHysteresis
+from .calibration import FittedParameter, read_columns
+from .law_registry import calibratable, get
+
+__all__ = ["LoadCycles", "read_load_cycles", "calibrate_cycles", "CycleCalibration", "BRANCHES"]
+
+#: branch labels of the points of a path
+BRANCHES = ("loading", "unloading", "reloading")
+
+
+@dataclass
+class LoadCycles:
+    """Measured load cycles in SI, in test order: stress [Pa] and closure [m] per point."""
+    normal_stress: np.ndarray
+    closure: np.ndarray
+    lines: Optional[np.ndarray] = None
+    source: str = "<array>"
+
+    def __post_init__(self) -> None:
+        self.normal_stress = np.asarray(self.normal_stress, dtype=float)
+        self.closure = np.asarray(self.closure, dtype=float)
+        if self.lines is None:
+            self.lines = np.arange(1, self.closure.size + 1)
+        s, d = self.normal_stress, self.closure
+        if s.shape != d.shape or s.ndim != 1:
+            raise ValueError(f"{self.source}: normal_stress and closure must be 1-D arrays of one "
+                             f"length (got {s.shape} and {d.shape})")
+        for name, v in (("normal stress", s), ("closure", d)):
+            bad = np.flatnonzero(~np.isfinite(v))
+            if bad.size:
+                raise ValueError(f"{self.source}: line {int(self.lines[bad[0]])}: {name} is "
+                                 f"{v[bad[0]]} (not finite)")
+        neg = np.flatnonzero(s < 0)
+        if neg.size:
+            raise ValueError(f"{self.source}: line {int(self.lines[neg[0]])}: normal stress "
+                             f"{s[neg[0]]:.6g} Pa is negative (compression is positive)")
+        labels = self.branches()
+        for b in ("loading", "unloading"):
+            if np.count_nonzero(labels == b) < 3:
+                raise ValueError(f"{self.source}: {np.count_nonzero(labels == b)} point(s) on "
+                                 f"{b} branches; load cycles need at least 3 on loading and 3 on "
+                                 "unloading (is this a single loading curve? use calibrate)")
+
+    def branches(self) -> np.ndarray:
+        """Label of each point: 'loading' (virgin: the stress reaches a new maximum),
+        'unloading' (stress falling) or 'reloading' (rising below the earlier maximum)."""
+        s = self.normal_stress
+        out = np.empty(s.size, dtype=object)
+        top = -math.inf
+        for i, v in enumerate(s):
+            if v >= top:
+                out[i], top = "loading", v
+            else:
+                out[i] = "unloading" if i > 0 and v < s[i - 1] else "reloading"
+        return out
+
+
+def read_load_cycles(path) -> LoadCycles:
+    """Load cycles from a CSV file in test order: the header names the columns and units, as for
+    read_closure_curve (``normal_stress [MPa], closure [mm]``); rows need not be monotone."""
+    stress, closure, _, lines, source = read_columns(path)
+    return LoadCycles(stress, closure, lines, source)
+
+
+@dataclass
+class CycleCalibration:
+    """Result of calibrate_cycles: the fitted NormalHysteresis and the statistics of the fit."""
+    law_name: str
+    law: NormalHysteresis
+    parameters: List[FittedParameter]
+    cycles: LoadCycles
+    residuals: np.ndarray                   # model - data closure [m]
+    given: Dict[str, object] = field(default_factory=dict)
+    fit: object = None
+
+    def branch_rms(self) -> Dict[str, float]:
+        """rms closure residual [m] per branch (those present)."""
+        labels = self.cycles.branches()
+        return {b: float(np.sqrt(np.mean(self.residuals[labels == b] ** 2)))
+                for b in BRANCHES if np.any(labels == b)}
+
+    def permanent_closures(self) -> np.ndarray:
+        """Fitted permanent closure r Δ_m [m] at the end of each unloading (the lowest stress of
+        each unloading run)."""
+        labels = self.cycles.branches()
+        predicted = self.predicted_closure()
+        out, dm = [], 0.0
+        for i, b in enumerate(labels):
+            dm = max(dm, predicted[i])
+            ends = b == "unloading" and (i + 1 == labels.size or labels[i + 1] != "unloading")
+            if ends:
+                out.append(self.law.permanent_closure(dm))
+        return np.array(out)
+
+    def predicted_closure(self) -> np.ndarray:
+        return np.asarray(self.law.closure_path(self.cycles.normal_stress), dtype=float)
+
+    def parameter(self, name: str) -> FittedParameter:
+        for p in self.parameters:
+            if p.name == name:
+                return p
+        raise KeyError(name)
+
+    def report(self) -> str:
+        c = self.cycles
+        top = float(np.max(c.closure))
+        lines = [f"cycle calibration of '{self.law_name}' with unloading branches to {c.source}",
+                 f"  {c.closure.size} points, normal stress up to {np.max(c.normal_stress) * 1e-6:.4g} "
+                 f"MPa, closure up to {top * 1e3:.4g} mm"]
+        for k, v in self.given.items():
+            lines.append(f"  given: {k} = {v}")
+        lines.append("  fitted parameters (± standard uncertainty from the covariance scaled by the "
+                     "residual variance):")
+        lines += [f"    {p}" for p in self.parameters]
+        for b, rms in self.branch_rms().items():
+            lines.append(f"  {b:9s} rms {rms * 1e6:.4g} µm = {rms / top:.2%} of the maximum closure")
+        perm = self.permanent_closures()
+        if perm.size:
+            lines.append("  permanent closure after each unloading: "
+                         + ", ".join(f"{p * 1e3:.4g} mm" for p in perm)
+                         + f" (r = {self.law.permanent_fraction:.3g} of the largest closure)")
+        return "\n".join(lines)
+
+
+def _logit(r: float) -> float:
+    return math.log(r / (1.0 - r))
+
+
+def calibrate_cycles(cycles: LoadCycles, law: str, *, composite_modulus: Optional[float] = None,
+                     summit_radius: Optional[float] = None, maximum_iterations: int = 500,
+                     initial: Optional[List[float]] = None) -> CycleCalibration:
+    """Fit a virgin ``law`` (a calibratable law of the registry) with unloading branches to
+    ``cycles``; see the module docstring. ``initial``: starting values in SI, the law's unknowns
+    then r and m (default: the law's own guess on the virgin points, r from the lowest unloaded
+    closure, m = 2)."""
+    record = get(law)
+    spec = record.calibration
+    if spec is None:
+        raise ValueError(f"calibrate_cycles: law '{law}' cannot be calibrated; choose one of "
+                         f"{', '.join(calibratable())}")
+    given: Dict[str, object] = {}
+    inputs = {"composite_modulus": (composite_modulus, "Pa"), "summit_radius": (summit_radius, "m")}
+    for key in spec.needs:
+        v, unit = inputs[key]
+        if v is None or not (math.isfinite(v) and v > 0):
+            raise ValueError(f"calibrate_cycles: law '{law}' needs {key} [{unit}] finite and > 0 "
+                             f"(got {v})")
+        given[key] = float(v)
+    npos = len(spec.unknowns)
+    labels = cycles.branches()
+    virgin = labels == "loading"
+    if initial is None:
+        from .calibration import _closure_of
+        s_v, d_v = cycles.normal_stress[virgin], cycles.closure[virgin]
+        start = list(spec.initial_guess(s_v, d_v, given, spec.build, False, _closure_of))[:npos]
+        lowest = float(np.min(cycles.closure[labels == "unloading"]))
+        r0 = min(max(lowest / max(float(np.max(cycles.closure)), 1e-300), 0.05), 0.9)
+        start += [r0, 2.0]
+    else:
+        start = list(initial)
+    if len(start) != npos + 2:
+        raise ValueError(f"calibrate_cycles: {len(start)} initial values for {npos + 2} parameters")
+    if not (0.0 < start[npos] < 1.0 and start[npos + 1] > 1.0):
+        raise ValueError(f"calibrate_cycles: initial r = {start[npos]} must be in (0, 1) and "
+                         f"m = {start[npos + 1]} > 1")
+    scale = float(np.max(np.abs(cycles.closure))) or 1.0
+
+    def unpack(q):
+        values = [math.exp(x) for x in q[:npos]]
+        r = 1.0 / (1.0 + math.exp(-q[npos]))
+        return values, r, 1.0 + math.exp(q[npos + 1])
+
+    def build(q):
+        values, r, m = unpack(q)
+        return NormalHysteresis(spec.build(values, given), r, m)
+
+    def model(q):
+        try:
+            return np.asarray(build(q).closure_path(cycles.normal_stress)) / scale
+        except ValueError:  # a trial beyond the law's admissible stress: steer the fit back
+            return np.full(cycles.closure.size, 1e3)
+
+    q0 = [math.log(v) for v in start[:npos]] + [_logit(start[npos]), math.log(start[npos + 1] - 1.0)]
+    result = _cpp_calibration.fit_curve(model, cycles.closure / scale, np.array(q0), None,
+                                        maximum_iterations=maximum_iterations)
+    q, se = result.parameters, result.standard_errors
+    values, r, m = unpack(q)
+    params = [FittedParameter(u.name, u.symbol, values[j], values[j] * se[j], u.unit, u.scale)
+              for j, u in enumerate(spec.unknowns)]
+    params.append(FittedParameter("permanent_fraction", "r", r, r * (1 - r) * se[npos], "-", 1.0))
+    params.append(FittedParameter("unloading_exponent", "m", m, (m - 1) * se[npos + 1], "-", 1.0))
+    return CycleCalibration(law, build(q), params, cycles, result.residuals * scale, given, result)
