@@ -132,6 +132,7 @@ def solve_tunnel(dmesh, degree=1, quadrature="nodal", law=None, steps=1, k0=K0, 
     return {"dofs": model.num_dofs, "pairs": comm.allreduce(len(dmesh.pairs), op=MPI.SUM), "seconds": seconds,
             "newton_iterations": stage.newton_iterations,
             "load_steps_taken": sum(1 for r in stage.reports if r.converged),
+            "beyond_range": sum(stage.beyond_law_range().values()),  # joint points past the table's end
             "u_wall": probe(model.u, wall), "stress_ring": probe(model.total_stress(), ring)}
 
 
@@ -467,7 +468,8 @@ def sweep_second_scene(cfg, comm) -> dict:
                      row["seconds"])
     return {"bedding_spacing": SECOND_SPACING, "k0": SECOND_K0, "reference_dofs": ref["dofs"],
             "reference_sizes": list(ref_sizes), "reference_seconds": ref["seconds"],
-            "reference_newton_iterations": ref["newton_iterations"], "mesh": rows}
+            "reference_newton_iterations": ref["newton_iterations"], "reference_beyond_range": ref["beyond_range"],
+            "mesh": rows}
 
 
 # ---- driver -------------------------------------------------------------------------------------

@@ -271,6 +271,16 @@ def surprises(res):
     for r in sc:
         if "failed" in r:
             out.append(f"second scene P{r['degree']} n = {r['n']}: the solve failed ({r['failed']})")
+    beyond = [(f"second scene P{r['degree']} n = {r['n']}", r["beyond_range"]) for r in sc if r.get("beyond_range")]
+    beyond += [(f"first scene P{r['degree']} {r['quadrature']} n = {r['n']}", r["beyond_range"]) for r in t
+               if r.get("beyond_range")]
+    if res.get("second", {}).get("reference_beyond_range"):
+        beyond.append(("second scene reference", res["second"]["reference_beyond_range"]))
+    if res["tunnel"]["reference"].get("beyond_range"):
+        beyond.append(("first scene reference", res["tunnel"]["reference"]["beyond_range"]))
+    for where, count in beyond:
+        out.append(f"{where}: {count} joint point(s) past the table's range (answered on the table's linear "
+                   "continuation)")
     k = res["kirsch"]["rows"]
     for d in (1, 2):
         rows = [r for r in k if r["degree"] == d]
