@@ -13,7 +13,10 @@ synthetic mated granite joint (its topography → η, β, σ_s → the recommend
 a cross set dipping 60° (5 m apart) with a Barton-Bandis law from JRC, JCS and aperture. The intact
 section is meshed with the same triangles (the joint traces kept as mesh lines) and solved beside it,
 and the jointed section twice: with elastic joints (any shear stress) and with slipping joints (a
-Coulomb strength on both sets, docs/joint-strength.md: a joint point slips once |τ| = c + σ_n tan φ).
+Coulomb strength on both sets, docs/joint-strength.md: a joint point slips once |τ| = c + σ_n tan φ),
+and a third time with hysteretic joints (docs/hysteresis.md: joints pre-closed in situ unload on stiff
+branches with a permanent closure, as laboratory cycles show, instead of springing back along the soft
+virgin curve).
 
 Stages (rockjoint's staged analysis, docs/staged-analysis.md): in-situ (σ0 in equilibrium, joints
 pre-closed to their law's closure at their initial normal stress) → excavation (the in-situ traction
@@ -82,6 +85,26 @@ FRICTION_ANGLE = _JOINT["strength"]["friction_angle"]  # [rad]
 COHESION = _JOINT["strength"]["cohesion"]              # [Pa]
 STRENGTH = {"model": "coulomb", "friction_angle": FRICTION_ANGLE, "cohesion": COHESION}
 MODELS = {"intact": "intact", "jointed": "elastic joints", "slip": "slipping joints"}
+# Hysteretic joints (docs/hysteresis.md): the same virgin laws, unloading on branches with a
+# permanent closure r = 0.25 of the largest closure and an unloading stiffness 3 times the loading
+# one at the top: the middle of what Bandis et al. (1983) measured on fresh joints (20-30 %,
+# 2-4 times). Not calibrated to this rock; the top is each set's in-situ closure (H4 gives m).
+PERMANENT_FRACTION, UNLOADING_RATIO = 0.25, 3.0
+
+
+def hysteretic(tables):
+    """{set: NormalHysteresis} with m from (H4): k_u/k_v = m σ_m / ((1 - r) Δ_m k_v(Δ_m)) = 3 at
+    the set's in-situ normal stress σ_m (joint normal (sin dip, cos dip) in the σ_h, σ_v field)."""
+    out = {}
+    for name, table in tables.items():
+        dip = SCENE["geometry"]["joint_sets"][[s["name"] for s in SCENE["geometry"]["joint_sets"]].index(name)]["dip"]
+        sigma = K0 * SIGMA_V * math.sin(dip) ** 2 + SIGMA_V * math.cos(dip) ** 2
+        closure = table.closure_at_stress(sigma)
+        m = UNLOADING_RATIO * (1 - PERMANENT_FRACTION) * closure * table.normal_stiffness(closure) / sigma
+        out[name] = rockjoint.NormalHysteresis(table, PERMANENT_FRACTION, max(m, 1.0))
+        log.info("%s hysteresis: r = %.2f, m = %.2f (unloading %.1f x stiffer at σ_n = %.2f MPa)", name,
+                 PERMANENT_FRACTION, max(m, 1.0), UNLOADING_RATIO, sigma * 1e-6)
+    return out
 
 # Bedding: horizontal, 3 m apart, the nearest 1.5 m above and below the axis (none tangent to the
 # opening); cross set: dip 60° toward +x, 5 m apart, one through the axis.
@@ -246,9 +269,11 @@ def main():
             stress_at[label] = (stress, radial_hoop(probe(stress, pts_stress).reshape(-1, 2, 2), th[:4])[1])
         return after_excavation
 
-    for label, dmesh, strength in (("intact", intact, None), ("jointed", jointed, None), ("slip", jointed, STRENGTH)):
+    hyst = hysteretic(tables)
+    for label, dmesh, laws, strength in (("intact", intact, tables, None), ("jointed", jointed, tables, None),
+                                         ("slip", jointed, tables, STRENGTH), ("hyst", jointed, hyst, None)):
         t0 = time.perf_counter()
-        models[label] = staged_model(dmesh, tables, steps, record(label), strength)
+        models[label] = staged_model(dmesh, laws, steps, record(label), strength)
         log.info("%s: %s (%.1f s)", label, ", ".join(f"{s.name} {s.newton_iterations} Newton it."
                                                       for s in models[label].stages), time.perf_counter() - t0)
         models[label].write_xdmf(out(f"tunnel_{label}.xdmf"))  # the final (lining) stage
@@ -268,6 +293,7 @@ def main():
 
     names = ("right sidewall", "crown", "left sidewall", "invert")
     conv_i, conv_j, conv_s = (-wall[label][1][:4] for label in MODELS)
+    conv_h = -wall["hyst"][1][:4]
     lines = [f"{'after excavation':34}{'Kirsch':>10}{'intact':>10}{'jointed':>10}{'slipping':>10}{'joints share':>14}",
              "(jointed: elastic joints; slipping: Coulomb joints; joints share: of the elastic-joint convergence)"]
     for k, name in enumerate(names):
@@ -291,8 +317,23 @@ def main():
                  f"{push[0] * 1e3:.4f}, jointed {push[1] * 1e3:.4f}, slipping {push[2] * 1e3:.4f}")
     slipping = models["slip"].stages[1].gather_joints()
     lines += slip_rows(slipping, jointed.names["joints"])
+    # Hysteretic joints: excavation unloads the joints near the wall on their stiff branches.
+    hs = {name: models["hyst"].stages[i].gather_joints() for i, name in ((0, "in-situ"), (1, "excavation"))}
+    h_change = np.asarray(hs["excavation"]["closure"]) - np.asarray(hs["in-situ"]["closure"])
+    h_opened = h_change < -0.1 * np.asarray(hs["in-situ"]["closure"])
+    h_extent = float(dist[h_opened].max()) if h_opened.any() else 0.0
+    lines += [f"hysteretic joints (r = {PERMANENT_FRACTION}, unloading {UNLOADING_RATIO:g} x stiffer at the in-situ "
+              "closure; docs/hysteresis.md):",
+              "wall convergence hysteretic [mm]: " + ", ".join(
+                  f"{name} {conv_h[k] * 1e3:.3f} (joints' share {100 * (conv_h[k] - conv_i[k]) / conv_h[k]:.1f}%)"
+                  for k, name in enumerate(names)),
+              f"hysteretic opened joint points (> 10 % of the in-situ closure): {int(h_opened.sum())} of "
+              f"{h_opened.size}; opened zone extends {h_extent:.2f} a from the wall (elastic joints: "
+              f"{int(opened.sum())}, {extent:.2f} a)"]
     lines.append("Newton iterations (in-situ, excavation, lining): " + "; ".join(
         f"{MODELS[label]} " + ", ".join(str(s.newton_iterations) for s in models[label].stages) for label in MODELS))
+    lines.append("Newton iterations, hysteretic joints: " + ", ".join(str(s.newton_iterations)
+                                                                      for s in models["hyst"].stages))
     elapsed = time.perf_counter() - t_start
     lines.append(f"demo wall time [s]: {COMM.allreduce(elapsed, op=MPI.MAX):.1f} on {COMM.size} rank(s)")
     if COMM.rank == 0:

@@ -40,17 +40,24 @@ constitutive::ClosureResponse law_response(const JointBehaviour& b, double closu
 }
 
 /// dk/dΔ by a central difference of the law's analytic tangent (one-sided near the
-/// maximum closure), on the branch in force. Needed only for the consistent tangent of the
-/// proportional shear model: the ClosureLaw interface exposes σ and k, not k'.
+/// maximum closure), on the branch in force at the converged Δ_m: the virgin law's above Δ_m
+/// (smooth through it), the unloading branch's below it (one-sided at its top, so that the
+/// difference never straddles the kink of k at Δ_m). Needed only for the consistent tangent of
+/// the proportional shear model: the ClosureLaw interface exposes σ and k, not k'.
 double stiffness_derivative(const JointBehaviour& b, double closure, double maximum_closure)
 {
   if (!(closure > 0.0))
     return 0.0;
-  auto k = [&](double x) { return law_response(b, x, maximum_closure).normal_stiffness; };
+  const bool branch = b.hysteresis && closure < maximum_closure;
+  auto k = [&](double x)
+  {
+    return branch ? b.hysteresis->evaluate(x, maximum_closure).response.normal_stiffness
+                  : b.law->normal_stiffness(x);
+  };
   const double h = 1e-6 * closure;
-  const double up = closure + h;
-  if (up < b.law->maximum_closure())
-    return (k(up) - k(closure - h)) / (2.0 * h);
+  const double top = branch ? maximum_closure : b.law->maximum_closure();
+  if (closure + h < top)
+    return (k(closure + h) - k(closure - h)) / (2.0 * h);
   return (k(closure) - k(closure - h)) / h;
 }
 

@@ -38,11 +38,13 @@ def expected_closures(stresses):
     return np.array(out)
 
 
-def hysteretic_column(comm=MPI.COMM_WORLD, mesh_size=0.25, top_traction=True):
+def hysteretic_column(comm=MPI.COMM_WORLD, mesh_size=0.25, top_traction=True, **shear):
+    """shear: the joint's shear model (default k_s = 1e9 Pa/m; shear_stiffness_ratio=... for k_s ∝ k_n)."""
     jm = meshes.column(1.0, 2.0, (1.0,), dim=2, mesh_size=mesh_size, comm=comm)
     law = rockjoint.NormalHysteresis(rockjoint.BartonBandis(KNI, VM), R, M)
+    shear = shear or {"shear_stiffness": 1e9}
     model = JointedRockModel(distribute(jm, comm), rock=(E, NU), joints={"joint_1": law},
-                             shear_stiffness=1e9, plane="strain", newton=NewtonOptions(verbose=False))
+                             plane="strain", newton=NewtonOptions(verbose=False), **shear)
     model.fix("bottom", "y")
     model.fix("left", "x")
     if top_traction:

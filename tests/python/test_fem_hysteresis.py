@@ -13,6 +13,7 @@ from jacobian_checks import assert_jacobian_matches_fd  # noqa: E402
 from hysteresis_cases import (KNI, M, PEAK, R, VM, check_cycle, expected_closures,  # noqa: E402
                               hysteretic_column, run_cycle, virgin_closure)
 
+import rockjoint  # noqa: E402
 from rockjoint.fem_coupling import InSituStress  # noqa: E402
 
 
@@ -20,15 +21,49 @@ def test_column_follows_the_hysteretic_law_through_a_cycle():
     check_cycle(*run_cycle(hysteretic_column()))
 
 
-def test_jacobian_on_both_sides_of_the_branch_switch():
+@pytest.mark.parametrize("shear", [{"shear_stiffness": 1e9}, {"shear_stiffness_ratio": 0.1}],
+                         ids=["constant k_s", "k_s = 0.1 k_n"])
+def test_jacobian_on_both_sides_of_the_branch_switch(shear):
     """Converged at the peak (Δ_m set), then u scaled to 0.9 (on the branch) and 1.1 (past Δ_m,
-    virgin): the assembled tangent equals central differences of the residual on each side."""
-    model = hysteretic_column()
+    virgin), and exactly at the peak (the switch itself, where the virgin tangent applies): the
+    assembled tangent equals finite differences of the residual (central off the switch). With
+    k_s ∝ k_n the shear tangent carries dk/dΔ, taken on the branch in force."""
+    model = hysteretic_column(**shear)
     model.advance(1.0, load_steps=2)
     u_peak = model.u.x.array.copy()
     for scale in (0.9, 1.1):
         u = scale * u_peak
         assert_jacobian_matches_fd(model, u, relative_step=1e-7, label=f"u = {scale} u_peak: ")
+
+
+def test_sheared_joint_jacobian_at_and_around_the_switch():
+    """A block on a 25° hysteretic joint under 8 MPa normal and 1 MPa shear, k_s = 0.1 k_n: after
+    the converged load the Newton start sits exactly on Δ_m, where dk_s/dΔ must be the virgin
+    law's (a difference straddling the kink of k would put k_v/h ~ 1e17 into the matrix); around
+    it the tangent matches central differences on each side."""
+    from mpi4py import MPI
+    from rockjoint import meshes
+    from rockjoint.fem_coupling import JointedRockModel, NewtonOptions
+    from rockjoint.fem_coupling.distributed_mesh import distribute
+    comm = MPI.COMM_WORLD
+    jm = meshes.jointed_block((1.0, 1.0), [meshes.Joint((0.5, 0.5), 25.0, 90.0, "j")], dim=2,
+                              mesh_size=0.35, comm=comm)
+    law = rockjoint.NormalHysteresis(rockjoint.BartonBandis(2e10, 1e-3), R, M)
+    model = JointedRockModel(distribute(jm, comm), rock=(10e9, 0.3), joints={"j": law}, plane="strain",
+                             shear_stiffness_ratio=0.1, newton=NewtonOptions(verbose=False))
+    model.fix("bottom", "all")
+    model.add_traction("top", [1e6, -8e6])
+    model.advance(1.0, load_steps=2)
+    u_peak = model.u.x.array.copy()
+    norms = {}
+    for scale in (1.0, 1.1):
+        model.u.x.array[:] = scale * u_peak
+        model.residual()
+        model.jacobian()
+        norms[scale] = model.J.norm()
+    assert norms[1.0] < 2 * norms[1.1]
+    for scale in (0.9, 1.1):
+        assert_jacobian_matches_fd(model, scale * u_peak, relative_step=1e-7, label=f"u = {scale} u_peak: ")
 
 
 def test_branch_tangent_is_stiffer_than_the_virgin_one_at_the_peak():
