@@ -39,26 +39,18 @@ constitutive::ClosureResponse law_response(const JointBehaviour& b, double closu
   return h.response;
 }
 
-/// dk/dΔ by a central difference of the law's analytic tangent (one-sided near the
-/// maximum closure), on the branch in force at the converged Δ_m: the virgin law's above Δ_m
-/// (smooth through it), the unloading branch's below it (one-sided at its top, so that the
-/// difference never straddles the kink of k at Δ_m). Needed only for the consistent tangent of
-/// the proportional shear model: the ClosureLaw interface exposes σ and k, not k'.
-double stiffness_derivative(const JointBehaviour& b, double closure, double maximum_closure)
+/// dk/dΔ of the virgin law by a central difference of its analytic tangent (one-sided near the
+/// maximum closure). Needed only for the consistent tangent of the proportional shear model: the
+/// ClosureLaw interface exposes σ and k, not k'.
+double stiffness_derivative(const constitutive::ClosureLaw& law, double closure)
 {
   if (!(closure > 0.0))
     return 0.0;
-  const bool branch = b.hysteresis && closure < maximum_closure;
-  auto k = [&](double x)
-  {
-    return branch ? b.hysteresis->evaluate(x, maximum_closure).response.normal_stiffness
-                  : b.law->normal_stiffness(x);
-  };
   const double h = 1e-6 * closure;
-  const double top = branch ? maximum_closure : b.law->maximum_closure();
-  if (closure + h < top)
-    return (k(closure + h) - k(closure - h)) / (2.0 * h);
-  return (k(closure) - k(closure - h)) / h;
+  const double up = closure + h;
+  if (up < law.maximum_closure())
+    return (law.normal_stiffness(up) - law.normal_stiffness(closure - h)) / (2.0 * h);
+  return (law.normal_stiffness(closure) - law.normal_stiffness(closure - h)) / h;
 }
 
 /// k(0+) + k_r: the contact-side tangent at Δ = 0 (finite, or 0 if the law has none).
@@ -110,14 +102,20 @@ NormalResponse normal_response(const JointBehaviour& b, double closure, bool bon
 }
 
 ShearStiffness shear_stiffness(const JointBehaviour& b, const NormalResponse& normal,
-                               double closure, double maximum_closure)
+                               double closure)
 {
   if (!normal.in_contact)
     return {normal.stiffness, 0.0}; // open: the isotropic residual spring k_open + k_r
   if (b.shear_model == ShearModel::proportional)
   {
-    const double slope = stiffness_derivative(b, closure, maximum_closure);
-    return {b.shear_stiffness_ratio * normal.stiffness, b.shear_stiffness_ratio * slope};
+    // On an unloading branch k_s follows the virgin law's k at the current closure: the branch's
+    // own k jumps at Δ_m (stiff unloading, (H4)), which would make t_s = k_s (j_s - s) jump there
+    // for a joint carrying shear; the virgin k is continuous and falls as the joint opens.
+    const double k = normal.permanent_closure > 0.0
+                         ? b.law->normal_stiffness(closure) + b.residual_stiffness
+                         : normal.stiffness;
+    const double slope = closure > 0.0 ? stiffness_derivative(*b.law, closure) : 0.0;
+    return {b.shear_stiffness_ratio * k, b.shear_stiffness_ratio * slope};
   }
   return {b.shear_stiffness, 0.0};
 }

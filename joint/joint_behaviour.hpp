@@ -111,14 +111,15 @@ struct NormalResponse
 NormalResponse normal_response(const JointBehaviour& behaviour, double elastic_closure,
                                bool bonded, double maximum_closure = 0.0);
 
-/// Shear stiffness k_s [Pa/m] and dk_s/dΔ_e [Pa/m²] for a normal response at Δ_e (with the
-/// converged Δ_m of a hysteretic law: the proportional model follows the branch's stiffness).
+/// Shear stiffness k_s [Pa/m] and dk_s/dΔ_e [Pa/m²] for a normal response at Δ_e (on the
+/// unloading branch of a hysteretic law the proportional model follows the virgin law's k,
+/// which is continuous at Δ_m where the branch's k jumps).
 struct ShearStiffness
 {
   double value = 0.0;
   double closure_derivative = 0.0;
 };
 ShearStiffness shear_stiffness(const JointBehaviour& behaviour, const NormalResponse& normal,
-                               double elastic_closure, double maximum_closure = 0.0);
+                               double elastic_closure);
 
 } // namespace rockjoint::joint

@@ -28,7 +28,7 @@ SlipPoint slip_point(const JointBehaviour& b, double trial_closure, const JointP
   s.dilation = dilation_increment(b.strength, converged.accumulated_slip, increment);
   s.closure = trial_closure + s.dilation.opening;
   s.normal = normal_response(b, s.closure, bonded, converged.maximum_closure);
-  s.shear = shear_stiffness(b, s.normal, s.closure, converged.maximum_closure);
+  s.shear = shear_stiffness(b, s.normal, s.closure);
   s.strength = shear_strength(b.strength, s.normal.stress, bonded);
   return s;
 }
@@ -65,7 +65,7 @@ LocalResponse joint_response(const JointBehaviour& b, int gdim, const std::array
     bonded = false;
   }
   set_normal(r, normal);
-  const ShearStiffness ks = shear_stiffness(b, normal, trial_closure, converged.maximum_closure);
+  const ShearStiffness ks = shear_stiffness(b, normal, trial_closure);
   std::array<double, 2> elastic_slip{};
   double e = 0.0;
   for (int i = 0; i < shear_components; ++i)

@@ -53,6 +53,11 @@ def run_demo(out, ranks):
         assert m, text
         rows["slip " + name] = tuple(float(v) for v in m.groups())
     assert re.search(r"^Newton iterations.*slipping joints \d+, \d+, \d+$", text, re.M), text
+    line = re.search(r"^wall convergence hysteretic \[mm\]: (.*)$", text, re.M)[1]
+    rows["hysteretic"] = tuple(float(re.search(rf"{name} (\S+)", line)[1]) for name in NAMES)
+    m = re.search(r"^hysteretic opened joint points .*: (\d+) of (\d+);.*\(elastic joints: (\d+),", text, re.M)
+    assert m, text
+    rows["opened hysteretic"] = tuple(float(v) for v in m.groups())
     assert "demo wall time" in r.stdout
     return rows
 
@@ -99,6 +104,20 @@ def test_slipping_points_lie_on_the_coulomb_line_and_sticking_points_inside(seri
     assert tau[slips] == pytest.approx(strength[slips], rel=1e-9)
     assert np.all(tau[sticks] <= strength[sticks] * (1 + 1e-9))
     assert np.all(sn[shear_state == OPEN] <= 0.0)  # an open joint carries no compression
+
+
+def test_stiff_unloading_reduces_crown_and_invert_convergence_and_the_opened_zone(serial):
+    """Excavation unloads the bedding joints above the crown and below the invert (σ_v released):
+    hysteretic joints (docs/hysteresis.md) unload on branches 3 times stiffer than the virgin curve
+    at their in-situ closure, so they open less than elastic joints there: the crown and invert
+    converge less (still more than intact rock), and fewer joint points lose over 10 % of their
+    in-situ closure."""
+    for k, name in enumerate(NAMES):
+        if name in ("crown", "invert"):
+            intact, elastic = serial[name][1], serial[name][2]
+            assert intact < serial["hysteretic"][k] < elastic, name
+    opened, total, opened_elastic = serial["opened hysteretic"]
+    assert opened < opened_elastic
 
 
 def test_two_ranks_print_the_serial_figures(serial, tmp_path):
