@@ -138,3 +138,55 @@ def test_bad_continuum_input():
         material(2, [((0.0, 1.0), 0.0)])
     with pytest.raises(ValueError, match="normal"):
         material(3, [((0.0, 1.0, 1.0), 1.0)])
+
+
+def _inclined_set_column(dim, friction_deg, residual_stiffness=0.0):
+    from rockjoint import _rockjoint
+    from continuum_cases import KNI, KS, VM
+    import rockjoint
+    th = np.radians(35.0)
+    n = [-np.sin(th), np.cos(th)] if dim == 2 else [0.0, -np.sin(th), np.cos(th)]
+    j = _rockjoint.joint
+    b = j.JointBehaviour(rockjoint.BartonBandis(KNI, VM), shear_stiffness=KS, residual_stiffness=residual_stiffness,
+                         strength=j.JointStrength(j.StrengthModel.coulomb, friction_angle=np.radians(friction_deg)))
+    c = _rockjoint.continuum
+    return column(dim, smeared={"block_1": c.EquivalentContinuum(dim, E, NU, [c.JointSet(n, 0.5, b)])}, mesh_size=1.0)
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+@pytest.mark.parametrize("state", ["stick", "slip", "open"])
+def test_assembled_jacobian_matches_finite_differences(dim, state):
+    """The Newton Jacobian of a smeared model (K + J_c) against central differences of the assembled
+    residual, from a converged state: stick (φ = 60°), slip (φ = 20°, loaded 30 % past the converged
+    step) and open (the converged displacement reversed: tension across the set; k_r = 1e6 Pa/m)."""
+    from jacobian_checks import assert_jacobian_matches_fd
+    model = _inclined_set_column(dim, 60.0 if state == "stick" else 20.0,
+                                 residual_stiffness=1e6 if state == "open" else 0.0)
+    top_load(model, dim, 2e6)
+    model.solve(load_steps=2)
+    factor = {"stick": 1.0, "slip": 1.3, "open": -1.0}[state]
+    u0 = factor * model.u.x.array.copy()
+    if state == "stick":
+        u0 += 1e-7 * np.sin(np.arange(u0.size))  # off the converged point, still inside the strength
+    model.u.x.array[:] = u0
+    model.residual()
+    counts = _shear_states(model, dim)
+    assert counts[state] > 0, counts
+    assert_jacobian_matches_fd(model, u0, 1e-6, tol=1e-5, label=f"{state} {dim}D: ")
+
+
+def _shear_states(model, dim):
+    """{stick, slip, open: number of points} of the smeared set's trial state (joint_response at the
+    trial jump from the converged state)."""
+    from rockjoint import _rockjoint
+    pts = model.smeared.points[1]
+    b = pts.material.sets[0].behaviour
+    trial, conv = pts.set_state(0, converged=False), pts.set_state(0, converged=True)
+    names = {int(_rockjoint.joint.ShearState.stick): "stick", int(_rockjoint.joint.ShearState.slip): "slip",
+             int(_rockjoint.joint.ShearState.open): "open"}
+    out = {"stick": 0, "slip": 0, "open": 0}
+    for jump, slip in zip(trial["jump"], conv["slip"]):
+        state = _rockjoint.joint.JointPointState(slip=list(slip))
+        r = _rockjoint.joint.joint_response(b, np.array(jump[:dim]), state)
+        out[names[int(r["shear_state"])]] += 1
+    return out
