@@ -17,3 +17,4 @@ echo "== direct vs iterative"; /usr/bin/python3 bench/bench_direct_vs_iterative.
 echo "== Kirsch"; /usr/bin/python3 bench/bench_kirsch.py
 echo "== exact contact (BEM)"; /usr/bin/python3 bench/bench_contact.py --repeat 5
 echo "== accuracy ladder"; /usr/bin/python3 bench/bench_accuracy_ladder.py
+echo "== equivalent continuum"; /usr/bin/python3 bench/bench_continuum.py

@@ -15,6 +15,8 @@ the quadrature degree of the stress/tangent quadrature spaces.
 """
 from __future__ import annotations
 
+import logging
+
 import basix
 import basix.ufl
 import numpy as np
@@ -23,6 +25,8 @@ from dolfinx import cpp as _cpp
 from dolfinx import fem
 from dolfinx.fem import petsc as fem_petsc
 from petsc4py import PETSc
+
+log = logging.getLogger(__name__)
 
 
 def voigt_strain(w, gdim: int):
@@ -141,6 +145,11 @@ class SmearedBlocks:
             dofs = self._dofs(tag)
             self.stress.x.array.reshape(-1, nv)[dofs] = stress
             self.tangent.x.array.reshape(-1, nv * nv)[dofs] = tangent
+            if failed:
+                bad = np.flatnonzero(~np.isfinite(stress[:, 0]))
+                #: (block tag, total strain) of a point whose local solve failed last (diagnostics)
+                self.last_failure = (tag, eps[bad[0]].copy(), pts)
+                log.debug("block %d: the local solve failed at %d point(s), e.g. ε = %s", tag, failed, eps[bad[0]])
             ok = ok and failed == 0
         return ok
 
