@@ -1,6 +1,5 @@
 """Small models shared by the equivalent-continuum tests (test_fem_continuum*.py): Barton-Bandis
 sets smeared in a column or a block, the matching discrete columns, and the closed forms."""
-import numpy as np
 from mpi4py import MPI
 
 import rockjoint
