@@ -18,3 +18,4 @@ echo "== Kirsch"; /usr/bin/python3 bench/bench_kirsch.py
 echo "== FE speed against error"; /usr/bin/python3 bench/bench_fe_speed_vs_error.py
 echo "== exact contact (BEM)"; /usr/bin/python3 bench/bench_contact.py --repeat 5
 echo "== accuracy ladder"; /usr/bin/python3 bench/bench_accuracy_ladder.py
+echo "== equivalent continuum"; /usr/bin/python3 bench/bench_continuum.py

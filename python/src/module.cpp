@@ -10,6 +10,7 @@ void declare_topography(py::module_& m);
 void declare_calibration(py::module_& m);
 void declare_contact(py::module_& m);
 void declare_joint(py::module_& m);
+void declare_continuum(py::module_& m);
 } // namespace rockjoint::python
 
 PYBIND11_MODULE(_rockjoint, m)
@@ -29,4 +30,7 @@ PYBIND11_MODULE(_rockjoint, m)
   py::module_ joint = m.def_submodule(
       "joint", "Per-point joint behaviour: normal law, shear stiffness, strength, slip (SI units)");
   rockjoint::python::declare_joint(joint);
+  py::module_ continuum = m.def_submodule(
+      "continuum", "Equivalent continuum: rock elasticity + smeared joint sets (SI units)");
+  rockjoint::python::declare_continuum(continuum);
 }

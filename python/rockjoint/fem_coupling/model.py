@@ -32,6 +32,7 @@ from petsc4py import PETSc
 from .behaviours import joint_behaviours, symmetric_tangent
 from .distributed_mesh import lookup, names_of
 from .elastic_blocks import ElasticBlocks
+from .equivalent_continuum import SmearedBlocks
 from .in_situ import STANDARD_GRAVITY, InSituStress
 from .joint_initial_state import initial_jump
 from .coupling import JointCoupling
@@ -91,6 +92,9 @@ class JointedRockModel:
     density: rock density ρ [kg/m³], one value or {block name: ρ}; gives gravity ρ g on the blocks
         (the load handle `model.gravity`). None: no gravity.
     gravity: g [m/s²] acting along -y (2D) / -z (3D), or a gravity vector.
+    continuum: {block name: rockjoint._rockjoint.continuum.EquivalentContinuum} (its E, ν those of
+        the block): joint sets smeared in these blocks (docs/equivalent-continuum.md); the other
+        blocks stay elastic and may hold discrete joints. Plane strain in 2D.
     """
 
     def __init__(self, dmesh, element_degree: int = 1, rock=None, joints=None, shear_stiffness=0.0,
@@ -98,7 +102,8 @@ class JointedRockModel:
                  plane: str | None = None,
                  quadrature: str = "nodal", linear_solver: str = "auto",
                  newton: NewtonOptions | None = None, petsc_options: dict | None = None,
-                 options_prefix: str | None = None, density=None, gravity=STANDARD_GRAVITY):
+                 options_prefix: str | None = None, density=None, gravity=STANDARD_GRAVITY,
+                 continuum: dict | None = None):
         self.dmesh = dmesh
         self.mesh = dmesh.mesh
         self.comm = self.mesh.comm
@@ -131,6 +136,11 @@ class JointedRockModel:
         self.blocks = ElasticBlocks(dmesh, self.rock, self.densities, self.degree, self.plane)
         self.load_path = LoadPath(dmesh, self.blocks, self.densities, gravity)
         self.V, self.u, self.du = self.blocks.V, self.blocks.u, self.blocks.du
+        #: smeared joint sets (equivalent continuum) in the blocks named in `continuum`, or None
+        self.smeared = None
+        if continuum:
+            self.smeared = SmearedBlocks(self.blocks, dmesh, {lookup(dmesh, "blocks", name): m
+                                                              for name, m in continuum.items()}, self.rock)
         self.sigma, self.eps = self.blocks.sigma, self.blocks.eps
         self.coupling: JointCoupling | None = None
         self.linear_solver: LinearSolver | None = None
@@ -263,7 +273,7 @@ class JointedRockModel:
         kind = resolve_kind(self.linear_solver_kind, num_dofs, self.gdim)
         nullspace = rigid_body_modes(self.V) if kind == "iterative" else None
         self.linear_solver = LinearSolver(self.comm, kind, num_dofs=num_dofs, near_nullspace=nullspace,
-                                          symmetric=symmetric_tangent(self.behaviours),
+                                          symmetric=symmetric_tangent(self.behaviours) and self.smeared is None,
                                           options=self.petsc_options, prefix=self.options_prefix)
         self.num_dofs = num_dofs
         self.timings["setup"] += time.perf_counter() - t0
@@ -299,6 +309,8 @@ class JointedRockModel:
         vertex_rule = self.quadrature == "nodal" and self.degree == 1
         self.coupling.set_initial_jump(initial_jump(self.coupling.interface, lp.in_situ, self.behaviours,
                                                     self.gdim, names_of(self.dmesh, "joints"), vertex_rule))
+        if self.smeared is not None:
+            self.smeared.set_in_situ(lp.in_situ)
         self._begin_stage(next_loads=lp.state)
         rnorm = self.residual()
         scale = self.load_norm(0.0)
@@ -329,6 +341,8 @@ class JointedRockModel:
             force.axpy(1.0, lp.r_sigma0)
         self._joint_forces()
         force.axpy(1.0, self._r_joint)
+        if self.smeared is not None:
+            self.smeared.add_residual(force)
         out = lp.reactions(force)
         force.destroy()
         return out
@@ -374,6 +388,10 @@ class JointedRockModel:
             r.axpy(1.0, lp.r_sigma0)
         r.axpy(-1.0, lp.f_lambda)
         r.axpy(1.0, self._r_joint)
+        if self.smeared is not None and not self.smeared.add_residual(r):
+            r.set(np.inf)  # a local solve of the smeared sets failed: cut the step
+            self.counts["nonfinite_residuals"] += 1
+            return np.inf
         with r.localForm() as loc:  # owned entries come first in the local form
             loc.array[self._constrained_owned] = 0.0
         nrm = r.norm()
@@ -388,6 +406,8 @@ class JointedRockModel:
         self.K.copy(A, structure=PETSc.Mat.Structure.SAME_NONZERO_PATTERN)  # bulk, constant
         t1 = time.perf_counter()
         self.timings["matrix_copy"] += t1 - t0
+        if self.smeared is not None:
+            self.smeared.add_jacobian(A, self.bcs)
         self.coupling.add_jacobian(self.u, A)
         A.assemble()
         self.timings["interface_jacobian"] += time.perf_counter() - t1
@@ -397,7 +417,7 @@ class JointedRockModel:
     @property
     def is_linear(self) -> bool:
         """No joints: the model is linear (Newton then solves to the full linear tolerance)."""
-        return not self.behaviours
+        return not self.behaviours and self.smeared is None
 
     def solve_increment(self, rtol: float | None = None) -> int:
         """du = -J⁻¹ r to the relative tolerance rtol (None: the linear solver's); returns the
@@ -438,10 +458,14 @@ class JointedRockModel:
         self.u.x.array[:] = arr
         self.load_path.applied = None
         self.coupling.revert_state()
+        if self.smeared is not None:
+            self.smeared.revert_state()
 
     def commit_state(self) -> None:
         """A load step converged: the joints' trial state becomes their converged state."""
         self.coupling.commit_state()
+        if self.smeared is not None:
+            self.smeared.commit_state()
         if self._clock is not None:
             self._clock.step(self.load_factor, self._step_iterations)
         self._step_iterations = 0

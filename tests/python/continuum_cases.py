@@ -1,0 +1,62 @@
+"""Small models shared by the equivalent-continuum tests (test_fem_continuum*.py): Barton-Bandis
+sets smeared in a column or a block, the matching discrete columns, and the closed forms."""
+from mpi4py import MPI
+
+import rockjoint
+from rockjoint import _rockjoint, meshes
+from rockjoint.fem_coupling import JointedRockModel, NewtonOptions, distribute
+
+E, NU = 20e9, 0.25
+E_PLANE = E / (1 - NU**2)  # plane-strain modulus
+KNI, VM = 1e10, 1e-3       # Barton-Bandis K_ni [Pa/m], V_m [m]
+KS = 1e9                   # shear stiffness [Pa/m]
+WIDTH, HEIGHT = 1.0, 3.0
+QUIET = NewtonOptions(verbose=False, rtol=1e-11)
+
+
+def bb_closure(stress):
+    """Barton-Bandis closure Δ(σ) = σ V_m / (K_ni V_m + σ) (Bandis et al. 1983, closed form)."""
+    return stress * VM / (KNI * VM + stress)
+
+
+def behaviour(strength=None):
+    return _rockjoint.joint.JointBehaviour(rockjoint.BartonBandis(KNI, VM), shear_stiffness=KS,
+                                           strength=strength)
+
+
+def material(dim, sets):
+    """sets: [(normal, spacing)] of Barton-Bandis sets in the rock (E, ν)."""
+    c = _rockjoint.continuum
+    return c.EquivalentContinuum(dim, E, NU, [c.JointSet(list(n), s, behaviour(), label=f"set_{i}")
+                                              for i, (n, s) in enumerate(sets)])
+
+
+def vertical(dim):
+    return (0.0, 1.0) if dim == 2 else (0.0, 0.0, 1.0)
+
+
+def column(dim, joint_heights=(), smeared=None, comm=MPI.COMM_WORLD, mesh_size=0.5, **kw):
+    """Column WIDTH × HEIGHT (rollers bottom, left[, front]), Barton-Bandis discrete joints at
+    `joint_heights`; smeared: {block name: EquivalentContinuum}."""
+    jm = meshes.column(WIDTH, HEIGHT, joint_heights, dim=dim, mesh_size=mesh_size, comm=comm)
+    law = rockjoint.BartonBandis(KNI, VM)
+    joints = {f"joint_{i + 1}": law for i in range(len(joint_heights))}
+    kw.setdefault("newton", QUIET)
+    model = JointedRockModel(distribute(jm, comm), rock=(E, NU), joints=joints, shear_stiffness=KS,
+                             plane="strain" if dim == 2 else None, continuum=smeared, **kw)
+    model.fix("bottom", "y" if dim == 2 else "z")
+    model.fix("left", "x")
+    if dim == 3:
+        model.fix("front", "y")
+    return model
+
+
+def top_load(model, dim, stress):
+    t = [0.0] * dim
+    t[-1] = -stress
+    return model.add_traction("top", t)
+
+
+def rock_strain(dim, stress):
+    """|ε| of the rock under uniaxial stress: plane strain σ/E', 3D σ/E."""
+    return stress / (E_PLANE if dim == 2 else E)
