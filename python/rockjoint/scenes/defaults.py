@@ -61,3 +61,12 @@ SLIP_MARGIN = 0.5
 #: cost figures for words: seconds per dof of a jointed 2D solve, 1 rank, P1 (bench/results/
 #: fe_speed_vs_error.md §3: 26926 dofs in 0.71 s, n = 32, in-situ + excavation, a loaded machine)
 SECONDS_PER_DOF = 0.71 / 26926
+
+#: Discrete against smeared joint sets (equivalent continuum, docs/equivalent-continuum.md): the
+#: measured tunnel rows of bench/results/continuum.md (bench/bench_continuum.py; a = 4 m, two
+#: Coulomb sets), as (s/a, crown gap of the smeared model against the discrete one, speed-up of
+#: the smeared model over the discrete one). A set is smeared only where a row at or above its
+#: spacing ratio is within the budget AND cheaper; none is yet (the smeared model needs 4-5 times
+#: the Newton iterations where joints open and slip at the wall), so every set stays discrete
+#: unless the scene asks (plan: {smeared: [set, ...]}).
+SMEARED_EVIDENCE = ((0.5, 0.773, 0.51), (0.25, 0.133, 0.20))

@@ -8,11 +8,14 @@ import math
 import numpy as np
 
 
-def joint_objects(scene):
-    """The scene's joint sets as rockjoint.meshes.Joint lists (names <set>_<i>)."""
+def joint_objects(scene, exclude=()):
+    """The scene's joint sets as rockjoint.meshes.Joint lists (names <set>_<i>), without the sets
+    named in `exclude` (smeared ones)."""
     from rockjoint import meshes
     out = []
     for s in scene.data["geometry"].get("joint_sets", []):
+        if s["name"] in exclude:
+            continue
         out += meshes.joint_set(s["spacing"], math.degrees(s["dip"]), math.degrees(s["dip_direction"]),
                                 origin=tuple(s["point"]), count=s["count"], name=s["name"])
     return out
@@ -27,11 +30,11 @@ def jointed_mesh(scene, plan, comm):
         return meshes.column(g["width"], g["height"], g["joint_heights"], dim=plan.dimension,
                              mesh_size=h, joint_mesh_size=hj, comm=comm)
     if g["kind"] == "block":
-        return meshes.jointed_block(g["size"], joint_objects(scene), dim=plan.dimension, mesh_size=h,
+        return meshes.jointed_block(g["size"], joint_objects(scene, plan.smeared), dim=plan.dimension, mesh_size=h,
                                     joint_mesh_size=hj, comm=comm)
     o = g["opening"]
     opening = meshes.CircularOpening(tuple(o["centre"][:2]), o["radius"])
-    return meshes.tunnel_section(g["width"], g["height"], opening, joint_objects(scene), mesh_size=h,
+    return meshes.tunnel_section(g["width"], g["height"], opening, joint_objects(scene, plan.smeared), mesh_size=h,
                                  opening_mesh_size=plan.opening_size,
                                  opening_refine_distance=2 * o["radius"] if plan.opening_size else None,
                                  joint_mesh_size=hj, joint_refine_distance=h if hj else None,

@@ -51,6 +51,7 @@ class Plan:
     intact: bool
     choices: list
     reduced: bool = False               # the scene's reduced size (coarse mesh, small scans)
+    smeared: tuple = ()                 # joint sets smeared in the rock (equivalent continuum)
 
     def text(self) -> str:
         rows = [f"{c.topic}: {c.choice}\n    why: {c.why}\n    cost: {c.cost}\n    error: {c.error}"
@@ -344,5 +345,47 @@ def make_plan(scene, reduced: bool = False) -> Plan:
     choices.append(Choice("intact model", "on the same mesh (split nodes glued)" if intact else "left out",
                           why="the joints' share of every answer is jointed minus intact",
                           cost="one linear solve per load step", error="none: same mesh, same solver"))
+    smeared = _smeared_sets(scene, sets, budget, choices)
     return Plan(dim, degree, quadrature, h, hj, ho, bound, table_top, tol, laws, slip, steps,
-                intact, choices, reduced)
+                intact, choices, reduced, smeared)
+
+
+def _smeared_sets(scene, sets, budget, choices) -> tuple:
+    """Discrete or smeared, set by set (defaults.SMEARED_EVIDENCE): smeared only where the measured
+    equivalent continuum is within the budget and cheaper at the set's spacing over the opening
+    radius (or half the section's smaller side); the scene's plan.smeared overrides."""
+    g = scene.data["geometry"]
+    over = scene.data["plan"].get("smeared")
+    names = [s["name"] for s in sets]
+    if over is not None:
+        if g["kind"] == "column":
+            scene.fail(("plan", "smeared"), "a column's joints are given one by one; only joint sets can be smeared")
+        for name in over:
+            if name not in names:
+                scene.fail(("plan", "smeared"), f"no joint set '{name}'; joint sets: {', '.join(names)}")
+    if g["kind"] == "column":
+        return ()
+    size = g["opening"]["radius"] if "opening" in g else 0.5 * float(min(_extent(g)))
+    chosen = []
+    for s in sets:
+        ratio = s["spacing"] / size
+        rows = [r for r in defaults.SMEARED_EVIDENCE if r[0] >= ratio]
+        good = [r for r in rows if r[1] <= scene.data["error_budget"] and r[2] > 1.0]
+        auto = bool(good)
+        value = (s["name"] in over) if over is not None else auto
+        if value:
+            chosen.append(s["name"])
+        measured = min(rows, key=lambda r: r[0]) if rows else None
+        evidence = (f"the continuum bench at s/a = {measured[0]:g}: smeared {measured[1]:.0%} off the discrete "
+                    f"crown convergence, {measured[2]:.2g}x its speed" if measured else
+                    "no continuum bench row at so small a spacing ratio")
+        choices.append(Choice(
+            f"joints of {s['name']}", "smeared (equivalent continuum)" if value else "discrete (joint elements)",
+            why=(("set in the scene's plan (smeared); " if over is not None else "")
+                 + f"s/a = {ratio:.2g}; {evidence} (bench/results/continuum.md)"
+                 + ("" if value or over is not None else "; smeared is not both within the budget and cheaper")),
+            cost="smeared: no joint elements, a quadrature-point material with a local Newton per point"
+                 if value else "joint elements on every joint of the set",
+            error=(f"the bench's gap {measured[1]:.0%} (crown convergence)" if (value and measured)
+                   else "none from the choice: the joints are meshed")))
+    return tuple(chosen)

@@ -72,6 +72,8 @@ def build_model(scene, plan, dmesh, tables: dict | None):
                   residual_stiffness={n: j[of[n]]["residual_stiffness"] for n in names},
                   strength={n: _strength(j[of[n]]["strength"]) if plan.slip.get(of[n]) else None
                             for n in names})
+    if tables is not None and plan.smeared:
+        kw["continuum"] = smeared_material(scene, plan, tables, rocks)
     model = JointedRockModel(dmesh, element_degree=plan.element_degree, rock=rocks,
                              plane="strain" if plan.dimension == 2 else None,
                              quadrature=plan.quadrature, newton=NewtonOptions(verbose=False), **kw)
@@ -83,6 +85,29 @@ def build_model(scene, plan, dmesh, tables: dict | None):
         s0[-1, -1] = -sv
         model.set_in_situ_stress(InSituStress.uniform(s0.tolist()))
     return model
+
+
+def smeared_material(scene, plan, tables: dict, rocks: dict) -> dict:
+    """{block: EquivalentContinuum} with the plan's smeared sets in every block's rock: each set's
+    normal and spacing from the scene, its behaviour (law table, shear model, residual stiffness,
+    strength if the plan lets it slip) built as for its discrete joints."""
+    import math
+    from rockjoint import _rockjoint
+    from rockjoint.fem_coupling.behaviours import joint_behaviours
+    from rockjoint.meshes.joint_geometry import unit_normal
+    d, c = scene.data, _rockjoint.continuum
+    sets = []
+    for s in d["geometry"]["joint_sets"]:
+        if s["name"] not in plan.smeared:
+            continue
+        j = d["joints"][s["name"]]
+        behaviour = joint_behaviours({s["name"]: 0}, {s["name"]: tables[s["name"]]},
+                                     shear_stiffness_ratio=j["shear_stiffness_ratio"],
+                                     residual_stiffness=j["residual_stiffness"],
+                                     strength=_strength(j["strength"]) if plan.slip.get(s["name"]) else None)[0]
+        normal = unit_normal(math.degrees(s["dip"]), math.degrees(s["dip_direction"]), plan.dimension)
+        sets.append(c.JointSet([float(x) for x in normal], s["spacing"], behaviour, label=s["name"]))
+    return {b: c.EquivalentContinuum(plan.dimension, e, nu, sets) for b, (e, nu) in rocks.items()}
 
 
 def _strength(spec):
