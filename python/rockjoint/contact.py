@@ -40,11 +40,15 @@ class ClosureCurve:
     iterations: np.ndarray          # CG iterations per load
     complementarity: np.ndarray     # max p g [Pa m]
     minimum_gap: np.ndarray         # min g off contact [m]
+    plastic_area_ratio: np.ndarray  # fraction of the points at the pressure cap H [-]
+    mean_flattening: np.ndarray     # mean plastic flattening so far [m]
     composite_modulus: float        # E* [Pa]
     spacing: float                  # h [m]
     shape: tuple                    # grid (rows, cols)
     periodic: bool
     tolerance: float
+    hardness: float = float("inf")  # H [Pa] (inf: elastic walls)
+    unloaded_closure: float = 0.0   # closure [m] with the load removed after the path (permanent)
     pressure: Optional[List[np.ndarray]] = None   # p [Pa] per load (keep_fields=True)
     gap: Optional[List[np.ndarray]] = None        # g [m] per load: the mechanical aperture
     _states: list = dataclasses.field(default_factory=list, repr=False)
@@ -52,18 +56,24 @@ class ClosureCurve:
 
 def closure_curve(aperture: Surface, composite_modulus: float, stresses: Sequence[float], *,
                   periodic: bool = True, tolerance: float = 1e-8, maximum_iterations: int = 2000,
-                  keep_fields: bool = False) -> ClosureCurve:
+                  keep_fields: bool = False, hardness: float = float("inf")) -> ClosureCurve:
     """Solve the contact of `aperture` (e [m], NaN = masked, min e is taken as first contact)
     against a half-space of modulus E* [Pa] at each nominal stress in `stresses` [Pa] (> 0;
     increasing order warm-starts best). `periodic`: the grid is one period of a periodic
     surface (synthetic joints) or an isolated scan (False: zero-padded Love kernel).
+    `hardness` H [Pa]: elastic-perfectly-plastic walls, the contact pressure capped at the rock's
+    indentation hardness; the stresses are then a load path (load cycles: up and down in any
+    order), plastic flattening persists from load to load, and `unloaded_closure` is the
+    permanent closure when the load is removed at the end (docs/contact.md).
     Raises ValueError for bad input, RuntimeError if a load does not converge."""
     stresses = np.asarray(stresses, dtype=float).ravel()
     if stresses.size == 0 or not np.all(np.isfinite(stresses)) or np.any(stresses <= 0):
         raise ValueError("closure_curve: stresses must be a non-empty list of finite values > 0 Pa")
     kernel = Kernel.periodic if periodic else Kernel.non_periodic
+    if not hardness > 0:
+        raise ValueError(f"closure_curve: hardness = {hardness} Pa must be > 0 (inf: elastic walls)")
     solver = _cpp.ElasticContact(aperture, float(composite_modulus), kernel,
-                                 _cpp.ContactOptions(tolerance, maximum_iterations))
+                                 _cpp.ContactOptions(tolerance, maximum_iterations), float(hardness))
     rows, cols = aperture.shape
     states, pressure, gap = [], [], []
     for i, s in enumerate(stresses):
@@ -88,9 +98,12 @@ def closure_curve(aperture: Surface, composite_modulus: float, stresses: Sequenc
                         iterations=column("iterations"),
                         complementarity=column("complementarity"),
                         minimum_gap=column("minimum_gap"),
+                        plastic_area_ratio=column("plastic_area_ratio"),
+                        mean_flattening=column("mean_flattening"),
                         composite_modulus=float(composite_modulus),
                         spacing=max(aperture.spacing_x, aperture.spacing_y),
                         shape=(rows, cols), periodic=periodic, tolerance=tolerance,
+                        hardness=float(hardness), unloaded_closure=solver.unloaded_closure(),
                         pressure=pressure if keep_fields else None,
                         gap=gap if keep_fields else None, _states=states)
 

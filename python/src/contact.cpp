@@ -7,6 +7,8 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <limits>
+
 #include <memory>
 
 namespace py = pybind11;
@@ -43,13 +45,17 @@ void declare_contact(py::module_& m)
       .def_readonly("converged", &ContactState::converged)
       .def_readonly("relative_change", &ContactState::relative_change)
       .def_readonly("complementarity", &ContactState::complementarity, "max p g [Pa m]")
-      .def_readonly("minimum_gap", &ContactState::minimum_gap, "min g off contact [m]");
+      .def_readonly("minimum_gap", &ContactState::minimum_gap, "min g off contact [m]")
+      .def_readonly("plastic_area_ratio", &ContactState::plastic_area_ratio,
+                    "fraction of the points at the pressure cap H [-]")
+      .def_readonly("mean_flattening", &ContactState::mean_flattening,
+                    "mean plastic flattening so far [m]");
 
   py::class_<ElasticContact>(m, "ElasticContact",
                              "Frictionless elastic contact of an aperture field (Polonsky-Keer)")
-      .def(py::init<const topography::Surface&, double, Kernel, ContactOptions>(),
+      .def(py::init<const topography::Surface&, double, Kernel, ContactOptions, double>(),
            py::arg("aperture"), py::arg("composite_modulus"), py::arg("kernel"),
-           py::arg("options"))
+           py::arg("options"), py::arg("hardness") = std::numeric_limits<double>::infinity())
       .def(
           "solve",
           [](ElasticContact& c, double sigma, bool keep_fields, std::size_t rows, std::size_t cols)
@@ -63,7 +69,10 @@ void declare_contact(py::module_& m)
           },
           py::arg("mean_pressure"), py::arg("keep_fields"), py::arg("rows"), py::arg("cols"))
       .def_property_readonly("bulk_compliance", &ElasticContact::bulk_compliance)
-      .def_property_readonly("valid_count", &ElasticContact::valid_count);
+      .def_property_readonly("valid_count", &ElasticContact::valid_count)
+      .def_property_readonly("hardness", &ElasticContact::hardness)
+      .def("unloaded_closure", &ElasticContact::unloaded_closure,
+           "closure [m] with no load on the walls as they are now (permanent closure)");
 
   py::class_<ContactOptions>(m, "ContactOptions")
       .def(py::init(
