@@ -69,11 +69,11 @@ int count_patches(const std::vector<double>& p, std::size_t rows, std::size_t co
 } // namespace
 
 ElasticContact::ElasticContact(const topography::Surface& aperture, double composite_modulus,
-                               Kernel kernel, ContactOptions options, double hardness)
+                               Kernel kernel, ContactOptions options)
     : _half_space(static_cast<std::size_t>(aperture.rows()),
                   static_cast<std::size_t>(aperture.cols()), aperture.spacing_x(),
                   aperture.spacing_y(), composite_modulus, kernel),
-      _options(options), _hardness(hardness), _rows(static_cast<std::size_t>(aperture.rows())),
+      _options(options), _rows(static_cast<std::size_t>(aperture.rows())),
       _cols(static_cast<std::size_t>(aperture.cols()))
 {
   validation::positive("ElasticContact", "tolerance", options.tolerance, "");
@@ -101,9 +101,6 @@ ElasticContact::ElasticContact(const topography::Surface& aperture, double compo
   _r.assign(n, 0.0);
   _previous.assign(n, 0.0);
   _pressure.assign(n, 0.0);
-  _capped.assign(n, 0);
-  if (!(hardness > 0.0)) // NaN fails too; +inf: elastic walls
-    validation::fail("ElasticContact", "hardness", hardness, "Pa", "> 0 (+inf for elastic walls)");
   if (kernel == Kernel::non_periodic)
   {
     for (std::size_t k = 0; k < n; ++k)
@@ -124,7 +121,6 @@ ContactState ElasticContact::solve(double mean_pressure, bool keep_fields)
   std::vector<double>& p = _pressure;
   const double total = mean_pressure * double(_valid_count); // Σ p over the scanned points
   // Warm start: the previous pressure scaled to the new load, or uniform.
-  const bool plastic = std::isfinite(_hardness);
   if (_last_stress > 0.0)
     for (double& x : p)
       x *= mean_pressure / _last_stress;
@@ -159,17 +155,9 @@ ContactState ElasticContact::solve(double mean_pressure, bool keep_fields)
   st.mean_pressure = mean_pressure;
   std::fill(_t.begin(), _t.end(), 0.0);
   _contact.clear();
-  _plastic.clear();
   _member.assign(n, 0);
-  std::fill(_capped.begin(), _capped.end(), 0);
   for (std::size_t k = 0; k < n; ++k)
-    if (plastic && _valid[k] && p[k] >= _hardness)
-    {
-      p[k] = _hardness; // at the cap: plastic, its gap not enforced
-      _capped[k] = 1;
-      _plastic.push_back(k);
-    }
-    else if (_valid[k] && p[k] > 0.0)
+    if (_valid[k] && p[k] > 0.0)
     {
       _contact.push_back(k);
       _member[k] = 1;
@@ -180,18 +168,6 @@ ContactState ElasticContact::solve(double mean_pressure, bool keep_fields)
   for (; it < _options.maximum_iterations; ++it)
   {
     _half_space.displacement(p, _u); // u = K p
-    if (_contact.empty()) // every loaded point is at the cap: free them all and start again
-    {
-      for (std::size_t k : _plastic)
-      {
-        _capped[k] = 0;
-        _member[k] = 1;
-        _contact.push_back(k);
-      }
-      _plastic.clear();
-      conjugate = false;
-      continue;
-    }
     const std::size_t m = _contact.size();
     double approach = 0.0;
     for (std::size_t k : _contact)
@@ -256,22 +232,6 @@ ContactState ElasticContact::solve(double mean_pressure, bool keep_fields)
         if (!_member[k]) // a point of S clamped to 0 this iteration stays on the list
           _entering.push_back(k);
       }
-    if (plastic)
-    {
-      // Elastic-perfectly-plastic walls (pressure cap H): a capped point whose surface has
-      // separated (g > 0) is free again; its pressure falls on the next iterations.
-      std::size_t kept = 0;
-      for (std::size_t k : _plastic)
-        if (_u[k] + _aperture[k] - approach > 0.0)
-        {
-          _capped[k] = 0;
-          _entering.push_back(k);
-          overlap = true;
-        }
-        else
-          _plastic[kept++] = k;
-      _plastic.resize(kept);
-    }
     conjugate = !overlap;
     double load = 0.0;
     for (std::size_t k : _contact)
@@ -292,41 +252,16 @@ ContactState ElasticContact::solve(double mean_pressure, bool keep_fields)
       conjugate = false;
       continue;
     }
-    // Rescale to the load, measure the change, and form the next contact set. With a pressure
-    // cap the plastic points carry H each and the free ones the rest; free points pushed to H
-    // join the plastic set (if the plastic points alone would carry more, they are freed).
-    double plastic_load = _plastic.empty() ? 0.0 : _hardness * double(_plastic.size());
-    if (plastic && plastic_load >= total)
-    {
-      for (std::size_t k : _plastic)
-      {
-        _capped[k] = 0;
-        _entering.push_back(k);
-        load += p[k];
-      }
-      _plastic.clear();
-      plastic_load = 0.0;
-    }
-    const double scale = (total - plastic_load) / load;
+    // Rescale to the load, measure the change, and form the next contact set.
+    const double scale = total / load;
     double change = 0.0;
     std::size_t kept = 0;
     for (std::size_t a = 0; a < m; ++a)
     {
       const std::size_t k = _contact[a];
       p[k] *= scale;
-      if (plastic && p[k] >= _hardness)
-      {
-        p[k] = _hardness;
-        _capped[k] = 1;
-      }
       change += std::abs(p[k] - _previous[a]);
-      if (_capped[k])
-      {
-        _t[k] = 0.0; // plastic: off the conjugate set
-        _member[k] = 0;
-        _plastic.push_back(k);
-      }
-      else if (p[k] > 0.0)
+      if (p[k] > 0.0)
         _contact[kept++] = k;
       else
       {
@@ -339,13 +274,6 @@ ContactState ElasticContact::solve(double mean_pressure, bool keep_fields)
     {
       p[k] *= scale;
       change += p[k];
-      if (plastic && p[k] >= _hardness)
-      {
-        p[k] = _hardness;
-        _capped[k] = 1;
-        _plastic.push_back(k);
-        continue;
-      }
       _contact.push_back(k);
       _member[k] = 1;
     }
@@ -368,31 +296,13 @@ ContactState ElasticContact::solve(double mean_pressure, bool keep_fields)
     if (_valid[k])
     {
       mean_u += _u[k];
-      if (p[k] > 0.0 && !_capped[k])
+      if (p[k] > 0.0)
       {
         sum += _u[k] + _aperture[k];
         ++in_contact;
       }
     }
-  approach = in_contact ? sum / double(in_contact) : approach;
-  // Plastic flow: at every capped point the walls interpenetrate by -g >= 0; that overlap is
-  // flattened off the asperity for good (the aperture grows by it), so the gap there is 0 and the
-  // next loads, and every unloading, see the deformed walls.
-  std::size_t plastic_points = 0;
-  for (std::size_t k = 0; k < n; ++k)
-    if (_valid[k] && _capped[k])
-    {
-      ++plastic_points;
-      const double overlap = approach - _u[k] - _aperture[k];
-      if (overlap > 0.0)
-      {
-        _aperture[k] += overlap;
-        _flattening_sum += overlap;
-      }
-      ++in_contact;
-    }
-  st.plastic_area_ratio = double(plastic_points) / double(_valid_count);
-  st.mean_flattening = _flattening_sum / double(_valid_count);
+  approach = sum / double(in_contact);
   mean_u /= double(_valid_count);
   st.approach = approach;
   // Closure = the change of the mean aperture, mean(e) - mean(g) = d - mean(u) with g = e - d + u:
@@ -402,8 +312,7 @@ ContactState ElasticContact::solve(double mean_pressure, bool keep_fields)
   // the patch less on average than one near its centre, so σ·c drifts from mean(u) as the contact
   // spots change, and d - σ·c lost monotonicity under load (1024² bench joint: 0.0601 mm at
   // 13 MPa, 0.0565 mm at 30 MPa).
-  // With plastic flattening w the aperture is e + w: Δ = mean(e) - mean(g) = d - mean(u) - mean(w).
-  st.closure = approach - mean_u - st.mean_flattening;
+  st.closure = approach - mean_u;
   st.contact_area_ratio = double(in_contact) / double(_valid_count);
   st.minimum_gap = std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k < n; ++k)
@@ -411,8 +320,7 @@ ContactState ElasticContact::solve(double mean_pressure, bool keep_fields)
     if (!_valid[k])
       continue;
     const double g = _u[k] + _aperture[k] - approach;
-    if (!_capped[k]) // a plastic point's gap is 0 by flattening (to round-off)
-      st.complementarity = std::max(st.complementarity, std::abs(p[k] * g));
+    st.complementarity = std::max(st.complementarity, std::abs(p[k] * g));
     if (!(p[k] > 0.0))
       st.minimum_gap = std::min(st.minimum_gap, g);
   }
@@ -429,17 +337,6 @@ ContactState ElasticContact::solve(double mean_pressure, bool keep_fields)
     }
   }
   return st;
-}
-
-double ElasticContact::unloaded_closure() const
-{
-  // No load: no elastic deformation, the deformed walls touch at d0 = min(e + w), and
-  // Δ0 = d0 - mean(w) (0 without plastic flow: min e = 0 by the datum).
-  double d0 = std::numeric_limits<double>::infinity();
-  for (std::size_t k = 0; k < _aperture.size(); ++k)
-    if (_valid[k])
-      d0 = std::min(d0, _aperture[k]);
-  return d0 - _flattening_sum / double(_valid_count);
 }
 
 std::vector<ContactState> ElasticContact::closure_curve(std::span<const double> mean_pressures,

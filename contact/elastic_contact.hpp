@@ -15,19 +15,10 @@
 /// under the actual pressure, which is subtracted (the raw d is reported as `approach`).
 /// Masked (NaN) points carry no pressure and are not counted in A0: a hole in the scan is a
 /// point that cannot touch.
-///
-/// Elastic-perfectly-plastic walls (hardness H < inf, docs/contact.md): the pressure is capped
-/// at H (Polonsky-Keer with a pressure cap; capped points are off the conjugate set and their gap
-/// is not enforced). After each converged load the overlap -g at capped points is flattened off
-/// for good (the aperture grows by it): later loads and unloading see the deformed walls, so
-/// unloading is elastic from the deformed state, reloading retraces it up to the previous
-/// maximum, and a permanent closure remains (unloaded_closure()). The closure datum stays the
-/// original walls': Δ = mean(e) - mean(g) = d - mean(u) - mean(w), w the flattening.
 #include "half_space.hpp"
 
 #include <rockjoint/topography/surface.hpp>
 
-#include <limits>
 #include <span>
 #include <vector>
 
@@ -52,8 +43,6 @@ struct ContactState
   /// the edges of every contact spot (a node is in or out; the true edge is inside the cell).
   double contact_area_ratio = 0.0;
   int contact_patches = 0;     ///< 4-connected contact spots (periodic wrap for that kernel)
-  double plastic_area_ratio = 0.0; ///< fraction of the scanned points at the pressure cap H
-  double mean_flattening = 0.0;    ///< mean plastic flattening so far, mean(w) [m]
   int iterations = 0;          ///< conjugate-gradient iterations of this load
   bool converged = false;      ///< the tolerance was met within maximum_iterations
   double relative_change = 0.0;   ///< last Σ|Δp| / Σ p
@@ -68,11 +57,9 @@ class ElasticContact
 public:
   /// @param aperture aperture field e [m] of the composite topography (NaN = masked)
   /// @param composite_modulus E* [Pa]
-  /// @param hardness indentation hardness H [Pa] capping the contact pressure (+inf: elastic)
-  /// Throws std::invalid_argument for a grid with fewer than 2 valid points, E* <= 0 or H <= 0.
+  /// Throws std::invalid_argument for a grid with fewer than 2 valid points or E* <= 0.
   ElasticContact(const topography::Surface& aperture, double composite_modulus, Kernel kernel,
-                 ContactOptions options = {},
-                 double hardness = std::numeric_limits<double>::infinity());
+                 ContactOptions options = {});
 
   /// Contact at mean pressure σ > 0 [Pa], warm-started from the previous solve (its pressure
   /// scaled to σ). `keep_fields`: fill pressure and gap.
@@ -87,18 +74,10 @@ public:
   /// the kernel against Boussinesq's closed form; the closure subtracts mean(K p) instead).
   double bulk_compliance() const { return _bulk_compliance; }
   std::size_t valid_count() const { return _valid_count; }
-  double hardness() const { return _hardness; }
-  /// Closure [m] with no load on the walls as they are now: 0 for elastic walls, the permanent
-  /// closure d0 - mean(w) after plastic flow (d0 = min(e + w): where the deformed walls touch).
-  double unloaded_closure() const;
 
 private:
   HalfSpace _half_space;
   ContactOptions _options;
-  double _hardness;
-  double _flattening_sum = 0.0;           ///< Σ w over the scanned points [m]
-  std::vector<unsigned char> _capped;    ///< 1 where p = H (plastic)
-  std::vector<std::size_t> _plastic;     ///< the capped points of an iteration
   std::size_t _rows, _cols, _valid_count = 0;
   std::vector<double> _aperture; // shifted: min 0 over valid points
   std::vector<unsigned char> _valid;

@@ -72,9 +72,12 @@ def closure_curve(aperture: Surface, composite_modulus: float, stresses: Sequenc
     kernel = Kernel.periodic if periodic else Kernel.non_periodic
     if not hardness > 0:
         raise ValueError(f"closure_curve: hardness = {hardness} Pa must be > 0 (inf: elastic walls)")
-    solver = _cpp.ElasticContact(aperture, float(composite_modulus), kernel,
-                                 _cpp.ContactOptions(tolerance, maximum_iterations), float(hardness))
     rows, cols = aperture.shape
+    options = _cpp.ContactOptions(tolerance, maximum_iterations)
+    if np.isfinite(hardness):
+        return _plastic_curve(aperture, composite_modulus, stresses, kernel, float(hardness), options,
+                              keep_fields, periodic, tolerance)
+    solver = _cpp.ElasticContact(aperture, float(composite_modulus), kernel, options)
     states, pressure, gap = [], [], []
     for i, s in enumerate(stresses):
         st, p, g = solver.solve(float(s), keep_fields, rows, cols)
@@ -98,14 +101,45 @@ def closure_curve(aperture: Surface, composite_modulus: float, stresses: Sequenc
                         iterations=column("iterations"),
                         complementarity=column("complementarity"),
                         minimum_gap=column("minimum_gap"),
-                        plastic_area_ratio=column("plastic_area_ratio"),
-                        mean_flattening=column("mean_flattening"),
+                        plastic_area_ratio=np.zeros(len(states)),
+                        mean_flattening=np.zeros(len(states)),
                         composite_modulus=float(composite_modulus),
                         spacing=max(aperture.spacing_x, aperture.spacing_y),
                         shape=(rows, cols), periodic=periodic, tolerance=tolerance,
-                        hardness=float(hardness), unloaded_closure=solver.unloaded_closure(),
+                        hardness=float(hardness), unloaded_closure=0.0,
                         pressure=pressure if keep_fields else None,
                         gap=gap if keep_fields else None, _states=states)
+
+
+def _plastic_curve(aperture, composite_modulus, stresses, kernel, hardness, options, keep_fields,
+                   periodic, tolerance) -> ClosureCurve:
+    """closure_curve for elastic-perfectly-plastic walls (PlasticContact): the stresses are a load
+    path; gap, complementarity and patch counts are not computed (NaN)."""
+    rows, cols = aperture.shape
+    solver = _cpp.PlasticContact(aperture, float(composite_modulus), kernel, hardness, options)
+    states, pressure = [], []
+    for i, s in enumerate(stresses):
+        st = solver.solve(float(s))
+        if not st.converged:
+            raise RuntimeError(f"closure_curve: load {i} (σ = {s:g} Pa) did not converge with "
+                               f"hardness {hardness:g} Pa ({st.evaluations} approach trials)")
+        log.info("BEM σ = %.4g MPa, H = %.3g GPa: Δ = %.5g mm, A/A0 = %.4g, at H %.3g", s * 1e-6,
+                 hardness * 1e-9, st.closure * 1e3, st.contact_area_ratio, st.plastic_area_ratio)
+        states.append(st)
+        if keep_fields:
+            pressure.append(solver.pressure(rows, cols))
+    col = lambda name: np.array([getattr(st, name) for st in states])  # noqa: E731
+    nan = np.full(len(states), np.nan)
+    return ClosureCurve(stress=stresses, closure=col("closure"), approach=col("approach"),
+                        contact_area_ratio=col("contact_area_ratio"), contact_patches=nan,
+                        iterations=col("iterations"), complementarity=nan, minimum_gap=nan,
+                        plastic_area_ratio=col("plastic_area_ratio"),
+                        mean_flattening=col("mean_flattening"),
+                        composite_modulus=float(composite_modulus),
+                        spacing=max(aperture.spacing_x, aperture.spacing_y), shape=(rows, cols),
+                        periodic=periodic, tolerance=tolerance, hardness=hardness,
+                        unloaded_closure=solver.unloaded_closure(),
+                        pressure=pressure if keep_fields else None, _states=states)
 
 
 def exact_elastic_law(curve: ClosureCurve, residual_stiffness: Optional[float] = None):

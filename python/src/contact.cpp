@@ -3,6 +3,7 @@
 #include "array_helpers.hpp"
 
 #include <rockjoint/contact/exact_law.hpp>
+#include <rockjoint/contact/plastic_contact.hpp>
 
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -45,17 +46,13 @@ void declare_contact(py::module_& m)
       .def_readonly("converged", &ContactState::converged)
       .def_readonly("relative_change", &ContactState::relative_change)
       .def_readonly("complementarity", &ContactState::complementarity, "max p g [Pa m]")
-      .def_readonly("minimum_gap", &ContactState::minimum_gap, "min g off contact [m]")
-      .def_readonly("plastic_area_ratio", &ContactState::plastic_area_ratio,
-                    "fraction of the points at the pressure cap H [-]")
-      .def_readonly("mean_flattening", &ContactState::mean_flattening,
-                    "mean plastic flattening so far [m]");
+      .def_readonly("minimum_gap", &ContactState::minimum_gap, "min g off contact [m]");
 
   py::class_<ElasticContact>(m, "ElasticContact",
                              "Frictionless elastic contact of an aperture field (Polonsky-Keer)")
-      .def(py::init<const topography::Surface&, double, Kernel, ContactOptions, double>(),
+      .def(py::init<const topography::Surface&, double, Kernel, ContactOptions>(),
            py::arg("aperture"), py::arg("composite_modulus"), py::arg("kernel"),
-           py::arg("options"), py::arg("hardness") = std::numeric_limits<double>::infinity())
+           py::arg("options"))
       .def(
           "solve",
           [](ElasticContact& c, double sigma, bool keep_fields, std::size_t rows, std::size_t cols)
@@ -69,10 +66,39 @@ void declare_contact(py::module_& m)
           },
           py::arg("mean_pressure"), py::arg("keep_fields"), py::arg("rows"), py::arg("cols"))
       .def_property_readonly("bulk_compliance", &ElasticContact::bulk_compliance)
-      .def_property_readonly("valid_count", &ElasticContact::valid_count)
-      .def_property_readonly("hardness", &ElasticContact::hardness)
-      .def("unloaded_closure", &ElasticContact::unloaded_closure,
-           "closure [m] with no load on the walls as they are now (permanent closure)");
+      .def_property_readonly("valid_count", &ElasticContact::valid_count);
+
+  py::class_<PlasticContactState>(m, "PlasticContactState", "One load of the elastic-plastic contact (SI)")
+      .def_readonly("mean_pressure", &PlasticContactState::mean_pressure, "σ [Pa]")
+      .def_readonly("approach", &PlasticContactState::approach, "d [m]")
+      .def_readonly("closure", &PlasticContactState::closure, "Δ [m]")
+      .def_readonly("contact_area_ratio", &PlasticContactState::contact_area_ratio, "A/A0 [-]")
+      .def_readonly("plastic_area_ratio", &PlasticContactState::plastic_area_ratio, "at H [-]")
+      .def_readonly("mean_flattening", &PlasticContactState::mean_flattening, "mean(w) [m]")
+      .def_readonly("evaluations", &PlasticContactState::evaluations)
+      .def_readonly("iterations", &PlasticContactState::iterations)
+      .def_readonly("converged", &PlasticContactState::converged);
+
+  py::class_<PlasticContact>(m, "PlasticContact",
+                             "Contact of elastic-perfectly-plastic walls (pressure capped at H)")
+      .def(py::init<const topography::Surface&, double, Kernel, double, ContactOptions>(),
+           py::arg("aperture"), py::arg("composite_modulus"), py::arg("kernel"),
+           py::arg("hardness"), py::arg("options"))
+      .def(
+          "solve",
+          [](PlasticContact& c, double sigma)
+          {
+            py::gil_scoped_release release;
+            return c.solve(sigma);
+          },
+          py::arg("mean_pressure"))
+      .def("unloaded_closure", &PlasticContact::unloaded_closure,
+           "closure [m] with the load removed from the walls as they are now (permanent)")
+      .def(
+          "pressure",
+          [](const PlasticContact& c, std::size_t rows, std::size_t cols)
+          { return field(c.pressure(), rows, cols); },
+          py::arg("rows"), py::arg("cols"));
 
   py::class_<ContactOptions>(m, "ContactOptions")
       .def(py::init(

@@ -69,7 +69,7 @@ def paraboloid(n=128, side=4e-3, radius=5e-3):
 def test_sphere_below_yield_is_elastic_and_far_past_it_presses_at_the_hardness():
     ap, radius = paraboloid()
     n = ap.shape[0] * ap.shape[1]
-    hardness = 3e9
+    hardness = 0.3e9   # yield at a = π H R / (2 E*) = 0.09 mm; at 60 F_y the contact is ~0.5 mm wide
     # Hertz: p0 = (6 F E*² / (π³ R²))^(1/3); yield of the cap at p0 = H
     f_yield = (hardness ** 3) * math.pi ** 3 * radius ** 2 / (6 * E_STAR ** 2)
     low = 0.3 * f_yield / (n * ap.spacing_x ** 2)          # mean stresses [Pa] on the cell
@@ -81,7 +81,7 @@ def test_sphere_below_yield_is_elastic_and_far_past_it_presses_at_the_hardness()
     p = c.pressure[1]
     in_contact = p > 0
     mean_contact_pressure = np.nansum(p) / np.count_nonzero(in_contact)
-    assert np.nanmax(p) <= hardness * (1 + 1e-12)
+    assert np.nanmax(p) <= hardness * (1 + 1e-6)
     assert 0.85 * hardness < mean_contact_pressure <= hardness
     assert c.plastic_area_ratio[1] > 0.5 * np.count_nonzero(in_contact) / n
 
