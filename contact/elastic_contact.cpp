@@ -101,6 +101,15 @@ ElasticContact::ElasticContact(const topography::Surface& aperture, double compo
   _r.assign(n, 0.0);
   _previous.assign(n, 0.0);
   _pressure.assign(n, 0.0);
+  {
+    // Self-compliance K_kk: displacement at a point under unit pressure on its own cell.
+    const std::size_t centre = (_rows / 2) * _cols + _cols / 2;
+    _t[centre] = 1.0;
+    _half_space.displacement(_t, _u);
+    _self_compliance = _u[centre];
+    _t[centre] = 0.0;
+    std::fill(_u.begin(), _u.end(), 0.0);
+  }
   if (kernel == Kernel::non_periodic)
   {
     for (std::size_t k = 0; k < n; ++k)
@@ -212,7 +221,11 @@ ContactState ElasticContact::solve(double mean_pressure, bool keep_fields)
       gt += _gap_contact[a] * _t_contact[a];
       rt += (_r_contact[a] - r_mean) * _t_contact[a];
     }
-    const double tau = rt > 0.0 ? gt / rt : 0.0;
+    // One contact point (or a flat direction) gives no CG step: the gap on S is 0 by the
+    // definition of d. Points that interpenetrate then enter with the pressure that would close
+    // their overlap alone, g / K_kk (after a deep unloading to one point, a reload would
+    // otherwise add no pressure anywhere and stop at once, "converged" on a single point).
+    const double tau = rt > 0.0 ? gt / rt : 1.0 / _self_compliance;
     // Update on S (old values kept for the change), then points without pressure that
     // interpenetrate (g < 0) go back into contact: the one full-grid scan.
     _previous.resize(m);

@@ -84,6 +84,7 @@ private:
   std::vector<double> _pressure; // last converged pressure (warm start)
   double _last_stress = 0.0;
   double _bulk_compliance = 0.0;
+  double _self_compliance = 0.0; ///< K_kk [m/Pa]: the step when the CG step is degenerate
   std::vector<double> _u, _t, _r, _previous; // work arrays
   std::vector<std::size_t> _contact;  // the contact set S of an iteration
   std::vector<std::size_t> _entering; // points re-entering contact in an iteration

@@ -154,3 +154,13 @@ def test_cli_prints_the_bem_reference_beside_the_laws(tmp_path):
     ref = contact.closure_curve(ap, E_STAR, np.array([1, 3, 10, 30]) * 1e6).closure
     np.testing.assert_allclose(list(report["bem_closure_mm"].values()),
                                ref * 1e3, rtol=1e-10)
+
+
+def test_elastic_walls_reload_along_the_same_curve_after_a_deep_unloading():
+    """Elastic walls are path-independent: loading to 10 MPa, unloading to 0.1 MPa (few contact
+    points left) and reloading gives the first loading's closures (a warm start from one contact
+    point once gave no CG step and stopped at once, "converged" on that point)."""
+    upper, lower = topo.mated_pair(topo.SelfAffineSpec(0.8, 1e-3), (128, 128), 0.25e-3, 2.5e-3, seed=1)
+    ap = topo.composite_topography(upper, lower).aperture
+    c = contact.closure_curve(ap, E_STAR, [2e6, 10e6, 0.1e6, 2e6, 10e6])
+    np.testing.assert_allclose(c.closure[3:], c.closure[:2], rtol=1e-6)
