@@ -68,6 +68,29 @@ int count_patches(const std::vector<double>& p, std::size_t rows, std::size_t co
 }
 } // namespace
 
+std::size_t scanned_aperture(const topography::Surface& surface, const std::string& owner,
+                             std::vector<double>& aperture, std::vector<unsigned char>& valid)
+{
+  const std::size_t n = static_cast<std::size_t>(surface.rows() * surface.cols());
+  aperture.assign(surface.heights().data(), surface.heights().data() + n);
+  valid.assign(n, 0);
+  std::size_t count = 0;
+  double lowest = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < n; ++k)
+    if (!std::isnan(aperture[k]))
+    {
+      valid[k] = 1;
+      ++count;
+      lowest = std::min(lowest, aperture[k]);
+    }
+  if (count < 2)
+    throw std::invalid_argument(owner + ": the aperture has " + std::to_string(count)
+                                + " valid (non-NaN) point(s); at least 2 are needed");
+  for (std::size_t k = 0; k < n; ++k)
+    aperture[k] = valid[k] ? aperture[k] - lowest : 0.0; // first contact at d = 0
+  return count;
+}
+
 ElasticContact::ElasticContact(const topography::Surface& aperture, double composite_modulus,
                                Kernel kernel, ContactOptions options)
     : _half_space(static_cast<std::size_t>(aperture.rows()),
@@ -81,21 +104,7 @@ ElasticContact::ElasticContact(const topography::Surface& aperture, double compo
     validation::fail("ElasticContact", "maximum_iterations", options.maximum_iterations, "",
                      ">= 1");
   const std::size_t n = _rows * _cols;
-  _aperture.assign(aperture.heights().data(), aperture.heights().data() + n);
-  _valid.assign(n, 0);
-  double lowest = std::numeric_limits<double>::infinity();
-  for (std::size_t k = 0; k < n; ++k)
-    if (!std::isnan(_aperture[k]))
-    {
-      _valid[k] = 1;
-      ++_valid_count;
-      lowest = std::min(lowest, _aperture[k]);
-    }
-  if (_valid_count < 2)
-    throw std::invalid_argument("ElasticContact: the aperture has " + std::to_string(_valid_count)
-                                + " valid (non-NaN) point(s); at least 2 are needed");
-  for (std::size_t k = 0; k < n; ++k)
-    _aperture[k] = _valid[k] ? _aperture[k] - lowest : 0.0; // first contact at d = 0
+  _valid_count = scanned_aperture(aperture, "ElasticContact", _aperture, _valid);
   _u.assign(n, 0.0);
   _t.assign(n, 0.0);
   _r.assign(n, 0.0);

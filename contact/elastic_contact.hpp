@@ -20,6 +20,7 @@
 #include <rockjoint/topography/surface.hpp>
 
 #include <span>
+#include <string>
 #include <vector>
 
 namespace rockjoint::contact
@@ -51,6 +52,12 @@ struct ContactState
   std::vector<double> pressure;   ///< p [Pa], row-major (NaN where masked)
   std::vector<double> gap;        ///< g [m] under load: the mechanical aperture (NaN where masked)
 };
+
+/// The scanned points of an aperture field: `aperture` = e - min e over the valid (non-NaN)
+/// points (first contact at d = 0; 0 where masked), `valid` = 1 there; returns their number.
+/// Throws std::invalid_argument (naming `owner`) for fewer than 2 valid points.
+std::size_t scanned_aperture(const topography::Surface& surface, const std::string& owner,
+                             std::vector<double>& aperture, std::vector<unsigned char>& valid);
 
 class ElasticContact
 {

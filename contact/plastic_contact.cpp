@@ -26,21 +26,7 @@ PlasticContact::PlasticContact(const topography::Surface& aperture, double compo
     validation::fail("PlasticContact", "hardness", hardness, "Pa", "> 0 (+inf for elastic walls)");
   validation::positive("PlasticContact", "tolerance", options.tolerance, "");
   const std::size_t n = _rows * _cols;
-  _aperture.assign(aperture.heights().data(), aperture.heights().data() + n);
-  _valid.assign(n, 0);
-  double lowest = std::numeric_limits<double>::infinity();
-  for (std::size_t k = 0; k < n; ++k)
-    if (std::isfinite(_aperture[k]))
-    {
-      _valid[k] = 1;
-      ++_valid_count;
-      lowest = std::min(lowest, _aperture[k]);
-    }
-  if (_valid_count < 2)
-    throw std::invalid_argument("PlasticContact: the aperture has " + std::to_string(_valid_count)
-                                + " valid (non-NaN) point(s); at least 2 are needed");
-  for (std::size_t k = 0; k < n; ++k)
-    _aperture[k] = _valid[k] ? _aperture[k] - lowest : 0.0;
+  _valid_count = scanned_aperture(aperture, "PlasticContact", _aperture, _valid);
   _pressure.assign(n, 0.0);
   _u.assign(n, 0.0);
   _g.assign(n, 0.0);

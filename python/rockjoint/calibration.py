@@ -338,6 +338,23 @@ def _closure_of(law: ClosureLaw, stress: np.ndarray) -> np.ndarray:
     return np.asarray(law.closure_at_stress(stress), dtype=float)
 
 
+def calibration_spec(law: str, composite_modulus, summit_radius, who: str) -> tuple:
+    """(the registry's CalibrationSpec of `law`, {given input: value}) with clear errors for a law
+    that cannot be calibrated or a missing/invalid E* or β it needs; `who` names the caller."""
+    spec = get(law).calibration
+    if spec is None:
+        raise ValueError(f"{who}: law '{law}' cannot be calibrated; choose one of "
+                         f"{', '.join(calibratable())}")
+    given: Dict[str, object] = {}
+    inputs = {"composite_modulus": (composite_modulus, "Pa"), "summit_radius": (summit_radius, "m")}
+    for key in spec.needs:
+        v, unit = inputs[key]
+        if v is None or not (math.isfinite(v) and v > 0):
+            raise ValueError(f"{who}: law '{law}' needs {key} [{unit}] finite and > 0 (got {v})")
+        given[key] = float(v)
+    return spec, given
+
+
 def calibrate(curve: ClosureCurve, law: str, *, composite_modulus: Optional[float] = None,
               summit_radius: Optional[float] = None, distribution: str = "gaussian",
               base: Optional[str] = None, variant: str = "I1",
@@ -354,18 +371,7 @@ def calibrate(curve: ClosureCurve, law: str, *, composite_modulus: Optional[floa
     starting values (SI, in the order of the fitted parameters). Weights: 1/closure_std² when
     the curve has it.
     """
-    record = get(law)
-    spec = record.calibration
-    if spec is None:
-        raise ValueError(f"calibrate: law '{law}' cannot be calibrated; choose one of "
-                         f"{', '.join(calibratable())}")
-    given: Dict[str, object] = {}
-    inputs = {"composite_modulus": (composite_modulus, "Pa"), "summit_radius": (summit_radius, "m")}
-    for key in spec.needs:
-        v, unit = inputs[key]
-        if v is None or not (math.isfinite(v) and v > 0):
-            raise ValueError(f"calibrate: law '{law}' needs {key} [{unit}] finite and > 0 (got {v})")
-        given[key] = float(v)
+    spec, given = calibration_spec(law, composite_modulus, summit_radius, "calibrate")
     if not spec.needs and (composite_modulus is not None or summit_radius is not None):
         log.info("calibrate: %s ignores composite_modulus/summit_radius", law)
     options = {"distribution": distribution, "base": base or "tang_substrate", "variant": variant,

@@ -25,8 +25,7 @@ import numpy as np
 
 from ._rockjoint import calibration as _cpp_calibration
 from ._rockjoint.constitutive import NormalHysteresis
-from .calibration import FittedParameter, read_columns
-from .law_registry import calibratable, get
+from .calibration import FittedParameter, calibration_spec, read_columns
 
 __all__ = ["LoadCycles", "read_load_cycles", "calibrate_cycles", "CycleCalibration", "BRANCHES"]
 
@@ -159,19 +158,7 @@ def calibrate_cycles(cycles: LoadCycles, law: str, *, composite_modulus: Optiona
     ``cycles``; see the module docstring. ``initial``: starting values in SI, the law's unknowns
     then r and m (default: the law's own guess on the virgin points, r from the lowest unloaded
     closure, m = 2)."""
-    record = get(law)
-    spec = record.calibration
-    if spec is None:
-        raise ValueError(f"calibrate_cycles: law '{law}' cannot be calibrated; choose one of "
-                         f"{', '.join(calibratable())}")
-    given: Dict[str, object] = {}
-    inputs = {"composite_modulus": (composite_modulus, "Pa"), "summit_radius": (summit_radius, "m")}
-    for key in spec.needs:
-        v, unit = inputs[key]
-        if v is None or not (math.isfinite(v) and v > 0):
-            raise ValueError(f"calibrate_cycles: law '{law}' needs {key} [{unit}] finite and > 0 "
-                             f"(got {v})")
-        given[key] = float(v)
+    spec, given = calibration_spec(law, composite_modulus, summit_radius, "calibrate_cycles")
     npos = len(spec.unknowns)
     labels = cycles.branches()
     virgin = labels == "loading"
