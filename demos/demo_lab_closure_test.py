@@ -14,7 +14,10 @@ intact cube is loaded beside it; the joint closure is the difference of the two 
 
 Outputs (in DIR, default the working directory): lab_closure_test.png (the curves),
 lab_closure_test_table.txt (the numbers), granite_tang_jiao.rjt (the tabulated law),
-jointed_cube.xdmf / intact_cube.xdmf (+ joint state) for ParaView. Units in print: mm, MPa.
+jointed_cube.xdmf / intact_cube.xdmf (+ joint state) for ParaView, and the load cycle:
+lab_closure_cycle.png / lab_closure_cycle.txt (load to 30 MPa, unload, reload: the walls'
+elastic-plastic contact beside the FE cube whose joint follows a hysteretic law).
+Units in print: mm, MPa.
 """
 import argparse
 import os
@@ -53,6 +56,12 @@ TOLERANCE = PLAN.table_tolerance  # relative error of the table against the law
 # round-off puts about half the joint points a hair above it: its table extends 25 % past the
 # bound (a few knots more), and the model's own range check finds no point beyond.
 TABLE_STRESS = PLAN.table_max_stress   # [Pa]
+# The load cycle (section 4): the walls are elastic-perfectly plastic with the indentation hardness
+# of granite's hard minerals taken as 5 GPa (feldspar to quartz; bench/results/contact_plastic.md
+# runs 2-10 GPa: the permanent closure depends on it strongly). Path: up to 30 MPa, down to
+# 0.5 MPa, back up to 30 MPa.
+HARDNESS = 5e9   # [Pa]
+CYCLE = np.r_[STRESS_LEVELS, np.array([20, 10, 5, 2, 1, 0.5, 1, 5, 10, 20, 30]) * 1e6]   # [Pa]
 
 
 def joint_law():
@@ -76,7 +85,7 @@ def joint_law():
     # The yardstick: exact elastic contact of the same walls (boundary elements, periodic: the
     # synthetic walls are one period), the reference every law is measured against.
     bem = contact.closure_curve(joint.aperture, params.composite_modulus, STRESS_LEVELS)
-    return laws, params, bem.closure
+    return laws, params, bem.closure, joint.aperture
 
 
 def tabulated(law, path):
@@ -122,7 +131,7 @@ def main():
     out = lambda name: os.path.join(args.output, name)  # noqa: E731
 
     # %% 1. Micro: the joint's roughness gives its closure law ------------------------------
-    laws, params, closure_bem = joint_law()
+    laws, params, closure_bem, aperture = joint_law()
     law = laws[PLAN.laws["joint"]].law   # the planner's pick within the scene's error budget
     table = tabulated(law, out("granite_tang_jiao.rjt"))
 
@@ -166,6 +175,72 @@ def main():
         plot(rows, laws, out("lab_closure_test.png"))
     say(f"wrote {out('lab_closure_test.png')}, {out('lab_closure_test_table.txt')}, "
         f"{out('jointed_cube.xdmf')}, {out('intact_cube.xdmf')}")
+
+    # %% 4. Load and unload: the joint that does not spring back -----------------------------
+    load_cycle(aperture, params, table, jointed_mesh, intact_mesh, out)
+
+
+def load_cycle(aperture, params, table, jointed_mesh, intact_mesh, out):
+    """The walls' elastic-plastic contact (BEM) along CYCLE beside the FE cube whose joint follows
+    the hysteretic law: the demo's Tang & Jiao table as the virgin curve with unloading branches of
+    the laboratory's middle values (Bandis et al. 1983: permanent closure r = 0.25 of the largest,
+    unloading 3 times stiffer at the top; docs/hysteresis.md). `rockjoint calibrate --cycles` fits
+    r and m to a measured cycle instead."""
+    bem = contact.closure_curve(aperture, params.composite_modulus, CYCLE, hardness=HARDNESS)
+    say(f"load cycle, walls elastic-plastic (H = {HARDNESS * 1e-9:g} GPa): largest closure "
+        f"{bem.closure.max() * 1e3:.4f} mm, {100 * bem.plastic_area_ratio.max():.3f} % of the "
+        f"area at H, permanent closure {bem.unloaded_closure * 1e3:.4f} mm "
+        f"({100 * bem.unloaded_closure / bem.closure.max():.1f} %) when unloaded")
+    if bem.plastic_area_ratio.max() == 0.0:
+        say("  no asperity of this 0.5 mm scan reaches H up to 30 MPa: the exact contact unloads along "
+            "its loading curve (plastic tips give permanent closures of the laboratory's size only on "
+            "finer scans or softer minerals: bench/results/contact_plastic.md)")
+    top = table.closure_at_stress(MAX_STRESS)
+    r = 0.25
+    m = max(1.0, 3.0 * (1 - r) * top * table.normal_stiffness(top) / MAX_STRESS)   # (H4)
+    law = rockjoint.NormalHysteresis(table, r, m)
+    say(f"hysteretic law: Tang & Jiao table, r = {r}, m = {m:.2f} (unloading 3 x stiffer at 30 MPa)")
+    # FE: one model loaded along the path (its joint keeps its largest closure point by point);
+    # the intact cube is linear: its settlement scales with σ.
+    jointed = JointedRockModel(jointed_mesh, rock=(YOUNG, POISSON), joints={"joint": law},
+                               shear_stiffness_ratio=0.1, plane=None, newton=NewtonOptions(verbose=False))
+    for face, c in (("bottom", "z"), ("left", "x"), ("front", "y")):
+        jointed.fix(face, c)
+    jointed.add_traction("top", (0.0, 0.0, -MAX_STRESS))
+    u_intact_max = top_displacement(intact_mesh, None, MAX_STRESS)[0]
+    rows = []
+    expected = law.closure_path(CYCLE)
+    for stress, target, measured in zip(CYCLE, expected, bem.closure):
+        jointed.advance(stress / MAX_STRESS, load_steps=1)
+        u = -jointed.boundary_mean_displacement("top")[2]
+        rows.append((stress, u - u_intact_max * stress / MAX_STRESS, target, measured))
+    rows = np.array(rows)
+    error = np.abs(rows[:, 1] - rows[:, 2]) / rows[:, 2]
+    lines = ["σ [MPa]  closure FE [mm]  closure law [mm]  closure BEM elastic-plastic [mm]"] + [
+        f"{r[0] * 1e-6:7.2f}  {r[1] * 1e3:15.6f}  {r[2] * 1e3:16.6f}  {r[3] * 1e3:16.6f}" for r in rows]
+    say("\n" + "\n".join(lines))
+    say(f"cycle: max relative difference FE vs hysteretic law {error.max():.2e}")
+    if COMM.rank == 0:
+        with open(out("lab_closure_cycle.txt"), "w") as f:
+            f.write(f"# rockjoint lab closure test, load cycle: walls elastic-plastic, H = {HARDNESS * 1e-9:g} GPa; "
+                    f"hysteretic law r = {law.permanent_fraction:.4f}, m = {law.unloading_exponent:.3f}\n# "
+                    + "\n".join(lines) + "\n")
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        fig, ax = plt.subplots(figsize=(6, 4.5))
+        ax.plot(rows[:, 3] * 1e3, rows[:, 0] * 1e-6, "o-", mfc="none", color="k",
+                label=f"exact contact, elastic-plastic walls (H = {HARDNESS * 1e-9:g} GPa)")
+        ax.plot(rows[:, 2] * 1e3, rows[:, 0] * 1e-6, "-", color="C0", lw=2,
+                label="hysteretic law (Tang & Jiao + laboratory branches)")
+        ax.plot(rows[:, 1] * 1e3, rows[:, 0] * 1e-6, "x", color="C3", ms=8, label="FE cube: jointed − intact")
+        ax.set_xlabel("joint closure Δ [mm]")
+        ax.set_ylabel("normal stress σ [MPa]")
+        ax.set_title("load, unload, reload: the joint that does not spring back")
+        ax.legend(fontsize=8)
+        fig.tight_layout()
+        fig.savefig(out("lab_closure_cycle.png"), dpi=120)
+        plt.close(fig)
 
 
 def plot(rows, laws, path):
