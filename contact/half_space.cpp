@@ -4,6 +4,9 @@
 
 #include <fftw3.h>
 
+#include <cstdlib>
+#include <thread>
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -31,6 +34,21 @@ double love_primitive(double x, double y)
 }
 } // namespace
 
+/// FFTW's threads for large transforms: every core of the machine (ROCKJOINT_FFT_THREADS
+/// overrides, e.g. 1 under several MPI ranks), from 512² up (below it the threads cost more
+/// than they save). Set before each plan; planning happens in constructors only.
+void plan_threads(std::size_t size)
+{
+  static const int available = []
+  {
+    fftw_init_threads();
+    if (const char* env = std::getenv("ROCKJOINT_FFT_THREADS"))
+      return std::max(1, std::atoi(env));
+    return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  }();
+  fftw_plan_with_nthreads(size >= 512 * 512 ? available : 1);
+}
+
 struct HalfSpace::Fft
 {
   std::size_t m0, m1;     // transform grid (padded for the non-periodic kernel)
@@ -41,6 +59,7 @@ struct HalfSpace::Fft
 
   Fft(std::size_t rows, std::size_t cols) : m0(rows), m1(cols)
   {
+    plan_threads(m0 * m1);
     real = fftw_alloc_real(m0 * m1);
     spectrum = fftw_alloc_complex(m0 * (m1 / 2 + 1));
     if (!real || !spectrum)
