@@ -5,6 +5,7 @@ mapping rejects unknown keys (with the valid ones listed) and missing required o
 """
 from __future__ import annotations
 
+import abc
 import dataclasses
 from typing import Any, Callable, Optional
 
@@ -31,13 +32,14 @@ class Checker:
         raise SceneError(f"{self.source}, line {self.line(path)}: {key or 'scene'}: {message}")
 
 
-class Field:
+class Field(abc.ABC):
     required = True
     default: Any = MISSING
     doc = ""
 
-    def check(self, value, path: tuple, c: Checker):  # pragma: no cover - abstract
-        raise NotImplementedError
+    @abc.abstractmethod
+    def check(self, value, path: tuple, c: Checker):
+        """The value in SI (or the checked structure); c.fail(path, ...) on a bad one."""
 
 
 @dataclasses.dataclass
