@@ -79,24 +79,30 @@ def _where(curve: ClosureCurve, i: int) -> str:
     return f"{curve.source}: line {int(curve.lines[i])}"
 
 
-def _check_curve(curve: ClosureCurve, minimum_points: int = 4) -> None:
-    """Clear errors naming the file and line for a curve that cannot be fitted."""
-    s, d = curve.normal_stress, curve.closure
+def check_points(data, what: str = "a closure curve is a loading curve") -> None:
+    """Clear errors naming the file and line (data.source, data.lines) for stress/closure points
+    that are not 1-D arrays of one length, not finite, or at a negative (tensile) stress."""
+    s, d = data.normal_stress, data.closure
     if s.shape != d.shape or s.ndim != 1:
-        raise ValueError(f"{curve.source}: normal_stress and closure must be 1-D arrays of one "
+        raise ValueError(f"{data.source}: normal_stress and closure must be 1-D arrays of one "
                          f"length (got {s.shape} and {d.shape})")
-    if s.size < minimum_points:
-        raise ValueError(f"{curve.source}: {s.size} data point(s); at least {minimum_points} "
-                         "are needed to fit a closure law")
     for name, v in (("normal stress", s), ("closure", d)):
         bad = np.flatnonzero(~np.isfinite(v))
         if bad.size:
-            raise ValueError(f"{_where(curve, bad[0])}: {name} is {v[bad[0]]} (not finite)")
+            raise ValueError(f"{_where(data, bad[0])}: {name} is {v[bad[0]]} (not finite)")
     neg = np.flatnonzero(s < 0)
     if neg.size:
-        raise ValueError(f"{_where(curve, neg[0])}: normal stress {s[neg[0]]:.6g} Pa is "
-                         "negative (compression is positive; a closure curve is a loading "
-                         "curve)")
+        raise ValueError(f"{_where(data, neg[0])}: normal stress {s[neg[0]]:.6g} Pa is "
+                         f"negative (compression is positive; {what})")
+
+
+def _check_curve(curve: ClosureCurve, minimum_points: int = 4) -> None:
+    """Clear errors naming the file and line for a curve that cannot be fitted."""
+    check_points(curve)
+    s, d = curve.normal_stress, curve.closure
+    if s.size < minimum_points:
+        raise ValueError(f"{curve.source}: {s.size} data point(s); at least {minimum_points} "
+                         "are needed to fit a closure law")
     for name, v in (("normal stress", s), ("closure", d)):
         back = np.flatnonzero(np.diff(v) <= 0)
         if back.size:

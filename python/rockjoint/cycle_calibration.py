@@ -25,7 +25,7 @@ import numpy as np
 
 from ._rockjoint import calibration as _cpp_calibration
 from ._rockjoint.constitutive import NormalHysteresis
-from .calibration import FittedParameter, calibration_spec, read_columns
+from .calibration import FittedParameter, calibration_spec, check_points, read_columns
 
 __all__ = ["LoadCycles", "read_load_cycles", "calibrate_cycles", "CycleCalibration", "BRANCHES"]
 
@@ -46,19 +46,7 @@ class LoadCycles:
         self.closure = np.asarray(self.closure, dtype=float)
         if self.lines is None:
             self.lines = np.arange(1, self.closure.size + 1)
-        s, d = self.normal_stress, self.closure
-        if s.shape != d.shape or s.ndim != 1:
-            raise ValueError(f"{self.source}: normal_stress and closure must be 1-D arrays of one "
-                             f"length (got {s.shape} and {d.shape})")
-        for name, v in (("normal stress", s), ("closure", d)):
-            bad = np.flatnonzero(~np.isfinite(v))
-            if bad.size:
-                raise ValueError(f"{self.source}: line {int(self.lines[bad[0]])}: {name} is "
-                                 f"{v[bad[0]]} (not finite)")
-        neg = np.flatnonzero(s < 0)
-        if neg.size:
-            raise ValueError(f"{self.source}: line {int(self.lines[neg[0]])}: normal stress "
-                             f"{s[neg[0]]:.6g} Pa is negative (compression is positive)")
+        check_points(self, "load cycles are compressive")
         labels = self.branches()
         for b in ("loading", "unloading"):
             if np.count_nonzero(labels == b) < 3:
