@@ -24,6 +24,26 @@ constexpr double direct_sum_factor = 4.0;
 /// uniform start tried: 218, 225, 228 and 238 iterations at 512²).
 constexpr double cold_start_fraction = 0.001;
 
+/// Polonsky & Keer restart CG (δ = 0) whenever a point re-enters contact. Near convergence a
+/// handful enter in almost every iteration, and each restart falls back to steepest descent:
+/// CG is kept conjugate while at most this fraction of the contact set enters (closure curve of
+/// the 1024² benchmark joint: 371 iterations always restarting, 299 at 0.001 and 0.01, 300 at
+/// 0.1, 324 at 1; same closures; docs/contact.md).
+constexpr double restart_entering_fraction = 0.01;
+
+/// A conjugate direction kept across entering points must have g·t >= this × |g|² on S, else CG
+/// restarts from the gap.
+constexpr double descent_fraction = 0.1;
+
+/// u = K p is carried from one iteration to the next by u ← s (u - τ K t + K c) (c: the few
+/// points clamped to zero or entering contact, summed directly) while |c| · N stays below this
+/// × M log2 M (M: transform size), the direct sum's cost against one FFT pair. Measured on the
+/// 1024² benchmark joint (bench/results/contact.md): see docs/contact.md.
+constexpr double direct_update_factor = 0.25;
+
+/// u is recomputed by FFT after this many carried updates (round-off does not accumulate).
+constexpr int carried_updates_limit = 50;
+
 /// Number of 4-connected components of the contact set (wrapping at the edges if periodic).
 int count_patches(const std::vector<double>& p, std::size_t rows, std::size_t cols, bool wrap)
 {
@@ -182,10 +202,19 @@ ContactState ElasticContact::solve(double mean_pressure, bool keep_fields)
     }
   double g_old = 1.0;
   bool conjugate = false;
+  bool u_current = false; // _u = K p already (carried over from the previous iteration)
+  int carried = 0;
+  const double transform_size = double(_half_space.transform_size());
+  const double update_limit
+      = direct_update_factor * transform_size * std::log2(transform_size) / double(n);
   int it = 0;
   for (; it < _options.maximum_iterations; ++it)
   {
-    _half_space.displacement(p, _u); // u = K p
+    if (!u_current)
+    {
+      _half_space.displacement(p, _u); // u = K p
+      carried = 0;
+    }
     const std::size_t m = _contact.size();
     double approach = 0.0;
     for (std::size_t k : _contact)
@@ -199,8 +228,18 @@ ContactState ElasticContact::solve(double mean_pressure, bool keep_fields)
       _gap_contact[a] = _u[k] + _aperture[k] - approach;
       g_norm += _gap_contact[a] * _gap_contact[a];
     }
-    // t = g + β t_old on S, 0 elsewhere (points that left S were zeroed when they left).
-    const double beta = conjugate ? g_norm / g_old : 0.0;
+    // t = g + β t_old on S, 0 elsewhere (points that left S were zeroed when they left). Kept
+    // conjugate across a few entering points, t must stay a descent direction (g·t > 0):
+    // otherwise restart from the gap.
+    double beta = conjugate ? g_norm / g_old : 0.0;
+    if (beta > 0.0)
+    {
+      double g_t_old = 0.0;
+      for (std::size_t a = 0; a < m; ++a)
+        g_t_old += _gap_contact[a] * _t[_contact[a]];
+      if (g_norm + beta * g_t_old <= descent_fraction * g_norm)
+        beta = 0.0;
+    }
     g_old = g_norm;
     _t_contact.resize(m);
     _r_contact.resize(m);
@@ -212,7 +251,8 @@ ContactState ElasticContact::solve(double mean_pressure, bool keep_fields)
     }
     // r = K t is needed on S only: direct summation while S is small (|S|² below a few N),
     // one FFT convolution otherwise.
-    if (double(m) * double(m) <= direct_sum_factor * double(n))
+    const bool r_everywhere = double(m) * double(m) > direct_sum_factor * double(n);
+    if (!r_everywhere)
       _half_space.displacement_on(_contact, _t_contact, _r_contact);
     else
     {
@@ -238,11 +278,15 @@ ContactState ElasticContact::solve(double mean_pressure, bool keep_fields)
     // Update on S (old values kept for the change), then points without pressure that
     // interpenetrate (g < 0) go back into contact: the one full-grid scan.
     _previous.resize(m);
+    _clamped.clear();
     for (std::size_t a = 0; a < m; ++a)
     {
       const std::size_t k = _contact[a];
       _previous[a] = p[k];
-      p[k] = std::max(p[k] - tau * _t_contact[a], 0.0);
+      const double stepped = p[k] - tau * _t_contact[a];
+      p[k] = std::max(stepped, 0.0);
+      if (stepped <= 0.0) // 0 too: such a point may re-enter below and then has a correction
+        _clamped.push_back({a, stepped});
     }
     _entering.clear();
     bool overlap = false;
@@ -254,7 +298,8 @@ ContactState ElasticContact::solve(double mean_pressure, bool keep_fields)
         if (!_member[k]) // a point of S clamped to 0 this iteration stays on the list
           _entering.push_back(k);
       }
-    conjugate = !overlap;
+    // CG restarts (δ = 0) when more than a few points re-enter (restart_entering_fraction).
+    conjugate = !overlap || double(_entering.size()) <= restart_entering_fraction * double(m);
     double load = 0.0;
     for (std::size_t k : _contact)
       load += p[k];
@@ -263,6 +308,7 @@ ContactState ElasticContact::solve(double mean_pressure, bool keep_fields)
     if (!(load > 0.0))
     {
       _contact.clear();
+      u_current = false;
       for (std::size_t k = 0; k < n; ++k)
       {
         p[k] = _valid[k] ? mean_pressure : 0.0; // lost every contact: restart uniform
@@ -276,6 +322,28 @@ ContactState ElasticContact::solve(double mean_pressure, bool keep_fields)
     }
     // Rescale to the load, measure the change, and form the next contact set.
     const double scale = total / load;
+    // Carry u = K p over: p_new = s (p - τ t + c), c = what clamping and entering changed.
+    u_current = r_everywhere && carried < carried_updates_limit
+                && double(_clamped.size() + _entering.size()) <= update_limit;
+    if (u_current)
+    {
+      _correction_nodes.clear();
+      _correction_values.clear();
+      for (const auto& [a, stepped] : _clamped)
+      {
+        _correction_nodes.push_back(_contact[a]);
+        _correction_values.push_back(scale * (p[_contact[a]] - stepped));
+      }
+      for (std::size_t k : _entering)
+      {
+        _correction_nodes.push_back(k);
+        _correction_values.push_back(scale * p[k]);
+      }
+      for (std::size_t k = 0; k < n; ++k)
+        _u[k] = scale * (_u[k] - tau * _r[k]);
+      _half_space.add_point_loads(_correction_nodes, _correction_values, _u);
+      ++carried;
+    }
     double change = 0.0;
     std::size_t kept = 0;
     for (std::size_t a = 0; a < m; ++a)

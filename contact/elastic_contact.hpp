@@ -21,6 +21,7 @@
 
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace rockjoint::contact
@@ -97,6 +98,9 @@ private:
   std::vector<std::size_t> _entering; // points re-entering contact in an iteration
   std::vector<unsigned char> _member; // 1 on S (the list's membership, for the full-grid scan)
   std::vector<double> _gap_contact, _t_contact, _r_contact; // g, t and K t on S
+  std::vector<std::pair<std::size_t, double>> _clamped; // (index in S, p - τ t < 0) clamped to 0
+  std::vector<std::size_t> _correction_nodes;           // c of the carried update of u
+  std::vector<double> _correction_values;
 };
 
 } // namespace rockjoint::contact

@@ -13,7 +13,6 @@
 /// applied by FFT on a zero-padded 2n_y × 2n_x grid (DC-FFT, Liu et al. 2000), so no image
 /// of the patch loads it. The mean displacement then contains the bulk compliance of the
 /// patch, which the contact solver removes when it reports closure.
-#include <complex>
 #include <cstddef>
 #include <memory>
 #include <span>
@@ -55,6 +54,15 @@ public:
   /// set is small (a contact set of a few per cent at most). Same K as displacement().
   void displacement_on(std::span<const std::size_t> nodes, std::span<const double> values,
                        std::span<double> out) const;
+
+  /// displacement += K c for a sparse load c (values at nodes) on the whole grid, by direct
+  /// summation (|nodes| · rows·cols operations, two contiguous kernel segments per row): cheaper
+  /// than a transform for a few dozen nodes. Same K as displacement().
+  void add_point_loads(std::span<const std::size_t> nodes, std::span<const double> values,
+                       std::span<double> displacement) const;
+
+  /// Points of the transform grid (rows·cols periodic, 4·rows·cols zero-padded).
+  std::size_t transform_size() const;
 
   std::size_t rows() const { return _rows; }
   std::size_t cols() const { return _cols; }

@@ -1,0 +1,97 @@
+// The influence operator u = K p of the contact reference (contact/half_space.hpp) against
+// references that do not use its transforms: the direct sum of Love's coefficients (zero-padded
+// kernel) and the exact response to a sinusoidal pressure (periodic kernel). Grids from 256²
+// up run the threaded, column-blocked transform; odd sizes leave a partial column block.
+#include <rockjoint/contact/half_space.hpp>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+#include <string>
+#include <vector>
+
+using rockjoint::contact::HalfSpace;
+using rockjoint::contact::Kernel;
+
+namespace
+{
+constexpr double modulus = 50e9; // E* [Pa]
+
+struct Grid
+{
+  std::size_t rows, cols;
+};
+
+class NonPeriodicConvolution : public ::testing::TestWithParam<Grid>
+{
+};
+
+/// Non-periodic: sparse random pressures; u at every node against Σ_b influence(x_a - x_b) p_b.
+TEST_P(NonPeriodicConvolution, EqualsTheDirectSumOfLoveCoefficients)
+{
+  const auto [rows, cols] = GetParam();
+  const double hx = 1e-4, hy = 1.3e-4;
+  HalfSpace hs(rows, cols, hx, hy, modulus, Kernel::non_periodic);
+  std::mt19937 rng(7);
+  std::uniform_int_distribution<std::size_t> node(0, rows * cols - 1);
+  std::uniform_real_distribution<double> value(1e6, 5e7);
+  std::vector<double> p(rows * cols, 0.0);
+  std::vector<std::size_t> loaded;
+  for (int k = 0; k < 12; ++k)
+  {
+    const std::size_t b = node(rng);
+    p[b] += value(rng);
+    loaded.push_back(b);
+  }
+  loaded.push_back(0); // the corners: the longest offsets of the padded kernel
+  loaded.push_back(rows * cols - 1);
+  p[0] = 2e7;
+  p[rows * cols - 1] = 3e7;
+  std::vector<double> u(rows * cols);
+  hs.displacement(p, u);
+  double largest = 0.0, worst = 0.0;
+  for (std::size_t a = 0; a < rows * cols; a += 97) // a spread sample of nodes
+  {
+    const double ia = double(a / cols), ja = double(a % cols);
+    double sum = 0.0;
+    for (std::size_t b = 0; b < rows * cols; ++b)
+      if (p[b] != 0.0)
+        sum += hs.influence((ja - double(b % cols)) * hx, (ia - double(b / cols)) * hy) * p[b];
+    largest = std::max(largest, std::abs(sum));
+    worst = std::max(worst, std::abs(u[a] - sum));
+  }
+  EXPECT_GT(largest, 0.0);
+  EXPECT_LE(worst, 1e-12 * largest) << rows << " x " << cols;
+}
+
+INSTANTIATE_TEST_SUITE_P(Grids, NonPeriodicConvolution,
+                         ::testing::Values(Grid{16, 16}, Grid{37, 53}, Grid{256, 300},
+                                           Grid{301, 257}),
+                         [](const auto& info)
+                         { return std::to_string(info.param.rows) + "x" + std::to_string(info.param.cols); });
+
+/// Periodic: p = cos(2π (m x/L_x + k y/L_y)) gives u = 2 p/(E* |q|) exactly.
+TEST(PeriodicConvolution, SinusoidalPressureGivesTheExactDisplacement)
+{
+  for (const Grid g : {Grid{64, 48}, Grid{256, 320}})
+  {
+    const double hx = 1e-4, hy = 2e-4;
+    HalfSpace hs(g.rows, g.cols, hx, hy, modulus, Kernel::periodic);
+    const double lx = hx * double(g.cols), ly = hy * double(g.rows);
+    const double qx = 2.0 * std::numbers::pi * 3.0 / lx, qy = 2.0 * std::numbers::pi * 5.0 / ly;
+    std::vector<double> p(g.rows * g.cols), u(p.size());
+    for (std::size_t i = 0; i < g.rows; ++i)
+      for (std::size_t j = 0; j < g.cols; ++j)
+        p[i * g.cols + j] = 1e6 * std::cos(qx * double(j) * hx + qy * double(i) * hy);
+    hs.displacement(p, u);
+    const double gain = 2.0 / (modulus * std::hypot(qx, qy));
+    double worst = 0.0;
+    for (std::size_t k = 0; k < p.size(); ++k)
+      worst = std::max(worst, std::abs(u[k] - gain * p[k]));
+    EXPECT_LE(worst, 1e-12 * gain * 1e6) << g.rows << " x " << g.cols;
+  }
+}
+
+} // namespace
