@@ -72,8 +72,10 @@ public:
   double poisson() const { return _poisson; }
 
   /// Response at total strain `strain` (strain_size() entries) from the `converged` states
-  /// (num_sets() entries); writes the trial states into `trial` (same size). The result depends
-  /// only on (strain, converged): the local solve starts from the converged jumps.
+  /// (num_sets() entries); writes the trial states into `trial` (same size). The local solve
+  /// starts from the converged jumps; only if it fails there is it retried from the jumps `trial`
+  /// holds on entry (the last iterate's), so a solution found from the converged start depends
+  /// on (strain, converged) alone.
   /// Throws std::invalid_argument for a non-finite strain or wrong sizes.
   PointResponse evaluate(std::span<const double> strain, std::span<const SetState> converged,
                          std::span<SetState> trial) const;

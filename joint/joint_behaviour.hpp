@@ -13,7 +13,11 @@
 ///   t_s = k_s (j_s - s)              joint in contact (Δ_e >= 0) or bonded in tension,
 ///         k_s = constant, or α (k(Δ_e) + k_r);
 ///   t_s = (k_open + k_r) (j_s - s)   joint open: no physical shear traction, only the
-///                                    residual spring (k_open: a law's own opening branch).
+///                                    residual spring (k_open: a law's own opening branch);
+///   t_s = k_r (j_s - s)              in contact where the strength is below that spring
+///                                    (k_r |j_s - s| >= τ_y, near opening; slip frozen, no
+///                                    dilation active): the residual floor, which keeps t_s
+///                                    continuous at opening (joint_slip.cpp).
 /// The residual stiffness k_r [Pa/m] is a linear spring in parallel with the law, in
 /// compression and in tension; an open joint is an isotropic spring of that residual
 /// stiffness in shear as well, so a block held only by an open joint is not a free body in

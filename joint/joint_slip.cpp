@@ -77,6 +77,27 @@ LocalResponse joint_response(const JointBehaviour& b, int gdim, const std::array
 
   const ShearStrength strength = shear_strength(b.strength, normal.stress, bonded);
   const double yield = ks.value * e - strength.strength; // f(τ_tr)
+  // Residual floor: where the strength has fallen below what the residual spring alone would
+  // carry (k_r e >= τ_y, σ_n within k_r e / tanφ of zero), the joint carries that spring,
+  // k_r (j_s - s) with its slip frozen, as an open joint does. The shear traction is then
+  // continuous at opening (it would otherwise jump from τ_y → 0 to k_r e there) and across
+  // the floor (|τ| = τ_y = k_r e on both sides, along the same trial direction). Only where
+  // slip does not dilate (ψ = 0 or past the dilation limit): a dilating return mapping would
+  // open the joint by tanψ Δλ on one side of the floor and not on the other. Newton's
+  // iterations cycled at the jump at opening wherever a smeared set opens and closes
+  // (docs/equivalent-continuum.md, "Robustness").
+  if (normal.in_contact && yield > 0.0 && b.residual_stiffness > 0.0
+      && b.residual_stiffness * e >= strength.strength
+      && dilation_increment(b.strength, converged.accumulated_slip, 0.0).rate == 0.0)
+  {
+    r.shear_state = ShearState::slip;
+    for (int i = 0; i < shear_components; ++i)
+    {
+      r.traction[i + 1] = b.residual_stiffness * elastic_slip[i];
+      r.tangent[i + 1][i + 1] = b.residual_stiffness;
+    }
+    return r;
+  }
   if (!normal.in_contact || !(yield > 0.0))
   {
     // A point whose elastic shear traction sits on its strength (to round-off) is sliding: it

@@ -21,7 +21,9 @@ namespace rockjoint::joint
 /// Δ_e = -j_n + d_n + tan ψ Δλ (radial return: the slip follows the trial shear direction,
 /// in 3D a circular cone in (τ1, τ2)), and the tangent is the consistent one (unsymmetric
 /// with friction: the shear strength follows the normal stress). An open joint carries the
-/// residual spring only and its slip is frozen. Never throws: a non-finite traction (a
+/// residual spring only and its slip is frozen; so does a joint in contact whose strength has
+/// fallen below that spring's traction k_r |j_s - s_n| (the residual floor, while slip does not
+/// dilate), which makes the shear traction continuous at opening. Never throws: a non-finite traction (a
 /// closure past the law's maximum) marks a failed trial; status/shear_state report the
 /// point's state.
 LocalResponse joint_response(const JointBehaviour& behaviour, int gdim,

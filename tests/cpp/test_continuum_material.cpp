@@ -249,6 +249,29 @@ TEST(ContinuumMaterial, SlipIsPathDependentThroughTheConvergedState)
   EXPECT_GT(std::abs(r3.stress[2] - r0.stress[2]), 1e4);
 }
 
+TEST(ContinuumMaterial, AFailedSolveFromTheConvergedJumpsIsRetriedFromTheTrialJumps)
+{
+  // The converged jumps carry a closure past V_m, where the law has no traction: the solve from
+  // there fails at once. From the trial jumps passed in (here the virgin 0) it succeeds, with
+  // the stress of a solve from a regular start (the same joint history, virgin).
+  const EquivalentContinuum m(2, E, nu, {bb_set({0, 1, 0}, 0.3)});
+  const std::vector<double> sigma{-2e6, -6e6, 0.4e6};
+  std::vector<SetState> virgin(1), scratch(1);
+  const auto eps = m.strain_at_stress(sigma, scratch);
+  std::vector<SetState> reference_trial(1);
+  const auto reference = m.evaluate(eps, virgin, reference_trial);
+  ASSERT_TRUE(reference.converged);
+  std::vector<SetState> bad(1);
+  bad[0].jump = {-1.2 * Vm, 0.0, 0.0};
+  std::vector<SetState> trial = bad; // no other start: fails
+  EXPECT_FALSE(m.evaluate(eps, bad, trial).converged);
+  trial.assign(1, SetState{}); // the last iterate's jumps: 0
+  const auto retried = m.evaluate(eps, bad, trial);
+  ASSERT_TRUE(retried.converged);
+  for (int i = 0; i < 3; ++i)
+    EXPECT_NEAR(retried.stress[i], reference.stress[i], 1e-9 * 6e6) << i;
+}
+
 TEST(ContinuumMaterial, StrainAtStressInvertsEvaluate)
 {
   const EquivalentContinuum m(3, E, nu, {bb_set({0, 0, 1}, 0.3), bb_set({1, 0, 0}, 0.5)});

@@ -265,6 +265,42 @@ TEST(JointSlip, OpenJointTransmitsNoTractionAndKeepsItsSlip)
   EXPECT_DOUBLE_EQ(k.traction[2], 1e6 * (-2e-3 - 1e-4));
 }
 
+TEST(JointSlip, ResidualFloorMakesTheShearTractionContinuousAtOpeningAndAcrossTheFloor)
+{
+  // k_r = 1e6 Pa/m, 1 mm of elastic slip: the residual spring alone carries k_r e = 1000 Pa.
+  JointBehaviour b = coulomb(30 * deg, 0.0);
+  b.residual_stiffness = 1e6;
+  JointPointState converged;
+  converged.slip = {3e-4, 0.0};
+  const double e = 1e-3, spring = 1e6 * e, mu = std::tan(30 * deg);
+  const double js = converged.slip[0] + e;
+  // Across opening (Δ_e = +1e-12 → -1e-12 m): in contact the Coulomb strength is ~6e-3 Pa, below
+  // the spring, so the joint carries the spring as the open joint does.
+  JointPointState closed_trial, open_trial;
+  const LocalResponse closed = respond(b, 2, {-1e-12, js, 0.0}, converged, &closed_trial);
+  const LocalResponse open = respond(b, 2, {1e-12, js, 0.0}, converged, &open_trial);
+  EXPECT_EQ(closed.shear_state, ShearState::slip);
+  EXPECT_EQ(open.shear_state, ShearState::open);
+  EXPECT_NEAR(closed.traction[1], spring, 1e-9 * spring);
+  EXPECT_NEAR(open.traction[1], spring, 1e-9 * spring);
+  EXPECT_EQ(closed_trial.slip, converged.slip); // on the floor the slip is frozen
+  // Across the floor: τ_y = tanφ (k_n + k_r) Δ = k_r e at Δ*; just below, the floor (k_r e);
+  // just above, the return mapping (τ_y): the same traction to the relative change of Δ.
+  const double star = spring / (mu * (kn + 1e6));
+  const LocalResponse below = respond(b, 2, {-star * (1 - 1e-9), js, 0.0}, converged);
+  const LocalResponse above = respond(b, 2, {-star * (1 + 1e-9), js, 0.0}, converged);
+  EXPECT_EQ(below.shear_state, ShearState::slip);
+  EXPECT_EQ(above.shear_state, ShearState::slip);
+  EXPECT_NEAR(below.traction[1], spring, 2e-9 * spring);
+  EXPECT_NEAR(above.traction[1], spring, 2e-9 * spring);
+  // Well above, the ordinary return mapping: |τ| = tanφ σ_n.
+  const LocalResponse contact = respond(b, 2, {-10 * star, js, 0.0}, converged);
+  EXPECT_NEAR(contact.traction[1], mu * (kn + 1e6) * 10 * star, 1e-9 * spring);
+  // The floor's tangent is consistent.
+  for (int g : {2, 3})
+    expect_tangent_matches_fd(b, g, {-0.5 * star, js, 2e-4}, converged, ShearState::slip);
+}
+
 TEST(JointSlip, FrictionAngleTowardsZeroLeavesCohesionOnly)
 {
   const double c = 3e5;

@@ -24,12 +24,14 @@ STRESS = 20e6
 @pytest.mark.parametrize("solver, line_search", [("snes", "basic"), ("newton", None)])
 def test_a_nonfinite_joint_residual_fails_the_step_and_the_load_step_is_cut(solver, line_search):
     """Without backtracking a trial past the law's range fails the Newton step: SNES's solve
-    with a diverged reason (the domain error fails its line search), the project's Newton on its
-    infinite residual; the load stepping then halves the step and reaches the load."""
+    with a diverged reason (the domain error fails its line search), the project's Newton (its
+    halving of a non-finite step switched off) on its infinite residual; the load stepping then
+    halves the step and reaches the load."""
     law = rockjoint.BartonBandis(KNI, VM)
     assert STRESS / KNI > VM  # the first Newton step from rest leaves the law's range
     options = {"snes_linesearch_type": line_search} if line_search else None
-    model = column_model(2, law, newton=NewtonOptions(closure_limit=None, verbose=False), petsc_options=options)
+    model = column_model(2, law, newton=NewtonOptions(closure_limit=None, verbose=False, max_backtracks=0),
+                         petsc_options=options)
     model.add_traction("top", (0.0, -STRESS))
     result = model.solve(load_steps=1, solver=solver)
     assert model.counts["nonfinite_residuals"] >= 1
@@ -39,6 +41,20 @@ def test_a_nonfinite_joint_residual_fails_the_step_and_the_load_step_is_cut(solv
     expected = ("DIVERGED_FUNCTION_DOMAIN", "DIVERGED_LINE_SEARCH") if solver == "snes" else ("non-finite residual",)
     assert all(any(e in r.reason for e in expected) for r in failed), [r.reason for r in failed]
     assert result.reports[-1].converged
+    top = model.boundary_mean_displacement("top")[1]
+    assert top == pytest.approx(expected_top(2, STRESS, VM * STRESS / (KNI * VM + STRESS)), rel=1e-8)
+
+
+def test_the_project_newton_halves_a_step_into_a_nonfinite_residual():
+    """The project's Newton (default max_backtracks) halves the step that left the law's range,
+    as SNES's backtracking does: the load step converges without being cut."""
+    model = column_model(2, rockjoint.BartonBandis(KNI, VM),
+                         newton=NewtonOptions(closure_limit=None, verbose=False))
+    model.add_traction("top", (0.0, -STRESS))
+    result = model.solve(load_steps=1)
+    assert model.counts["nonfinite_residuals"] >= 1
+    assert len(result.reports) == 1 and result.reports[0].converged
+    assert min(result.reports[0].step_lengths) < 1.0
     top = model.boundary_mean_displacement("top")[1]
     assert top == pytest.approx(expected_top(2, STRESS, VM * STRESS / (KNI * VM + STRESS)), rel=1e-8)
 

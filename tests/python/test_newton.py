@@ -92,6 +92,21 @@ def test_a_step_that_does_not_reduce_the_residual_is_stagnation_and_cuts_the_loa
                                             min_load_increment=0.2))
 
 
+def test_a_step_into_a_non_finite_residual_is_halved_instead_of_failing_the_load_step():
+    # The residual is not finite beyond u = 1.3 (a closure past a law's maximum, a failed local
+    # solve): the first full step from rest, du = 1.5, lands there and is halved to 0.75.
+    p = Scalar()
+    finite = p.residual
+    p.residual = lambda: finite() if p.u <= 1.3 else math.inf
+    report = newton(p, 1.0, QUIET)
+    assert report.converged and p.u == pytest.approx(1.0, rel=1e-12)
+    assert report.step_lengths[0] == 0.5
+    # With no halvings allowed, the same step fails on the non-finite residual.
+    p.u = 0.0
+    report = newton(p, 1.0, NewtonOptions(verbose=False, max_backtracks=0))
+    assert not report.converged and report.reason.startswith("non-finite")
+
+
 class Recording(Scalar):
     """The scalar spring with the optional protocol: commit_state, and a linear solve that takes
     (and records) the forcing term rtol."""

@@ -8,7 +8,7 @@ import pytest
 pytest.importorskip("dolfinx")
 pytest.importorskip("rockjoint._rockjoint_fem_coupling")
 
-from scene_cases import cli, write  # noqa: E402
+from scene_cases import SCENES, cli, write  # noqa: E402
 
 from rockjoint.scenes import load_scene, make_plan  # noqa: E402
 from rockjoint.scenes.runner import run_scene  # noqa: E402
@@ -56,6 +56,24 @@ def test_planner_keeps_sets_discrete_on_the_evidence(tmp_path):
     assert plan.smeared == ()
     text = plan.text()
     assert "joints of bed: discrete" in text and "bench/results/continuum.md" in text
+
+
+def test_planner_smears_a_dense_set_and_keeps_the_dominant_set_discrete(tmp_path):
+    # The demo tunnel with its bedding at 0.25 m (s/a = 0.0625): the bench's mixed model (dominant
+    # set discrete, the rest smeared) is within the 10 % budget and cheaper there; the cross set
+    # is the dominant one (τ/σ_n = cot 30° under the vertical hoop stress at the sidewall, three
+    # times tan 30°; the bedding carries no shear there) and its 5 m spacing has no bench row.
+    import os
+    text = open(os.path.join(SCENES, "tunnel.yaml"), encoding="utf-8").read()
+    text = text.replace("dip: 0 deg, spacing: 3 m, count: 8", "dip: 0 deg, spacing: 0.25 m, count: 8")
+    plan = make_plan(load_scene(write(tmp_path, text)))
+    assert plan.smeared == ("bedding",)
+    out = plan.text()
+    assert "joints of bedding: smeared" in out and "joints of cross: discrete" in out
+    assert "the dominant set (mobilised friction 3.00)" in out
+    # A budget below the bench's mixed gap keeps both discrete.
+    plan = make_plan(load_scene(write(tmp_path, text.replace("error_budget: 10 %", "error_budget: 1 %"), "tight.yaml")))
+    assert plan.smeared == ()
 
 
 def test_a_smeared_set_gives_the_discrete_answer_under_uniform_stress(tmp_path):

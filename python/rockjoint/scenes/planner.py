@@ -345,15 +345,44 @@ def make_plan(scene, reduced: bool = False) -> Plan:
     choices.append(Choice("intact model", "on the same mesh (split nodes glued)" if intact else "left out",
                           why="the joints' share of every answer is jointed minus intact",
                           cost="one linear solve per load step", error="none: same mesh, same solver"))
-    smeared = _smeared_sets(scene, sets, budget, choices)
+    smeared = _smeared_sets(scene, sets, budget, choices, dominance(scene, sets, dim))
     return Plan(dim, degree, quadrature, h, hj, ho, bound, table_top, tol, laws, slip, steps,
                 intact, choices, reduced, smeared)
 
 
-def _smeared_sets(scene, sets, budget, choices) -> tuple:
-    """Discrete or smeared, set by set (defaults.SMEARED_EVIDENCE): smeared only where the measured
-    equivalent continuum is within the budget and cheaper at the set's spacing over the opening
-    radius (or half the section's smaller side); the scene's plan.smeared overrides."""
+def dominance(scene, sets, dim) -> dict:
+    """{set: mobilised friction τ/τ_max where the set is loaded hardest}: with an opening, on the
+    set's plane under the uniaxial wall stress where the hoop stress peaks (Kirsch: 3 σ1 - σ3
+    along the major compression σ1); otherwise on its plane under the stage stresses. 0 for a set
+    without a strength. The largest is the dominant set, the one kept discrete in a mixed model."""
+    d = scene.data
+    opening = "opening" in d["geometry"]
+    out = {}
+    for s in sets:
+        strength = d["joints"][s["name"]].get("strength")
+        if strength is None:
+            out[s["name"]] = 0.0
+            continue
+        n = _normal(s, dim)
+        ratios = []
+        for _, t, _ in stage_stresses(scene):
+            if opening:
+                values, vectors = np.linalg.eigh(t)  # ascending: values[0] the major compression
+                hoop = max(0.0, -3.0 * values[0] + values[-1])
+                t = -hoop * np.outer(vectors[:, 0], vectors[:, 0])
+            ratios.append(mobilised_friction(strength, n, t))
+        out[s["name"]] = max(ratios, default=0.0)
+    return out
+
+
+def _smeared_sets(scene, sets, budget, choices, mobilised) -> tuple:
+    """Discrete or smeared, set by set (defaults.SMEARED_EVIDENCE, the nearest measured spacing
+    ratio at or above the set's: spacing over the opening radius, or half the section's smaller
+    side). The dominant set (largest mobilised friction, `dominance`) is smeared only where the
+    all-smeared model is within the budget and cheaper than the discrete one; any other set where
+    the mixed model (dominant set discrete, the rest smeared) or the all-smeared one is. Error of
+    a model: the larger of its crown and sidewall gaps to the discrete model. The scene's
+    plan.smeared overrides."""
     g = scene.data["geometry"]
     over = scene.data["plan"].get("smeared")
     names = [s["name"] for s in sets]
@@ -366,26 +395,36 @@ def _smeared_sets(scene, sets, budget, choices) -> tuple:
     if g["kind"] == "column":
         return ()
     size = g["opening"]["radius"] if "opening" in g else 0.5 * float(min(_extent(g)))
+    dominant = max(names, key=lambda name: mobilised[name]) if names else None
     chosen = []
     for s in sets:
         ratio = s["spacing"] / size
         rows = [r for r in defaults.SMEARED_EVIDENCE if r[0] >= ratio]
-        good = [r for r in rows if r[1] <= scene.data["error_budget"] and r[2] > 1.0]
-        auto = bool(good)
+        measured = min(rows, key=lambda r: r[0]) if rows else None
+        role = "dominant" if s["name"] == dominant else "other"
+        all_ok = bool(measured) and measured[1] <= budget and measured[2] > 1.0
+        mixed_ok = bool(measured) and measured[3] <= budget and measured[4] > 1.0
+        auto = all_ok or (role == "other" and mixed_ok)
         value = (s["name"] in over) if over is not None else auto
         if value:
             chosen.append(s["name"])
-        measured = min(rows, key=lambda r: r[0]) if rows else None
-        evidence = (f"the continuum bench at s/a = {measured[0]:g}: smeared {measured[1]:.0%} off the discrete "
-                    f"crown convergence, {measured[2]:.2g}x its speed" if measured else
-                    "no continuum bench row at so small a spacing ratio")
+        if measured:
+            evidence = (f"the continuum bench at s/a = {measured[0]:g}: all sets smeared {measured[1]:.0%} off "
+                        f"the discrete wall convergence at {measured[2]:.2g}x its speed, the dominant set "
+                        f"discrete and the rest smeared {measured[3]:.0%} off at {measured[4]:.2g}x")
+        else:
+            evidence = "no continuum bench row at so large a spacing ratio"
+        error = ("none from the choice: the joints are meshed" if not value else
+                 f"the bench's gap {measured[1] if (all_ok or not mixed_ok) else measured[3]:.0%} (wall convergence)"
+                 if measured else "unmeasured: the scene's plan asks for it")
         choices.append(Choice(
             f"joints of {s['name']}", "smeared (equivalent continuum)" if value else "discrete (joint elements)",
             why=(("set in the scene's plan (smeared); " if over is not None else "")
-                 + f"s/a = {ratio:.2g}; {evidence} (bench/results/continuum.md)"
-                 + ("" if value or over is not None else "; smeared is not both within the budget and cheaper")),
+                 + f"s/a = {ratio:.2g}; the {role} set (mobilised friction {_ratio(mobilised[s['name']])}); "
+                 + f"{evidence} (bench/results/continuum.md)"
+                 + ("" if value or over is not None else
+                    "; smearing it is not both within the budget and cheaper")),
             cost="smeared: no joint elements, a quadrature-point material with a local Newton per point"
                  if value else "joint elements on every joint of the set",
-            error=(f"the bench's gap {measured[1]:.0%} (crown convergence)" if (value and measured)
-                   else "none from the choice: the joints are meshed")))
+            error=error))
     return tuple(chosen)
