@@ -73,6 +73,6 @@ SECONDS_PER_DOF = 0.71 / 26926
 #: where the discrete and mixed models reach the 30 % support; mixed at 0.25: stopped at 35 %).
 #: The planner (planner._smeared_sets) smears a set where the row at the nearest ratio at or above
 #: its own is within the budget and faster.
-SMEARED_EVIDENCE = ((1.0, 0.797, 0.14, 0.174, 1.0), (0.5, 0.773, 0.34, 0.287, 1.2),
-                    (0.25, 0.189, 1.6, math.inf, 0.21), (0.125, 0.104, 5.7, 0.130, 5.3),
-                    (0.0625, math.inf, 22.8, 0.039, 21.4))
+SMEARED_EVIDENCE = ((1.0, 0.797, 0.18, 0.174, 1.3), (0.5, 0.773, 0.29, 0.287, 0.87),
+                    (0.25, 0.189, 2.1, math.inf, 0.25), (0.125, 0.104, 7.6, 0.130, 5.2),
+                    (0.0625, math.inf, 24.2, 0.039, 20.0))
