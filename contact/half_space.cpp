@@ -163,7 +163,7 @@ struct HalfSpace::Fft
     if (forward)
     {
       fftw_execute(forward);
-      multiply_rows(0, m0);
+      multiply_spectrum();
       fftw_execute(backward);
       return;
     }
@@ -178,10 +178,10 @@ struct HalfSpace::Fft
     fftw_execute(rows_backward);
   }
 
-  /// Periodic: spectrum ×= K̂ (real) on rows [begin, end).
-  void multiply_rows(std::size_t begin, std::size_t end)
+  /// Periodic: spectrum ×= K̂ (real).
+  void multiply_spectrum()
   {
-    for (std::size_t k = begin * half; k < end * half; ++k)
+    for (std::size_t k = 0; k < m0 * half; ++k)
     {
       spectrum[k][0] *= kernel[k];
       spectrum[k][1] *= kernel[k];
@@ -381,7 +381,7 @@ void HalfSpace::displacement(std::span<const double> pressure, std::span<double>
   if (direct)
   {
     fftw_execute_dft_r2c(f.forward, const_cast<double*>(pressure.data()), f.spectrum);
-    f.multiply_rows(0, f.m0);
+    f.multiply_spectrum();
     fftw_execute_dft_c2r(f.backward, f.spectrum, displacement.data());
     return;
   }
