@@ -37,6 +37,7 @@ from __future__ import annotations
 import argparse
 import logging
 import math
+import re
 import os
 import time
 
@@ -206,7 +207,8 @@ def attempt(kind, spacing, mesh_size, scene="tunnel"):
     try:
         return (run_blocky if scene == "blocky" else run)(kind, spacing, mesh_size) + ("",)
     except ConvergenceError as e:
-        lam = str(e).split("at load factor ")[-1].split(" ")[0]
+        found = re.search(r"at load factor ([-+0-9.eE]+)", str(e))
+        lam = found.group(1) if found else "?"
         try:
             left = (f" (wall traction {100 * (1 - float(lam) * (1 - SUPPORT)):.1f} % of in-situ)"
                     if scene == "tunnel" else "")

@@ -60,3 +60,45 @@ def top_load(model, dim, stress):
 def rock_strain(dim, stress):
     """|ε| of the rock under uniaxial stress: plane strain σ/E', 3D σ/E."""
     return stress / (E_PLANE if dim == 2 else E)
+
+
+def sliding_column(comm=MPI.COMM_WORLD, **newton):
+    """A set at 35° with φ = 20° smeared in the column (rollers bottom and left), 2 MPa on top and
+    0.5 MPa on the right: the set slides (one slip system, slip monotone). newton: NewtonOptions
+    fields over QUIET's."""
+    import dataclasses
+    import numpy as np
+    th = np.radians(35.0)
+    strength = _rockjoint.joint.JointStrength(_rockjoint.joint.StrengthModel.coulomb,
+                                              friction_angle=np.radians(20.0))
+    c = _rockjoint.continuum
+    mat = c.EquivalentContinuum(2, E, NU, [c.JointSet([-np.sin(th), np.cos(th)], 0.5, behaviour(strength))])
+    model = column(2, smeared={"block_1": mat}, comm=comm, newton=dataclasses.replace(QUIET, **newton))
+    top_load(model, 2, 2e6)
+    model.add_traction("right", (-0.5e6, 0.0))
+    return model
+
+
+def sliding_answer(model):
+    """(top and right faces' mean displacements [m], largest slip [m]) of a sliding_column."""
+    import numpy as np
+    slip = model.smeared.points[1].set_state(0)["slip"]
+    return (model.boundary_mean_displacement("top"), model.boundary_mean_displacement("right"),
+            model.comm.allreduce(float(np.abs(slip).max(initial=0.0)), op=MPI.MAX))
+
+
+def fail_first_newton(monkeypatch):
+    """Make the first Newton of the next load step report failure without touching the model, so
+    that pseudo-transient continuation solves it; returns the switch ({"first": bool})."""
+    from rockjoint.fem_coupling import pseudo_transient
+    from rockjoint.fem_coupling.newton import StepReport
+    real = pseudo_transient.newton
+    calls = {"first": True}
+
+    def newton(problem, load_factor, options, step=1, start=None):
+        if calls["first"]:
+            calls["first"] = False
+            return StepReport(load_factor, reason="failed on purpose")
+        return real(problem, load_factor, options, step=step, start=start)
+    monkeypatch.setattr(pseudo_transient, "newton", newton)
+    return calls

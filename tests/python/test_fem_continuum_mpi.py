@@ -8,9 +8,8 @@ pytest.importorskip("rockjoint._rockjoint_fem_coupling")
 
 from mpi4py import MPI  # noqa: E402
 
-from rockjoint import _rockjoint  # noqa: E402
-from continuum_cases import (HEIGHT, bb_closure, behaviour, column, material, rock_strain,  # noqa: E402
-                             top_load, vertical, E, NU)
+from continuum_cases import (HEIGHT, bb_closure, column, fail_first_newton, material,  # noqa: E402
+                             rock_strain, sliding_answer, sliding_column, top_load, vertical)
 
 STRESS = 5e6
 
@@ -32,20 +31,10 @@ def test_smeared_and_mixed_columns_in_parallel(dim):
 
 
 def slipping_column(comm):
-    """A set at 35° with φ = 20° smeared in the column, loaded past its strength in 3 steps."""
-    th = np.radians(35.0)
-    strength = _rockjoint.joint.JointStrength(_rockjoint.joint.StrengthModel.coulomb,
-                                              friction_angle=np.radians(20.0))
-    c = _rockjoint.continuum
-    mat = c.EquivalentContinuum(2, E, NU, [c.JointSet([-np.sin(th), np.cos(th)], 0.5,
-                                                      behaviour(strength))])
-    model = column(2, smeared={"block_1": mat}, comm=comm)
-    top_load(model, 2, 2e6)
-    model.add_traction("right", (-0.5e6, 0.0))
+    """The sliding column loaded past its strength in 3 steps: its faces' moves and largest slip."""
+    model = sliding_column(comm)
     model.solve(load_steps=3)
-    slip = model.smeared.points[1].set_state(0)["slip"]
-    return model.boundary_mean_displacement("top"), model.boundary_mean_displacement("right"), \
-        comm.allreduce(float(np.abs(slip).max(initial=0.0)), op=MPI.MAX)
+    return sliding_answer(model)
 
 
 @pytest.mark.mpi
@@ -53,6 +42,24 @@ def test_slipping_set_in_parallel_equals_serial():
     top, right, slip = slipping_column(MPI.COMM_WORLD)
     assert slip > 1e-5  # the set slips
     serial = slipping_column(MPI.COMM_SELF)
+    np.testing.assert_allclose(top, serial[0], rtol=1e-8)
+    np.testing.assert_allclose(right, serial[1], rtol=1e-8)
+    assert slip == pytest.approx(serial[2], rel=1e-8)
+
+
+@pytest.mark.mpi
+def test_pseudo_transient_continuation_in_parallel_equals_serial(monkeypatch):
+    """A load step solved by pseudo-transient continuation (its first Newton made to fail) on 2 ranks
+    and on one: the same displacements and slip."""
+    answers = []
+    for comm in (MPI.COMM_WORLD, MPI.COMM_SELF):
+        fail_first_newton(monkeypatch)
+        model = sliding_column(comm)
+        result = model.solve()
+        assert "pseudo-transient" in result.reports[-1].reason
+        answers.append(sliding_answer(model))
+    (top, right, slip), serial = answers
+    assert slip > 1e-5
     np.testing.assert_allclose(top, serial[0], rtol=1e-8)
     np.testing.assert_allclose(right, serial[1], rtol=1e-8)
     assert slip == pytest.approx(serial[2], rel=1e-8)

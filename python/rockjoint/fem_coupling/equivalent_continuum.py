@@ -12,6 +12,14 @@ correction to it (one bulk, no parallel framework):
 with Voigt vectors ε_v (engineering shear), σ0 the in-situ stress (∫ε(v):σ0 is already in the
 model's residual) and ε0 the strain that carries it (the sets pre-closed by σ0). Both forms use
 the quadrature degree of the stress/tangent quadrature spaces.
+
+Viscous sets (`relaxation` = r, set by pseudo_transient.py): Duvaut-Lions at the material point,
+    σ = (σ_n + D (ε - ε_n) + r σ_ri(ε)) / (1 + r),   C = (D + r C_ri) / (1 + r),
+with σ_n, ε_n the last committed stress and strain and σ_ri, C_ri the rate-independent response:
+the joints' deformation lags behind the rock's by the relaxation time. The D part keeps the
+tangent positive definite where the rate-independent one is not (sets sliding with a
+non-associated flow rule), and the stationary state of the pseudo-time steps (ε = ε_n) is the
+rate-independent equilibrium.
 """
 from __future__ import annotations
 
@@ -92,6 +100,10 @@ class SmearedBlocks:
             self.cells[tag] = cells
             self.points[tag] = _rockjoint.continuum.ContinuumPoints(material, cells.size * self.num_qp)
             self.eps0[tag] = np.zeros((cells.size * self.num_qp, nv))
+        #: r = Δt/τ of viscous sets (module docstring); None: rate-independent
+        self.relaxation = None
+        self._committed = {tag: (np.zeros_like(e), e.copy()) for tag, e in self.eps0.items()}  # σ_n, ε_n
+        self._current = {}
         self._fill_elastic()
 
         v, du = blocks.v, ufl.TrialFunction(blocks.V)
@@ -131,6 +143,7 @@ class SmearedBlocks:
             self.eps0[tag] = pts.initialise_from_stress(s0)
             self.sigma0.x.array.reshape(-1, nv)[self._dofs(tag)] = s0
             self.stress.x.array.reshape(-1, nv)[self._dofs(tag)] = s0
+            self._committed[tag] = (s0.copy(), self.eps0[tag].copy())
 
     def update(self) -> bool:
         """Stress and tangent at the current displacement (trial state from the converged one);
@@ -142,6 +155,12 @@ class SmearedBlocks:
                 continue
             eps = self._strain_expr.eval(self.mesh, cells).reshape(-1, nv) + self.eps0[tag]
             stress, tangent, failed = pts.evaluate(eps)
+            if self.relaxation is not None:
+                r, (s_n, e_n) = self.relaxation, self._committed[tag]
+                D = pts.material.rock_stiffness()
+                stress = (s_n + (eps - e_n) @ D.T + r * stress) / (1.0 + r)
+                tangent = (D.ravel()[None, :] + r * tangent) / (1.0 + r)
+            self._current[tag] = (stress, eps)
             dofs = self._dofs(tag)
             self.stress.x.array.reshape(-1, nv)[dofs] = stress
             self.tangent.x.array.reshape(-1, nv * nv)[dofs] = tangent
@@ -176,8 +195,10 @@ class SmearedBlocks:
                                        [bc._cpp_object for bc in bcs])
 
     def commit_state(self) -> None:
-        for pts in self.points.values():
+        for tag, pts in self.points.items():
             pts.commit()
+            if tag in self._current:
+                self._committed[tag] = self._current[tag]
 
     def revert_state(self) -> None:
         for pts in self.points.values():

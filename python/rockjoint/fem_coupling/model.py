@@ -41,6 +41,7 @@ from .load_path import LoadPath
 from .loads import Load, Support
 from .newton import NewtonOptions, solve_load_path
 from .petsc_options import check_options_prefix, check_petsc_options
+from .pseudo_transient import solve_step_with_relaxation
 from .stages import JointedProblem, Stage, StageClock, StageResult, snes_load_path
 from ..validation import positive_number
 
@@ -503,7 +504,8 @@ class JointedRockModel:
         t0 = time.perf_counter()
         try:
             if solver == "newton":
-                reports = solve_load_path(self, load_steps, self.newton_options)
+                reports = solve_load_path(self, load_steps, self.newton_options,
+                                          solve_step=self._step_solver())
             else:
                 reports = snes_load_path(self, load_steps, self.newton_options)
         except Exception:
@@ -531,8 +533,20 @@ class JointedRockModel:
             self._begin_stage()
             self._advancing = True
         t0 = time.perf_counter()
-        reports = solve_load_path(self, load_steps, self.newton_options, target=target, adaptive=False)
+        reports = solve_load_path(self, load_steps, self.newton_options, target=target, adaptive=False,
+                                  solve_step=self._step_solver())
         return self._stage_result(f"advance to {target:g}", reports, time.perf_counter() - t0)
+
+    def _step_solver(self):
+        """The load-step solver: Newton, and with smeared sets its pseudo-transient continuation
+        when Newton fails (pseudo_transient.py); None: solve_load_path's plain Newton."""
+        if self.smeared is None:
+            return None
+        smeared = self.smeared
+
+        def solve_step(problem, load_factor, step, start):
+            return solve_step_with_relaxation(problem, smeared, load_factor, self.newton_options, step, start)
+        return solve_step
 
     def _close_advanced_stage(self) -> None:
         """After advance(): the loads of the factor reached become the next stage's start."""

@@ -82,6 +82,16 @@ class NewtonOptions:
     forcing_max: float = 0.5
     forcing_gamma: float = 0.9       #: γ of choice 2
     forcing_alpha: float = 2.0       #: α of choice 2
+    #: smeared joint sets (equivalent continuum): a load step whose Newton fails is solved again
+    #: by pseudo-transient continuation (pseudo_transient.py: viscous sets with r = Δt/τ from
+    #: relaxation_initial, doubled after every converged pseudo-time step, to the rate-independent
+    #: equilibrium); None: off (the step is cut as for discrete joints)
+    relaxation_initial: float | None = 1.0
+    relaxation_max_steps: int = 200  #: pseudo-time steps of one such load step before giving up
+    #: largest r: each pseudo-time step then still removes all but 1/(1 + r) of the viscous
+    #: overstress, and the tangent keeps D/(1 + r) (Newton failed at r = 6.6e4 on the sliding column
+    #: of tests/python/test_fem_pseudo_transient.py, where r <= 3.3e4 converged in 2-4 iterations)
+    relaxation_max: float = 1e4
 
     def __post_init__(self):
         if self.closure_limit is not None and not 0.0 < self.closure_limit < 1.0:
@@ -93,6 +103,15 @@ class NewtonOptions:
             value = getattr(self, name)
             if not 0.0 < value < 1.0:
                 raise ValueError(f"NewtonOptions.{name} must be in (0, 1), got {value!r}")
+        if self.relaxation_initial is not None and not (np.isfinite(self.relaxation_initial)
+                                                        and self.relaxation_initial > 0.0):
+            raise ValueError(f"NewtonOptions.relaxation_initial must be > 0 or None, got "
+                             f"{self.relaxation_initial!r}")
+        if not (np.isfinite(self.relaxation_max) and self.relaxation_max > 0.0):
+            raise ValueError(f"NewtonOptions.relaxation_max must be > 0, got {self.relaxation_max!r}")
+        if int(self.relaxation_max_steps) != self.relaxation_max_steps or self.relaxation_max_steps < 1:
+            raise ValueError(f"NewtonOptions.relaxation_max_steps must be an integer >= 1, got "
+                             f"{self.relaxation_max_steps!r}")
         if not 1.0 < self.forcing_alpha <= 2.0:
             raise ValueError(f"NewtonOptions.forcing_alpha must be in (1, 2], got {self.forcing_alpha!r}")
 

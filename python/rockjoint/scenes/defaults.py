@@ -64,15 +64,14 @@ SLIP_MARGIN = 0.5
 SECONDS_PER_DOF = 0.71 / 26926
 
 #: Discrete against smeared joint sets (equivalent continuum, docs/equivalent-continuum.md): the
-#: tunnel rows of bench/results/continuum.md (bench/bench_continuum.py, 2026-11-26; a = 4 m, two
-#: Coulomb sets, spacings s and 2 s), as (s/a, error of the all-smeared model, its speed-up over
+#: tunnel rows of bench/results/continuum.md (bench/bench_continuum.py, 2026-11-26 13:32 UTC; a = 4 m,
+#: two Coulomb sets, spacings s and 2 s), as (s/a, error of the all-smeared model, its speed-up over
 #: the discrete one, error of the mixed model (dominant set discrete, the rest smeared), its
-#: speed-up). Error: the larger of the crown and sidewall convergence gaps to the discrete model;
-#: inf where the model failed or did not hold on a finer mesh (all-smeared at s/a = 0.0625: it
-#: converges at h = 1.5 m but stops at 60 % of the in-situ wall traction at h = 1 and 0.75 m,
-#: where the discrete and mixed models reach the 30 % support; mixed at 0.25: stopped at 35 %).
+#: speed-up). Error: the larger of the crown and sidewall convergence gaps to the discrete model,
+#: at s/a = 0.0625 the largest over the bench's mesh check (all smeared: sidewall -34, -35, -6 % on
+#: far-field meshes of 1.5, 1.0, 0.75 m); inf would mark a model that failed.
 #: The planner (planner._smeared_sets) smears a set where the row at the nearest ratio at or above
 #: its own is within the budget and faster.
-SMEARED_EVIDENCE = ((1.0, 0.797, 0.18, 0.174, 1.3), (0.5, 0.773, 0.29, 0.287, 0.87),
-                    (0.25, 0.189, 2.1, math.inf, 0.25), (0.125, 0.104, 7.6, 0.130, 5.2),
-                    (0.0625, math.inf, 24.2, 0.039, 20.0))
+SMEARED_EVIDENCE = ((1.0, 0.809, 0.12, 0.174, 0.9), (0.5, 0.783, 0.27, 0.287, 1.2),
+                    (0.25, 0.189, 1.6, 0.097, 0.75), (0.125, 0.104, 6.9, 0.130, 4.9),
+                    (0.0625, 0.352, 24.3, 0.039, 17.4))
