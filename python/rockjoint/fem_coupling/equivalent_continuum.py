@@ -194,6 +194,18 @@ class SmearedBlocks:
                                        _cpp.fem.pack_coefficients(form._cpp_object),
                                        [bc._cpp_object for bc in bcs])
 
+    def reset_state(self) -> None:
+        """Back to the virgin state (no in-situ stress, no slip, sets unloaded): a restarted model."""
+        nv = self.nv
+        self.relaxation = None
+        self.sigma0.x.array[:] = 0.0
+        self.stress.x.array[:] = 0.0
+        for tag, pts in self.points.items():
+            self.eps0[tag] = pts.initialise_from_stress(np.zeros((pts.num_points, nv)))
+            self._committed[tag] = (np.zeros((pts.num_points, nv)), self.eps0[tag].copy())
+        self._current = {}
+        self._fill_elastic()
+
     def commit_state(self) -> None:
         for tag, pts in self.points.items():
             pts.commit()

@@ -492,6 +492,8 @@ class JointedRockModel:
             raise ValueError(f"solver must be 'newton' or 'snes', got {solver!r}")
         if restart and self.coupling is not None:
             self.coupling.reset_state()  # path-dependent point state
+            if self.smeared is not None:
+                self.smeared.reset_state()
             self._initialised = False
             self._advancing = False
         self._prepare()
