@@ -1,5 +1,5 @@
 """Pseudo-transient continuation of a load step with smeared joint sets (docs/equivalent-continuum.md,
-"Viscous regularisation").
+"Robustness", 3.).
 
 Sets that slide with a non-associated flow rule make the rate-independent equivalent continuum
 lose uniqueness: on the tunnel bench the slip settles in one row of points or the next, and
@@ -44,9 +44,7 @@ def solve_step_with_relaxation(problem, smeared, load_factor: float, options, st
     if first.converged or options.relaxation_initial is None:
         return first
     problem.restore_state()
-    report = StepReport(load_factor, residual_norms=list(first.residual_norms),
-                        step_lengths=list(first.step_lengths), forcing=list(first.forcing),
-                        linear_iterations=list(first.linear_iterations))
+    report = first  # the failed Newton's record, extended by every pseudo-time step's
     r0 = min(float(options.relaxation_initial), options.relaxation_max)
     r = r0
     quiet = replace(options, verbose=False)  # one log line per pseudo-time step instead
