@@ -185,7 +185,7 @@ def cell_hoop_stress(model, stress):
     mesh = model.mesh
     n = mesh.topology.index_map(2).size_local
     x = mesh.geometry.x[:, :2]
-    tri = x[mesh.geometry.dofmap[:n]]
+    tri = x[mesh.geometry.dofmaps[0][:n]]
     centroid = tri.mean(axis=1)
     sig = stress.x.array.reshape(-1, 2, 2)[stress.function_space.dofmap.list.ravel().reshape(-1)[:n]]
     th = np.arctan2(centroid[:, 1] - CENTRE[1], centroid[:, 0] - CENTRE[0])

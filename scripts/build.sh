@@ -3,7 +3,7 @@
 # scripts/host.sh), then configure and build rockjoint into ./build (or $ROCKJOINT_BUILD_DIR).
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/host.sh"
-build="${ROCKJOINT_BUILD_DIR:-$rj_repo/build}"
+build="$rj_build_dir"
 rj_setup
 rj_build() {
   rj_run cmake -S "$rj_repo" -B "$build" -DCMAKE_BUILD_TYPE=Release -DPython3_EXECUTABLE="$rj_python" >/dev/null

@@ -3,7 +3,7 @@
 # jointed specimen beside the intact one. Outputs go to ./out/ (PNG, XDMF, text report).
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/host.sh"
-build="${ROCKJOINT_BUILD_DIR:-$rj_repo/build}"
+build="$rj_build_dir"
 bash "$rj_repo/scripts/build.sh"
 rj_setup
 export PYTHONPATH="$rj_repo/python:$build/python${PYTHONPATH:+:$PYTHONPATH}" MPLBACKEND=Agg

@@ -5,7 +5,7 @@
 # (natively on Debian 13; inside the root of scripts/host.sh on Debian 12). Build first.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/host.sh"
-build="${ROCKJOINT_BUILD_DIR:-$rj_repo/build}"
+build="$rj_build_dir"
 rj_setup
 export PYTHONPATH="$rj_repo/python:$build/python${PYTHONPATH:+:$PYTHONPATH}" MPLBACKEND=Agg
 rj_run "$@"

@@ -3,7 +3,7 @@
 # and the MPI suites (mpirun -n 2 and 3), all driven by ctest, in the Debian 13 userland.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/host.sh"
-build="${ROCKJOINT_BUILD_DIR:-$rj_repo/build}"
+build="$rj_build_dir"
 bash "$rj_repo/scripts/build.sh"
 rj_setup
 cd "$build"

@@ -31,7 +31,7 @@ def owned_block_measures(d):
     tdim = mesh.topology.dim
     n_owned = mesh.topology.index_map(tdim).size_local
     x = mesh.geometry.x[:, :mesh.geometry.dim]
-    dofs = mesh.geometry.dofmap[:n_owned]
+    dofs = mesh.geometry.dofmaps[0][:n_owned]
     e = x[dofs[:, 1:]] - x[dofs[:, :1]]
     if tdim == 2:
         m = 0.5 * np.abs(e[:, 0, 0] * e[:, 1, 1] - e[:, 0, 1] * e[:, 1, 0])

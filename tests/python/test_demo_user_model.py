@@ -1,7 +1,7 @@
 """The user-model demo runs as it is, serially and on 2 ranks.
 
-Its own checks are printed: the user's forms + JointCoupling against JointedRockModel (E per
-block) and NewtonSolver against SNES; they must agree to solver tolerance, the joints must carry
+Its own check is printed: the user's forms + JointCoupling solved by SNES against
+JointedRockModel's own Newton (E per block); they must agree to solver tolerance, the joints must carry
 load, and 2 ranks must print the serial numbers.
 """
 import re
@@ -18,7 +18,7 @@ OUTPUTS = ("user_model.txt", "user_model.png", "user_model.xdmf", "user_model_jo
 
 
 def run_demo(out, ranks):
-    demo_runner.run_demo("demo_user_model.py", out, ranks, ("--mesh-size", "2.5", "--snes"))
+    demo_runner.run_demo("demo_user_model.py", out, ranks, ("--mesh-size", "2.5"))
     for name in OUTPUTS:
         assert (out / name).exists(), name
     text = (out / "user_model.txt").read_text()
@@ -35,11 +35,11 @@ def serial(tmp_path_factory):
     return run_demo(tmp_path_factory.mktemp("serial"), 1)
 
 
-def test_user_model_equals_jointed_rock_model_and_snes_equals_newton(serial):
+def test_user_model_equals_jointed_rock_model(serial):
     assert serial["relative to max |u|"] <= 1e-8
     user = serial["crest settlement, E per block, user [mm]"]
     assert user == pytest.approx(serial["crest settlement, JointedRockModel [mm]"], rel=1e-8)
-    assert serial["max |u_newton - u_snes| [m]"] <= 1e-9 * serial["crest settlement, graded E [mm]"] * 1e-3
+    assert serial["SNES iterations (graded E)"] > 2  # the joints make the problem nonlinear
     # The graded model is softer near the crest than the per-block one: it settles more.
     assert serial["crest settlement, graded E [mm]"] > user > 0.0
     # The sliding plane is loaded: closed and sheared.

@@ -36,7 +36,7 @@ def check_pairs_against_jointed_mesh(d, jm):
     # the pair's cells lie on opposite sides of the facet plane
     tdim = d.mesh.topology.dim
     x = d.mesh.geometry.x[:, :d.mesh.geometry.dim]
-    dofs = d.mesh.geometry.dofmap
+    dofs = d.mesh.geometry.dofmaps[0]
     cm, cp = x[dofs[p.minus_cells]].mean(axis=1), x[dofs[p.plus_cells]].mean(axis=1)
     if tdim == 2:
         t = xm[:, 1] - xm[:, 0]
@@ -104,7 +104,7 @@ def test_pair_vertex_positions_match_and_orient(dim):
     p = d.pairs
     pm, pp = pair_vertex_positions(d)
     x = d.mesh.geometry.x[:, :dim]
-    dofs = d.mesh.geometry.dofmap
+    dofs = d.mesh.geometry.dofmaps[0]
     xm = x[np.take_along_axis(dofs[p.minus_cells], pm, axis=1)]
     xp = x[np.take_along_axis(dofs[p.plus_cells], pp, axis=1)]
     assert np.array_equal(xm, xp)  # entrywise coincident

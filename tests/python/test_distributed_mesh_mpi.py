@@ -34,7 +34,7 @@ def check_parallel(jm, comm):
     xp = facet_coordinates(mesh, p.plus_cells, p.plus_local_facets)
     assert sorted_rows(xm) == sorted_rows(xp)
     pm, pp = pair_vertex_positions(d)
-    x, dofs = mesh.geometry.x[:, :mesh.geometry.dim], mesh.geometry.dofmap
+    x, dofs = mesh.geometry.x[:, :mesh.geometry.dim], mesh.geometry.dofmaps[0]
     assert np.array_equal(x[np.take_along_axis(dofs[p.minus_cells], pm, axis=1)],
                           x[np.take_along_axis(dofs[p.plus_cells], pp, axis=1)])
     local = list(zip(p.joint_tags.tolist(), sorted_rows(xm)))

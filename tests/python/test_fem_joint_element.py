@@ -32,7 +32,7 @@ def _interface(dim, degree, comm, law, shear_stiffness=1e9):
     jm = meshes.jointed_block((1.0,) * dim, [joint], dim=dim, mesh_size=0.3 if dim == 2 else 0.45,
                               comm=comm)
     dmesh = distribute(jm, comm)
-    V = fem.functionspace(dmesh.mesh, ("CG", degree, (dmesh.mesh.geometry.dim,)))
+    V = fem.functionspace(dmesh.mesh, ("Lagrange", degree, (dmesh.mesh.geometry.dim,)))
     tags = {int(t) for t in comm.allgather(set(np.asarray(dmesh.pairs.joint_tags).tolist())) for t in t}
     behaviours = {t: JointBehaviour(law, shear_stiffness=shear_stiffness) for t in tags}
     return V, JointInterface(V, dmesh.pairs, behaviours), dmesh

@@ -33,7 +33,7 @@ def residual(A, x, b):
 
 def test_the_preconditioner_is_reused_while_it_serves_and_rebuilt_when_it_stops_serving():
     solver = LinearSolver(PETSc.COMM_SELF, "iterative", rtol=1e-10)
-    A = laplacian(60)
+    A = laplacian(60, shift=1e3)  # a stiff right half
     b = A.createVecLeft()
     b.set(1.0)
     x = b.duplicate()
@@ -42,16 +42,40 @@ def test_the_preconditioner_is_reused_while_it_serves_and_rebuilt_when_it_stops_
     # A looser solve with the same (lagged) preconditioner: fewer iterations, no new set-up.
     assert solver.solve(A, b, x, rtol=1e-6) < fresh and solver.setups == 1
     assert 1e-8 < residual(A, x, b) <= 1e-6
-    # The matrix changes a lot (a stiff half): the lagged preconditioner still converges, but
-    # slowly; the next solve rebuilds it and needs about as many iterations as at the start.
-    laplacian(60, shift=1e3).copy(A, structure=PETSc.Mat.Structure.SAME_NONZERO_PATTERN)
+    # The matrix softens (the plain Laplacian): the lagged preconditioner (its smoother's
+    # eigenvalue bounds now too high) still converges, but more than rebuild_factor times slower
+    # per decade than the solve that built it, so the next solve rebuilds it, with fewer
+    # iterations than the stale one needed. (A fresh solver needs fewer still: 34 against 61 on
+    # PETSc 3.22 and 3.25; the rebuilt GAMG hierarchy keeps something of the old matrix.)
+    laplacian(60).copy(A, structure=PETSc.Mat.Structure.SAME_NONZERO_PATTERN)
     lagged = solver.solve(A, b, x)
-    assert solver.setups == 1 and lagged > 2 * fresh and residual(A, x, b) <= 1e-10
+    assert solver.setups == 1 and lagged > solver.rebuild_factor * fresh and residual(A, x, b) <= 1e-10
+    x.set(0.0)
     rebuilt = solver.solve(A, b, x)
-    assert solver.setups == 2 and rebuilt < 2 * fresh and residual(A, x, b) <= 1e-10
+    assert solver.setups == 2 and rebuilt < lagged and residual(A, x, b) <= 1e-10
+    x.set(0.0)
     assert solver.solve(A, b, x) == rebuilt and solver.setups == 2   # and kept while it serves
     # The KSP is left at the solver's own tolerance for whoever drives it next (SNES).
     assert solver.ksp.getTolerances()[0] == pytest.approx(1e-10)
+
+
+def test_a_stale_preconditioner_on_a_stiffened_matrix_still_gives_the_answer():
+    """Built on the Laplacian, reused after a half of the matrix stiffens 1000x: the smoother's
+    eigenvalue bounds are now too low, so CG with the stale preconditioner either crawls (PETSc
+    3.22) or stops at once on an indefinite preconditioner (PETSc 3.25, KSP reason -8): either way
+    the solve returns the answer to its tolerance, and the preconditioner is rebuilt at the
+    latest by the next solve."""
+    solver = LinearSolver(PETSc.COMM_SELF, "iterative", rtol=1e-10)
+    A = laplacian(60)
+    b = A.createVecLeft()
+    b.set(1.0)
+    x = b.duplicate()
+    solver.solve(A, b, x)
+    laplacian(60, shift=1e3).copy(A, structure=PETSc.Mat.Structure.SAME_NONZERO_PATTERN)
+    solver.solve(A, b, x)
+    assert residual(A, x, b) <= 1e-10
+    solver.solve(A, b, x)
+    assert solver.setups == 2 and residual(A, x, b) <= 1e-10
 
 
 def test_without_reuse_a_changed_matrix_gets_a_new_preconditioner_at_once():

@@ -214,9 +214,9 @@ def test_snes_and_the_problem_object_agree_with_newton():
     x = newton.u.x.petsc_vec.copy()
     b, A = problem.vector(), problem.matrix()
     newton.load_factor = 1.0
-    problem.F(x, b)
+    problem.residual(x, b)
     assert b.norm() < 1e-9 * 5e6
-    problem.J(x, A)
+    problem.jacobian(x, A)
     newton.jacobian()
     A.axpy(-1.0, newton.J)
     assert A.norm() < 1e-12 * newton.J.norm()

@@ -1,7 +1,7 @@
 """The coupling API in a user's own DOLFINx model (serial).
 
 References: JointedRockModel on the same mesh (its own assembly and Newton: see user_model_case),
-DOLFINx's NewtonSolver against PETSc SNES, and for the closure limiter the closed form of a
+the DOLFINx 0.11 NonlinearProblem interface of JointedNonlinearProblem, and for the closure limiter the closed form of a
 uniform closure. Malformed input must raise errors that name the problem.
 """
 import math
@@ -48,7 +48,7 @@ def max_abs(a):
 def test_user_forms_with_joints_equal_jointed_rock_model(dim, degree, mesh_size, dmesh2):
     dmesh = dmesh2 if (dim, mesh_size) == (2, 0.25) else case.distributed_case(gmsh, dim, mesh_size, COMM)
     problem = case.user_problem(dmesh, degree)
-    iterations = case.solve_newton(problem)
+    iterations = case.solve(problem)
     model = case.rock_model(dmesh, degree)
     reference = model.solution.displacement
     assert iterations > 2, "the joint must make the problem nonlinear (Barton-Bandis)"
@@ -63,13 +63,24 @@ def test_user_forms_with_joints_equal_jointed_rock_model(dim, degree, mesh_size,
     assert state["closure"].max() > 0.1 * case.LAW.maximum_closure  # the joint really closes
 
 
-def test_newton_solver_and_snes_agree(dmesh2):
-    newton = case.user_problem(dmesh2)
-    n_newton = case.solve_newton(newton)
-    snes = case.user_problem(dmesh2)
-    n_snes = case.solve_snes(snes)
-    assert n_snes > 2 and n_newton > 2
-    assert max_abs(newton.u.x.array - snes.u.x.array) <= 1e-9 * max_abs(newton.u.x.array)
+def test_the_problem_has_the_nonlinear_problem_interface_of_dolfinx_0_11(dmesh2):
+    """F and J are the compiled forms, A the joint-aware matrix, x the SNES vector (not u's), the
+    solver a SNES under the given prefix; solve() returns u, and solving again from the converged
+    u with an absolute tolerance from the load (load_norm) takes no iteration."""
+    problem = case.user_problem(dmesh2, prefix="slope_")
+    assert isinstance(problem.F, fem.Form) and problem.F.rank == 1
+    assert isinstance(problem.J, fem.Form) and problem.J.rank == 2
+    assert isinstance(problem.solver, PETSc.SNES) and problem.solver.getOptionsPrefix() == "slope_"
+    assert problem.A.handle == problem.solver.getJacobian()[0].handle
+    assert problem.x.handle != problem.u.x.petsc_vec.handle
+    assert problem.solve() is problem.u
+    assert problem.solver.getConvergedReason() > 0 and problem.solver.getIterationNumber() > 2
+    np.testing.assert_array_equal(problem.x.array_r, problem.u.x.petsc_vec.array_r)
+    first = problem.u.x.array.copy()
+    problem.solver.setTolerances(atol=1e-10 * problem.load_norm())
+    problem.solve()
+    assert problem.solver.getIterationNumber() == 0
+    np.testing.assert_array_equal(problem.u.x.array, first)
 
 
 def test_a_saved_table_is_read_by_path(dmesh2, tmp_path):
@@ -78,9 +89,9 @@ def test_a_saved_table_is_read_by_path(dmesh2, tmp_path):
     table = rockjoint.tabulate(case.LAW, max_stress=20e6)
     table.save(str(path))
     from_file = case.user_problem(dmesh2, law=str(path))
-    case.solve_newton(from_file)
+    case.solve(from_file)
     direct = case.user_problem(dmesh2)
-    case.solve_newton(direct)
+    case.solve(direct)
     scale = max_abs(direct.u.x.array)
     assert max_abs(from_file.u.x.array - direct.u.x.array) <= 1e-5 * scale
 
@@ -89,7 +100,7 @@ def test_supported_rows_and_columns_stay_out_of_the_joint_blocks(dmesh2):
     """After the user's J(), a supported dof's row and column hold only the unit diagonal, and the
     cross-joint couplings are present (the matrix has them in its pattern)."""
     problem = case.user_problem(dmesh2)
-    case.solve_newton(problem)
+    case.solve(problem)
     A = problem.matrix()
     mask = problem.coupling.supported
     pair_dofs = problem.coupling.interface.pair_dofs()
@@ -209,7 +220,7 @@ def test_wrong_spaces_and_conditions(dmesh2):
         coupling.create_matrix(fem.form(ufl.inner(ufl.TrialFunction(P2), ufl.TestFunction(P2)) * ufl.dx))
     F = ufl.inner(ufl.grad(fem.Function(P2)), ufl.grad(ufl.TestFunction(P2))) * ufl.dx
     with pytest.raises(ValueError, match="u must be a Function of the coupling's displacement space V"):
-        JointedNonlinearProblem(F, fem.Function(P2), [], coupling)
+        JointedNonlinearProblem(F, fem.Function(P2), coupling, petsc_options_prefix="p2_")
 
 
 def test_a_missing_physical_group_is_named_with_the_available_ones():
@@ -251,34 +262,34 @@ def test_closure_limiter_lets_newton_and_snes_pass_a_stiffening_law():
              - ufl.inner(fem.Constant(dmesh.mesh, (0.0, -stress)), v) * ds(top))
         bcs = [fem.dirichletbc(PETSc.ScalarType(0.0), fem.locate_dofs_topological(V.sub(i), 1, dmesh.boundary(b)),
                                V.sub(i)) for i, b in ((1, "bottom"), (0, "left"))]
-        return JointedNonlinearProblem(F, u, bcs, JointCoupling(V, dmesh, {"joint_1": law}, shear_stiffness=1e9,
-                                                                bcs=bcs))
+        coupling = JointCoupling(V, dmesh, {"joint_1": law}, shear_stiffness=1e9, bcs=bcs)
+        return JointedNonlinearProblem(F, u, coupling, bcs=bcs, petsc_options_prefix=case.unique_prefix("column"),
+                                       petsc_options=dict(case.SNES_OPTIONS, snes_max_it=15))
 
     plain = problem()
-    solver = plain.newton_solver()
-    solver.set_update(lambda s, dx, x: x.axpy(-1.0, dx))  # NewtonSolver's own full step
-    solver.rtol, solver.atol, solver.max_it = 0.0, 1e-10 * plain.load_norm(), 15
-    with pytest.raises(RuntimeError):  # infinite joint tractions past V_m: the LU or Newton fails
-        solver.solve(plain.u)
-    assert plain.nonfinite
+    plain.closure_fraction = None  # no limiter: SNES's full Newton step
+    plain.solve()
+    # Past V_m the joint traction is infinite: SNES is told (function-domain error) and stops.
+    assert plain.solver.getConvergedReason() == PETSc.SNES.ConvergedReason.DIVERGED_FUNCTION_DOMAIN
+    assert plain.domain_errors > 0
 
     limited = problem()
-    case.solve_newton(limited)
+    case.solve(limited)
     np.testing.assert_allclose(limited.coupling.state(limited.u)["closure"], closure, rtol=1e-8)
-    snes = problem()
-    case.solve_snes(snes)
-    np.testing.assert_allclose(snes.coupling.state(snes.u)["closure"], closure, rtol=1e-8)
 
 
 def test_snes_options_stay_with_their_problem(dmesh2):
-    """petsc_options reach the SNES they were given to, not the next one (own default prefixes)."""
-    first = case.user_problem(dmesh2).snes_solver(petsc_options={"snes_max_it": 3, "snes_type": "newtontr"})
-    second = case.user_problem(dmesh2).snes_solver()
+    """petsc_options reach the SNES they were given to, not the next one; bad options and
+    prefixes are refused with a message that names them."""
+    first = case.user_problem(dmesh2, petsc_options={"snes_max_it": 3, "snes_type": "newtontr"}).solver
+    second = case.user_problem(dmesh2, petsc_options={}).solver
     assert first.getType() == "newtontr" and first.getTolerances()[3] == 3
     assert second.getType() == "newtonls" and second.getTolerances()[3] != 3
-    named = case.user_problem(dmesh2).snes_solver(options_prefix="mine_", petsc_options={"snes_max_it": 7})
+    named = case.user_problem(dmesh2, prefix="mine_", petsc_options={"snes_max_it": 7}).solver
     assert named.getOptionsPrefix() == "mine_" and named.getTolerances()[3] == 7
     with pytest.raises(ValueError, match="give option names without the leading dash"):
-        case.user_problem(dmesh2).snes_solver(petsc_options={"-snes_max_it": 3})
+        case.user_problem(dmesh2, petsc_options={"-snes_max_it": 3})
     with pytest.raises(ValueError, match="options_prefix '-x_': a string without a leading dash"):
-        case.user_problem(dmesh2).snes_solver(options_prefix="-x_")
+        case.user_problem(dmesh2, prefix="-x_")
+    with pytest.raises(ValueError, match="petsc_options_prefix must be a non-empty string"):
+        case.user_problem(dmesh2, prefix="")

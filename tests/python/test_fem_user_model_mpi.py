@@ -1,5 +1,5 @@
 """The coupling API in a user's model on 2 ranks (mpirun -n 2 ... -m mpi): the answer of a
-serial solve of the same gmsh model on MPI.COMM_SELF, through NewtonSolver and through SNES.
+serial solve of the same gmsh model on MPI.COMM_SELF, both solved by SNES (JointedNonlinearProblem).
 
 Dof numbers differ between 1 and 2 ranks, so the comparison is on quantities that do not
 depend on them: boundary means of u and the joint point state matched by coordinates.
@@ -44,18 +44,17 @@ def joint_points(problem):
 
 
 @pytest.mark.mpi
-@pytest.mark.parametrize("dim,solver", [(2, "newton"), (2, "snes"), (3, "newton")])
-def test_two_ranks_give_the_serial_answer(dim, solver):
+@pytest.mark.parametrize("dim", [2, 3])
+def test_two_ranks_give_the_serial_answer(dim):
     comm = two_ranks()
     _ensure_gmsh(gmsh)  # every rank meshes for its own serial solve
     gmsh.option.setNumber("General.Terminal", 0)
     size = 0.25 if dim == 2 else 0.6
-    solve = case.solve_newton if solver == "newton" else case.solve_snes
     results = []
     for c in (comm, MPI.COMM_SELF):
         dmesh = case.distributed_case(gmsh, dim, size, c)
         problem = case.user_problem(dmesh)
-        solve(problem)
+        case.solve(problem)
         results.append((boundary_means(problem, dmesh), joint_points(problem), dmesh))
     (par_means, (xp, par_values), dpar), (ser_means, (xs, ser_values), _) = results
     # Both ranks own cells and joint pairs are split between them or not, but all are there.

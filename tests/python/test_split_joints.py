@@ -1,4 +1,4 @@
-"""split_joints: a mesh read by DOLFINx's gmshio.model_to_mesh, split along its joint facets,
+"""split_joints: a mesh read by DOLFINx's gmsh reader (dolfinx.io.gmsh.model_to_mesh), split along its joint facets,
 is the mesh rockjoint's own gmsh reader makes: same blocks, the same joint facets paired (by their
 coordinates), same named boundaries; bad tags are named. Serially and on 2 ranks (mpi mark)."""
 import gmsh
@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 pytest.importorskip("dolfinx")
-from dolfinx.io import gmshio  # noqa: E402
+from rockjoint.fem_coupling.compat import io_gmsh  # noqa: E402  (dolfinx.io.gmsh on 0.10+)
 from mpi4py import MPI  # noqa: E402
 
 from rockjoint import meshes  # noqa: E402
@@ -29,9 +29,9 @@ def _both_routes(dim, comm):
         case.build_gmsh_model(gmsh, dim, 0.5)
         groups = _groups(dim)
     groups = comm.bcast(groups, root=0)
-    mesh, cells, facets = gmshio.model_to_mesh(gmsh.model if comm.rank == 0 else None, comm, 0, gdim=dim)
+    mesh_data = io_gmsh.model_to_mesh(gmsh.model if comm.rank == 0 else None, comm, 0, gdim=dim)
     boundaries = {n: t for n, t in groups.items() if n not in ("lower", "upper", "fault")}
-    split = split_joints(mesh, cells, facets, joints={"fault": groups["fault"]},
+    split = split_joints(mesh_data, joints={"fault": groups["fault"]},
                          blocks={"lower": groups["lower"], "upper": groups["upper"]}, boundaries=boundaries)
     reference = distribute(meshes.from_gmsh_model(joints=["fault"], comm=comm), comm)
     if comm.rank == 0:
@@ -58,13 +58,13 @@ def _check_same(split, reference, comm):
 
 
 @pytest.mark.parametrize("dim", [2, 3])
-def test_gmshio_mesh_split_is_the_mesh_of_the_gmsh_reader(dim):
+def test_gmsh_reader_mesh_split_is_the_mesh_of_the_gmsh_reader(dim):
     split, reference, _ = _both_routes(dim, MPI.COMM_WORLD)
     _check_same(split, reference, MPI.COMM_WORLD)
 
 
 @pytest.mark.mpi
-def test_gmshio_mesh_split_on_two_ranks():
+def test_gmsh_reader_mesh_split_on_two_ranks():
     split, reference, _ = _both_routes(2, MPI.COMM_WORLD)
     _check_same(split, reference, MPI.COMM_WORLD)
 
@@ -74,7 +74,8 @@ def test_bad_tags_are_named():
     _ensure_gmsh(gmsh)
     case.build_gmsh_model(gmsh, 2, 0.5)
     groups = _groups(2)
-    mesh, cells, facets = gmshio.model_to_mesh(gmsh.model, comm, 0, gdim=2)
+    data = io_gmsh.model_to_mesh(gmsh.model, comm, 0, gdim=2)
+    mesh, cells, facets = data.mesh, data.cell_tags, data.facet_tags
     gmsh.model.remove()
     with pytest.raises(ValueError, match=r"joints\['fault'\] = 999: no entity carries tag 999"):
         split_joints(mesh, cells, facets, joints={"fault": 999})

@@ -3,8 +3,11 @@
 The gmsh model is read with meshes.from_gmsh_model; the FE model is written in plain DOLFINx/UFL
 (E per block, gravity, a traction on top with a shear part) with JointCoupling for the joint. The same problem through
 JointedRockModel is the independent reference: it assembles K once and runs the project's own
-Newton, while the user path assembles the UFL residual every iteration under NewtonSolver/SNES.
+Newton, while the user path assembles the UFL residual every iteration under PETSc SNES
+(JointedNonlinearProblem, shaped as DOLFINx 0.11's NonlinearProblem).
 """
+import itertools
+
 import numpy as np
 import ufl
 from dolfinx import fem
@@ -21,6 +24,16 @@ WEIGHT = 2.6e4                                 # ρ g [N/m³]
 TOP_TRACTION = {2: (0.4e6, -4e6), 3: (0.4e6, 0.0, -4e6)}  # [Pa]
 LAW = rockjoint.BartonBandis(1e10, 1e-3)       # K_ni [Pa/m], V_m [m]
 SHEAR_STIFFNESS = 2e9                          # [Pa/m]
+# Newton with a full step and direct solves; snes_rtol relative to F(u = 0), the load.
+SNES_OPTIONS = {"snes_rtol": 1e-10, "snes_atol": 1e-14, "snes_stol": 0.0, "snes_max_it": 30,
+                "snes_linesearch_type": "basic",
+                "ksp_type": "preonly", "pc_type": "lu", "pc_factor_mat_solver_type": "mumps"}
+_PREFIXES = itertools.count()
+
+
+def unique_prefix(stem: str = "user") -> str:
+    """A fresh options prefix (the same sequence on every rank)."""
+    return f"{stem}{next(_PREFIXES)}_"
 
 
 def distributed_case(gmsh, dim, mesh_size, comm):
@@ -35,8 +48,9 @@ def distributed_case(gmsh, dim, mesh_size, comm):
     return distribute(jm, comm)
 
 
-def user_problem(dmesh, degree=1, law=LAW):
-    """The user's UFL model + the joint; returns the JointedNonlinearProblem."""
+def user_problem(dmesh, degree=1, law=LAW, petsc_options=None, prefix=None):
+    """The user's UFL model + the joint; returns the JointedNonlinearProblem (SNES_OPTIONS unless
+    petsc_options are given)."""
     mesh = dmesh.mesh
     dim = mesh.geometry.dim
     V = fem.functionspace(mesh, ("Lagrange", degree, (mesh.geometry.dim,)))
@@ -63,33 +77,15 @@ def user_problem(dmesh, degree=1, law=LAW):
         bcs.append(fem.dirichletbc(PETSc.ScalarType(0.0),
                                    fem.locate_dofs_topological(V.sub(1), 2, dmesh.boundary("front")), V.sub(1)))
     coupling = JointCoupling(V, dmesh, {"fault": law}, shear_stiffness=SHEAR_STIFFNESS, bcs=bcs)
-    return JointedNonlinearProblem(F, u, bcs, coupling)
+    return JointedNonlinearProblem(F, u, coupling, bcs=bcs, petsc_options_prefix=unique_prefix() if prefix is None else prefix,
+                                   petsc_options=SNES_OPTIONS if petsc_options is None else petsc_options)
 
 
-def solve_newton(problem):
-    solver = problem.newton_solver()
-    solver.convergence_criterion = "residual"
-    solver.rtol, solver.atol, solver.max_it = 0.0, 1e-10 * problem.load_norm(), 30
-    ksp = solver.krylov_solver
-    ksp.setType("preonly")
-    ksp.getPC().setType("lu")
-    ksp.getPC().setFactorSolverType("mumps")
-    n, converged = solver.solve(problem.u)
-    assert converged
-    return n
-
-
-def solve_snes(problem):
-    snes = problem.snes_solver(petsc_options={
-        "snes_rtol": 0.0, "snes_atol": 1e-10 * problem.load_norm(), "snes_stol": 0.0, "snes_max_it": 30,
-        "snes_linesearch_type": "basic",
-        "ksp_type": "preonly", "pc_type": "lu", "pc_factor_mat_solver_type": "mumps"})
-    x = problem.u.x.petsc_vec.copy()
-    snes.solve(None, x)
-    assert snes.getConvergedReason() > 0, snes.getConvergedReason()
-    x.copy(problem.u.x.petsc_vec)
-    problem.u.x.scatter_forward()
-    return snes.getIterationNumber()
+def solve(problem):
+    """problem.solve(), as a DOLFINx 0.11 user solves a NonlinearProblem; SNES iterations."""
+    problem.solve()
+    assert problem.solver.getConvergedReason() > 0, problem.solver.getConvergedReason()
+    return problem.solver.getIterationNumber()
 
 
 def rock_model(dmesh, degree=1, law=LAW):

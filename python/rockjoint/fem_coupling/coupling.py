@@ -10,8 +10,9 @@ adds the joints:
     # Jacobian:  A.zeroEntries(); coupling.add_jacobian(u, A); assemble_matrix(A, a, bcs); A.assemble()
     alpha = coupling.admissible_step(u, du)       # closure limiter along u + alpha du
 
-or, with a UFL residual F(u; v), :class:`JointedNonlinearProblem` (the shape of
-``dolfinx.fem.petsc.NonlinearProblem``) driven by ``dolfinx.nls.petsc.NewtonSolver`` or PETSc SNES.
+or, with a UFL residual F(u; v), :class:`JointedNonlinearProblem`: DOLFINx 0.11's SNES-based
+``dolfinx.fem.petsc.NonlinearProblem`` with the joints added (same constructor, ``solve()``,
+``solver``, ``F``, ``J``, ``A``, ``b``, ``x``, ``u``).
 
 What this module takes care of (docs/fem.md, pitfalls 3-7): dofs of each pair from ``V.dofmap``
 (P1/P2, any dof numbering: never node·gdim + c); the cross-joint couplings in the matrix's
@@ -29,12 +30,13 @@ from typing import Callable, Iterable, Mapping, Sequence
 import numpy as np
 import ufl
 from dolfinx import cpp as _dcpp
-from dolfinx import fem, la
+from dolfinx import fem
 from dolfinx.fem import petsc as fem_petsc
 from mpi4py import MPI
 from petsc4py import PETSc
 
 from .behaviours import joint_behaviours, symmetric_tangent
+from .compat import create_vector, la_petsc
 from .distributed_mesh import DistributedJointMesh, JointPairs, names_of
 from .interface import JointInterface
 from .snes_problem import JointedSNESProblem
@@ -131,7 +133,7 @@ class JointCoupling:
         imap, bs = V.dofmap.index_map, V.dofmap.index_map_bs
         self._imap, self._bs = imap, bs
         self.num_local_dofs = (imap.size_local + imap.num_ghosts) * bs
-        self._work = la.create_petsc_vector(imap, bs)  # ghosted copy of a Vec's owned entries
+        self._work = la_petsc.create_vector([(imap, bs)])  # ghosted copy of a Vec's owned entries
         self._residual = np.zeros(self.num_local_dofs)
         self.set_supports(bcs)
 
@@ -206,17 +208,6 @@ class JointCoupling:
         u_local = np.array(self._local(u, "u"))  # a copy: _local(du) may reuse the work vector
         return self.interface.admissible_step(u_local, self._local(du, "du"), fraction)
 
-    def newton_update(self, fraction: float = 0.95) -> Callable:
-        """An update for dolfinx.nls.petsc.NewtonSolver.set_update: x ← x - α dx with the
-        closure-limited α (NewtonSolver's dx solves J dx = F, so the step is -dx)."""
-        def update(solver, dx: PETSc.Vec, x: PETSc.Vec) -> None:
-            minus_dx = dx.copy()
-            minus_dx.scale(-1.0)
-            alpha = self.admissible_step(x, minus_dx, fraction) * solver.relaxation_parameter
-            x.axpy(-alpha, dx)
-            minus_dx.destroy()
-        return update
-
     # ---- joint state ---------------------------------------------------------------------
     @property
     def num_points(self) -> int:
@@ -277,24 +268,33 @@ class JointCoupling:
 
 
 class JointedNonlinearProblem(JointedSNESProblem):
-    """The user's nonlinear problem F(u; v) = 0 plus the joints, in the shape of
-    dolfinx.fem.petsc.NonlinearProblem (form, F, J, L, a) with the joint-aware matrix().
+    """The user's nonlinear problem F(u; v) = 0 plus the joints, solved by PETSc SNES: DOLFINx
+    0.11's ``dolfinx.fem.petsc.NonlinearProblem`` (same constructor and attributes) with the
+    joint-aware Jacobian matrix, joint forces in the residual, a non-finite joint traction
+    reported to SNES as a function-domain error, and the closure limiter as a line-search
+    pre-check (snes_problem.JointedSNESProblem). The same on DOLFINx 0.9.
 
-    F: the UFL residual (internal minus external virtual work, as for NonlinearProblem); J: its
-    Jacobian (default: ufl.derivative(F, u)); u: the displacement Function on the coupling's V;
-    bcs: Dirichlet conditions (also given to the coupling). For a linear-elastic bulk F is linear
+        problem = JointedNonlinearProblem(F, u, coupling, bcs=bcs, petsc_options_prefix="slope_",
+                                          petsc_options={"snes_rtol": 1e-10, "ksp_type": "preonly",
+                                                         "pc_type": "lu"})
+        problem.solve()                               # u updated in place
+        assert problem.solver.getConvergedReason() > 0
+
+    F: the UFL residual (internal minus external virtual work); u: the displacement Function on
+    the coupling's V; coupling: the JointCoupling of the joints; bcs: Dirichlet conditions (also
+    given to the coupling); J: the Jacobian form (default: the derivative of F in u);
+    petsc_options_prefix: the SNES's options prefix (required, as in DOLFINx 0.11: options on
+    the command line reach it); petsc_options: {option: value} without the leading dash, set on
+    the SNES (and its KSP/PC) under that prefix; closure_fraction: the limiter's fraction of a
+    closure's remaining room to the law's maximum closure. For a linear-elastic bulk F is linear
     in u and only the joints make the problem nonlinear.
-
-    NewtonSolver:   solver = problem.newton_solver()      (or, by hand:
-                    solver = NewtonSolver(comm, problem); solver.setJ(problem.J, problem.matrix());
-                    solver.set_update(problem.coupling.newton_update()))
-    SNES:           snes = problem.snes_solver(); snes.solve(None, x) with x = u.x.petsc_vec.copy()
-                    (the callbacks copy x into u before assembling: field notes, recipe 6)
     """
 
-    def __init__(self, F: ufl.Form, u: fem.Function, bcs: Sequence[fem.DirichletBC],
-                 coupling: JointCoupling, J: ufl.Form | None = None, closure_fraction: float = 0.95,
-                 form_compiler_options: dict | None = None, jit_options: dict | None = None):
+    def __init__(self, F: ufl.Form, u: fem.Function, coupling: JointCoupling, *,
+                 petsc_options_prefix: str, bcs: Sequence[fem.DirichletBC] | None = None,
+                 J: ufl.Form | None = None, petsc_options: Mapping[str, object] | None = None,
+                 closure_fraction: float = 0.95, form_compiler_options: dict | None = None,
+                 jit_options: dict | None = None):
         if not isinstance(coupling, JointCoupling):
             raise TypeError(f"coupling must be a JointCoupling, got {type(coupling).__name__}")
         if not isinstance(u, fem.Function) or u.function_space.component() \
@@ -302,7 +302,10 @@ class JointedNonlinearProblem(JointedSNESProblem):
             raise ValueError("u must be a Function of the coupling's displacement space V")
         if not (0.0 < closure_fraction < 1.0):
             raise ValueError(f"closure_fraction = {closure_fraction} must be in (0, 1)")
-        self.u, self.coupling, self.bcs = u, coupling, list(bcs)
+        if not isinstance(petsc_options_prefix, str) or not petsc_options_prefix:
+            raise ValueError("petsc_options_prefix must be a non-empty string (as for DOLFINx's "
+                             "NonlinearProblem), e.g. 'jointed_'")
+        self.u, self.coupling, self.bcs = u, coupling, list(bcs or [])
         self.closure_fraction = closure_fraction
         coupling.set_supports(self.bcs)
         params = dict(form_compiler_options=form_compiler_options or {}, jit_options=jit_options or {})
@@ -313,16 +316,46 @@ class JointedNonlinearProblem(JointedSNESProblem):
         self._A = None
         #: True if the last residual had a non-finite joint traction
         self.nonfinite = False
+        self._snes = self.snes_solver(petsc_options=petsc_options, options_prefix=petsc_options_prefix)
+        self._x = self.vector()
 
     @property
-    def L(self) -> fem.Form:
+    def F(self) -> fem.Form:
         """The compiled residual form."""
         return self._L
 
     @property
-    def a(self) -> fem.Form:
+    def J(self) -> fem.Form:
         """The compiled Jacobian form."""
         return self._a
+
+    @property
+    def A(self) -> PETSc.Mat:
+        """The Jacobian matrix (joint-aware sparsity)."""
+        return self.matrix()
+
+    @property
+    def b(self) -> PETSc.Vec:
+        """The residual vector SNES evaluates into."""
+        return self._snes.getFunction()[0]
+
+    @property
+    def x(self) -> PETSc.Vec:
+        """The solution vector SNES iterates on (does not share memory with u)."""
+        return self._x
+
+    @property
+    def solver(self) -> PETSc.SNES:
+        """The SNES."""
+        return self._snes
+
+    def solve(self) -> fem.Function:
+        """Solve from the current u; u holds the last iterate afterwards (converged or not: check
+        ``solver.getConvergedReason() > 0``, or set ``snes_error_if_not_converged``)."""
+        self.u.x.petsc_vec.copy(self._x)
+        self._snes.solve(None, self._x)
+        self._copy_into_u(self._x)
+        return self.u
 
     def matrix(self) -> PETSc.Mat:
         """The Jacobian matrix with the cross-joint couplings (created once, then reused)."""
@@ -332,19 +365,17 @@ class JointedNonlinearProblem(JointedSNESProblem):
 
     def vector(self) -> PETSc.Vec:
         """A residual vector (ghosted, layout of V)."""
-        return fem_petsc.create_vector(self._L)
+        return create_vector(self.u.function_space)
 
     def load_norm(self) -> float:
         """‖F(0)‖, the residual norm at u = 0 (the load, supports applied; u is left unchanged).
-        An absolute Newton tolerance from it (solver.atol = 1e-10 × load_norm()) is the robust
-        choice: DOLFINx 0.5's NewtonSolver measures its relative residual against a value that
-        is not the first residual."""
+        An absolute tolerance from it ({"snes_atol": 1e-10 * load_norm()}) measures the residual
+        against the load, whatever the starting u."""
         saved = self.u.x.array.copy()
         self.u.x.array[:] = 0.0
         b = self.vector()
         try:
-            self.form(self.u.x.petsc_vec)
-            self.F(self.u.x.petsc_vec, b)
+            self.residual(self.u.x.petsc_vec, b)
             return b.norm()
         finally:
             self.u.x.array[:] = saved

@@ -1,4 +1,4 @@
-"""Distribute a JointedMesh over MPI as a DOLFINx 0.9 mesh and pair the joint facets on every rank.
+"""Distribute a JointedMesh over MPI as a DOLFINx mesh and pair the joint facets on every rank.
 
 Partitioning (docs/fem.md, pitfalls 1-2):
 1. owners from DOLFINx's default partitioner run on the *glued* cells (the split mesh has no facet
@@ -24,9 +24,10 @@ import numpy as np
 import dolfinx
 import dolfinx.cpp as _cpp
 from dolfinx.graph import adjacencylist
-from dolfinx.io.gmshio import cell_perm_array, ufl_mesh
 from dolfinx.io.utils import distribute_entity_data
 from dolfinx.mesh import GhostMode, create_mesh, meshtags, meshtags_from_entities
+
+from .compat import cpp_adjacency_list, create_cell_partitioner, io_gmsh
 
 from ..meshes.jointed_mesh import JointedMesh
 from ..meshes.node_splitting import facet_keys
@@ -133,12 +134,12 @@ def distribute(jointed_mesh: JointedMesh | None, comm) -> DistributedJointMesh:
     if "error" in header:
         raise ValueError(header["error"])
     cell_type, gdim, names = header["cell_type"], header["gdim"], header["names"]
-    domain = ufl_mesh(_GMSH_CELL_ID[cell_type], gdim, dtype=np.float64)
+    domain = io_gmsh.ufl_mesh(_GMSH_CELL_ID[cell_type], gdim, dtype=np.float64)
     dolfinx_cell = _cpp.mesh.to_type(str(domain.ufl_cell()))
     nv = 3 if cell_type == "triangle" else 4
-    perm = cell_perm_array(dolfinx_cell, nv)
+    perm = io_gmsh.cell_perm_array(dolfinx_cell, nv)
     facet_type = _cpp.mesh.cell_entity_type(dolfinx_cell, nv - 2, 0)
-    fperm = cell_perm_array(facet_type, nv - 1)
+    fperm = io_gmsh.cell_perm_array(facet_type, nv - 1)
 
     if rank == _ROOT:
         cells = jm.cells[:, perm]
@@ -148,7 +149,7 @@ def distribute(jointed_mesh: JointedMesh | None, comm) -> DistributedJointMesh:
         cells = np.empty((0, nv), dtype=np.int64)
         x = np.empty((0, gdim))
         partitioner = _JointPartitioner(None, cells)
-    mesh = create_mesh(comm, cells, x, domain, partitioner)
+    mesh = create_mesh(comm, cells, e=domain, x=x, partitioner=partitioner)
     topology = mesh.topology
     tdim = topology.dim
 
@@ -158,7 +159,7 @@ def distribute(jointed_mesh: JointedMesh | None, comm) -> DistributedJointMesh:
     ncells_local = topology.index_map(tdim).size_local + topology.index_map(tdim).num_ghosts
     cell_blocks = meshtags(mesh, tdim, np.arange(ncells_local, dtype=np.int32), blocks.astype(np.int32))
 
-    # Facet tags: named boundaries and (minus sides of) joints, as gmshio.model_to_mesh does.
+    # Facet tags: named boundaries and (minus sides of) joints, as dolfinx.io.gmsh.model_to_mesh does.
     topology.create_connectivity(tdim - 1, tdim)
     topology.create_connectivity(tdim, tdim - 1)
     topology.create_connectivity(tdim - 1, 0)
@@ -172,7 +173,7 @@ def distribute(jointed_mesh: JointedMesh | None, comm) -> DistributedJointMesh:
     node_glue = _fetch(comm, np.asarray(mesh.geometry.input_global_indices, dtype=np.int64),
                        jm.glue if rank == _ROOT else None)
     c2v = topology.connectivity(tdim, 0).array.reshape(-1, nv)
-    x_dofmap = mesh.geometry.dofmap  # P1: geometry dof i of a cell = vertex i
+    x_dofmap = mesh.geometry.dofmaps[0]  # P1: geometry dof i of a cell = vertex i
     vertex_glue = np.empty(topology.index_map(0).size_local + topology.index_map(0).num_ghosts, dtype=np.int64)
     vertex_glue[c2v] = node_glue[x_dofmap]
 
@@ -198,7 +199,7 @@ def _fetch(comm, indices: np.ndarray, values_on_root: np.ndarray | None) -> np.n
 
 
 def _facet_tags(mesh, facets: np.ndarray, values: np.ndarray):
-    """Facet MeshTags from facets given by input node indices (gmshio's model_to_mesh route)."""
+    """Facet MeshTags from facets given by input node indices (model_to_mesh's route)."""
     tdim = mesh.topology.dim
     local_entities, local_values = distribute_entity_data(mesh, tdim - 1,
                                                           np.ascontiguousarray(facets, dtype=np.int64),
@@ -251,13 +252,13 @@ def _pair_facets(mesh, vertex_glue: np.ndarray, blocks: np.ndarray, joint_facets
 class _JointPartitioner:
     """Cell partitioner callable for dolfinx.mesh.create_mesh (see the module docstring).
 
-    DOLFINx 0.9 calls it as (comm, nparts, cell_types, cells) with one flat int64 array of cell
+    DOLFINx calls it as (comm, nparts, cell_types, cells) with one flat int64 array of cell
     vertices per cell type; the ghost mode is the default partitioner's (shared_facet here)."""
 
     def __init__(self, jm: JointedMesh | None, cells: np.ndarray):
         self._jm = jm
         self._cells = cells
-        self._default = _cpp.mesh.create_cell_partitioner(GhostMode.shared_facet)
+        self._default = create_cell_partitioner(GhostMode.shared_facet)
 
     def __call__(self, comm, nparts, cell_types, cells):
         jm = self._jm
@@ -311,7 +312,7 @@ def _joint_destinations(jm: JointedMesh, owners: np.ndarray, nparts: int):
     # ghost ranks after the owner, in the order of np.unique (sorted by cell then rank)
     start = np.searchsorted(ghost_cell, ghost_cell)  # first ghost entry of each cell
     data[offsets[ghost_cell] + 1 + (np.arange(ghost_cell.size) - start)] = ghost_rank
-    return adjacencylist(data, offsets)
+    return cpp_adjacency_list(data, offsets)
 
 
 def pair_vertex_positions(dmesh: DistributedJointMesh) -> tuple[np.ndarray, np.ndarray]:
@@ -321,13 +322,13 @@ def pair_vertex_positions(dmesh: DistributedJointMesh) -> tuple[np.ndarray, np.n
     the same point of the joint (coincident copies); the minus order is oriented so that its right-hand
     normal (3D: (x1-x0) x (x2-x0); 2D: (t_y, -t_x), t = x1-x0) points from the minus into the plus cell.
     For P1 spaces position p of a cell is its p-th cell dof (P1 dof p sits on vertex p), and for the
-    geometry ``mesh.geometry.dofmap[cell, p]``. A convenience on top of JointPairs; optional.
+    geometry ``mesh.geometry.dofmaps[0][cell, p]``. A convenience on top of JointPairs; optional.
     """
     mesh, p = dmesh.mesh, dmesh.pairs
     tdim = mesh.topology.dim
     nv = tdim + 1
     x = mesh.geometry.x[:, :mesh.geometry.dim]
-    dofs = mesh.geometry.dofmap
+    dofs = mesh.geometry.dofmaps[0]
     others = np.array([[j for j in range(nv) if j != i] for i in range(nv)], dtype=np.int32)
     pos_m = others[p.minus_local_facets]  # facet i of a simplex: the other vertices
     pos_p = others[p.plus_local_facets]

@@ -34,6 +34,8 @@ from dolfinx import fem
 from dolfinx.fem import petsc as fem_petsc
 from petsc4py import PETSc
 
+from .compat import create_vector
+
 log = logging.getLogger(__name__)
 
 
@@ -118,7 +120,7 @@ class SmearedBlocks:
             F = f_t if F is None else F + f_t
             J = j_t if J is None else J + j_t
         self.residual_form, self.jacobian_form = fem.form(F), fem.form(J)
-        self._rc = fem_petsc.create_vector(self.residual_form)
+        self._rc = create_vector(self.residual_form.function_spaces[0])
 
     def _dofs(self, tag) -> np.ndarray:
         return self.stress.function_space.dofmap.list[self.cells[tag]].ravel()

@@ -117,7 +117,7 @@ class JointInterface:
 
         verts = X[minus[:, :gdim], :gdim]  # (n, gdim, gdim)
         geo = mesh.geometry
-        cell_geom = geo.dofmap  # affine simplices
+        cell_geom = geo.dofmaps[0]  # affine simplices
         interior = geo.x[cell_geom[minus_cells]][:, :, :gdim].mean(axis=1)
         self.tags = np.asarray(pairs.joint_tags, dtype=np.int32)
         self._cpp = _cpp.InterfaceAssembler(

@@ -33,7 +33,7 @@ def rigid_body_modes(V):
     block gets that block's own rigid-body modes: this is the per-block rigid-body near-nullspace
     (one set of vectors per block instead would multiply the coarse dofs per aggregate by the
     number of blocks and raise the operator complexity for nothing: measured 3.4 vs 1.3)."""
-    from dolfinx import la
+    from .compat import la_petsc
 
     gdim = V.mesh.geometry.dim
     imap = V.dofmap.index_map
@@ -42,7 +42,7 @@ def rigid_body_modes(V):
     x = V.tabulate_dof_coordinates()[:n_local, :gdim]
     vectors = []
     for k in range(3 if gdim == 2 else 6):
-        v = la.create_petsc_vector(imap, bs)
+        v = la_petsc.create_vector([(imap, bs)])
         with v.localForm() as loc:
             a = loc.array.reshape(-1, bs)
             a[:] = 0.0

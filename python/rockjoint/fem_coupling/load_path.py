@@ -15,11 +15,12 @@ from __future__ import annotations
 
 import numpy as np
 import ufl
-from dolfinx import fem, la
+from dolfinx import fem
 from dolfinx.fem import petsc as fem_petsc
 from mpi4py import MPI
 from petsc4py import PETSc
 
+from .compat import la_petsc
 from .distributed_mesh import lookup, names_of
 from .in_situ import InSituStress
 from .loads import Load, Support, load_term, make_coefficient, set_coefficient
@@ -54,7 +55,7 @@ class LoadPath:
         if densities:
             self.gravity = self.add_load("gravity", None, self.gravity_vector(gravity))
         imap, bs = blocks.V.dofmap.index_map, blocks.V.dofmap.index_map_bs
-        self._template = la.create_petsc_vector(imap, bs)
+        self._template = la_petsc.create_vector([(imap, bs)])
         self.f_lambda = self._template.duplicate()
         self.lift = self._template.duplicate()
         self.r_sigma0 = None

@@ -25,11 +25,12 @@ import time
 
 import numpy as np
 import ufl
-from dolfinx import fem, la
+from dolfinx import fem
 from dolfinx.fem import petsc as fem_petsc
 from petsc4py import PETSc
 
 from .behaviours import joint_behaviours, symmetric_tangent
+from .compat import la_petsc
 from .distributed_mesh import lookup, names_of
 from .elastic_blocks import ElasticBlocks
 from .equivalent_continuum import SmearedBlocks
@@ -161,7 +162,7 @@ class JointedRockModel:
         self._saved = None           # (u, load factor) of the last converged load step
         self.load_factor = 0.0
         self.K = self.J = None       # bulk matrix with the supports, Jacobian
-        self.r = la.create_petsc_vector(self.V.dofmap.index_map, self.V.dofmap.index_map_bs)
+        self.r = la_petsc.create_vector([(self.V.dofmap.index_map, self.V.dofmap.index_map_bs)])
         self._r_joint = self.r.duplicate()
         self.solution = None
 
@@ -599,7 +600,6 @@ class JointedRockModel:
         if self.in_situ is not None:
             stress = stress + self.load_path.sigma0
         points = T.element.interpolation_points
-        points = points() if callable(points) else points
         out = fem.Function(T, name="total_stress")
         out.interpolate(fem.Expression(stress, points))
         return out

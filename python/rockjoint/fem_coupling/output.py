@@ -79,7 +79,7 @@ def gather_triangles(u: fem.Function, cell_values=None, root: int = 0):
         raise ValueError("gather_triangles: a P1 displacement on a 2D triangle mesh is needed, got "
                          f"gdim {mesh.geometry.dim}, degree {V.ufl_element().embedded_superdegree}")
     n_cells = mesh.topology.index_map(2).size_local
-    vertices = mesh.geometry.x[:, :2][mesh.geometry.dofmap[:n_cells]]
+    vertices = mesh.geometry.x[:, :2][mesh.geometry.dofmaps[0][:n_cells]]
     # P1: the cell's dof i sits on its vertex i.
     at_vertices = u.x.array.reshape(-1, 2)[V.dofmap.list[:n_cells]]
     parts = [vertices, at_vertices] + ([] if cell_values is None else [np.asarray(cell_values)])

@@ -1,12 +1,12 @@
-"""The one adapter between a jointed nonlinear problem and PETSc SNES / DOLFINx's NewtonSolver.
+"""The one adapter between a jointed nonlinear problem and PETSc SNES.
 
 Both routes by which joints enter a DOLFINx model use it: the user's UFL problem
-(`coupling.JointedNonlinearProblem`) and `JointedRockModel` (`stages.JointedProblem`). A subclass
-says how to assemble; this class owns everything SNES and NewtonSolver need around that:
+(`coupling.JointedNonlinearProblem`, shaped as DOLFINx 0.11's SNES-based
+``dolfinx.fem.petsc.NonlinearProblem``) and `JointedRockModel` (`stages.JointedProblem`). A
+subclass says how to assemble; this class owns everything SNES needs around that:
 
-- the NonlinearProblem shape ``form(x)``, ``F(x, b)``, ``J(x, A)`` (DOLFINx 0.9), evaluated at x:
-  SNES hands trial vectors that are not ``u.x.petsc_vec``, so x is copied into u first
-  (field notes, recipe 6);
+- ``residual(x, b)`` and ``jacobian(x, A)`` evaluated at x: SNES hands trial vectors that are not
+  ``u.x.petsc_vec``, so x is copied into u first (docs/fem.md, pitfalls);
 - a non-finite joint traction (a closure at or past a law's maximum closure) makes b infinite
   and is reported to SNES as a function-domain error (SNESSetFunctionDomainError), so the line
   search or the load stepping cuts the step instead of continuing from garbage; the project's
@@ -50,12 +50,12 @@ class JointedSNESProblem:
     #: function-domain errors)
     domain_errors: int = 0
 
-    # ---- NonlinearProblem interface ------------------------------------------------------
-    def form(self, x: PETSc.Vec) -> None:
-        """Called before F and J: x into u, ghosts refreshed."""
+    # ---- evaluation at a vector x -------------------------------------------------------
+    def update_solution(self, x: PETSc.Vec) -> None:
+        """x into u, ghosts refreshed (e.g. SNES's converged x before a state is committed)."""
         self._copy_into_u(x)
 
-    def F(self, x: PETSc.Vec, b: PETSc.Vec) -> None:
+    def residual(self, x: PETSc.Vec, b: PETSc.Vec) -> None:
         """Residual at x. A non-finite joint traction makes b infinite (Newton then cuts the step
         instead of continuing from garbage)."""
         self._copy_into_u(x)
@@ -65,19 +65,19 @@ class JointedSNESProblem:
             self.domain_errors += 1
             b.set(np.inf)
 
-    def J(self, x: PETSc.Vec, A: PETSc.Mat) -> None:
+    def jacobian(self, x: PETSc.Vec, A: PETSc.Mat) -> None:
         """Jacobian at x."""
         self._copy_into_u(x)
         self.assemble_jacobian(A)
 
     # ---- SNES callbacks ------------------------------------------------------------------
     def snes_F(self, snes, x: PETSc.Vec, b: PETSc.Vec) -> None:
-        self.F(x, b)
+        self.residual(x, b)
         if self.nonfinite:
             _rockjoint_fem_coupling.snes_set_function_domain_error(snes.handle)
 
     def snes_J(self, snes, x: PETSc.Vec, A: PETSc.Mat, P: PETSc.Mat) -> None:
-        self.J(x, A)
+        self.jacobian(x, A)
         if P.handle != A.handle:
             self.assemble_jacobian(P)
 
@@ -99,16 +99,6 @@ class JointedSNESProblem:
         self.u.x.scatter_forward()
 
     # ---- solvers -------------------------------------------------------------------------
-    def newton_solver(self, comm=None):
-        """A dolfinx.nls.petsc.NewtonSolver on this problem with the joint-aware matrix and the
-        closure-limited update. Set its tolerances and KSP as usual (solver.rtol, solver.krylov_solver)."""
-        from dolfinx.nls.petsc import NewtonSolver
-        solver = NewtonSolver(comm or self.u.function_space.mesh.comm, self)
-        solver.setJ(self.J, self.matrix())
-        fraction = 1.0 - 1e-12 if self.closure_fraction is None else self.closure_fraction
-        solver.set_update(self.coupling.newton_update(fraction))
-        return solver
-
     def snes_solver(self, comm=None, petsc_options: Mapping[str, object] | None = None,
                     options_prefix: str | None = None, ksp: PETSc.KSP | None = None) -> PETSc.SNES:
         """A PETSc SNES on this problem: residual (non-finite → domain error), joint-aware

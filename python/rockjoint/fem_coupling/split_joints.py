@@ -1,20 +1,21 @@
 """Joints into a mesh the user made with DOLFINx's own gmsh reader (docs/user-model.md).
 
-A FEniCSx 0.9 user meshes with gmsh and reads the model with
+A FEniCSx user meshes with gmsh and reads the model with DOLFINx 0.11's
 
-    mesh, cell_tags, facet_tags = dolfinx.io.gmshio.model_to_mesh(gmsh.model, comm, 0, gdim=2)
+    mesh_data = dolfinx.io.gmsh.model_to_mesh(gmsh.model, comm, 0, gdim=2)
 
+(on DOLFINx 0.9, ``rockjoint.fem_coupling.compat.io_gmsh`` is that module).
 That mesh is conforming: the two sides of a joint share their nodes. A zero-thickness joint needs
 them split (one copy per side) and both cells of every joint facet on one rank, so
 
-    dmesh = split_joints(mesh, cell_tags, facet_tags, joints={"fault": FAULT_TAG})
+    dmesh = split_joints(mesh_data, joints={"fault": FAULT_TAG})
 
-gathers the tagged mesh on rank 0 (in the input numbering of gmshio, through
+gathers the tagged mesh on rank 0 (in the input numbering of the gmsh reader, through
 ``geometry.input_global_indices``), splits the nodes along the joint facets by block
 (meshes.node_splitting, the same code the gmsh builders use) and distributes the split mesh with
 the joint-aware partitioner (distributed_mesh.distribute). The result is a DistributedJointMesh
 for JointCoupling or JointedRockModel; the original mesh is no longer needed. Cost: one gather of
-the mesh and one more mesh creation, as gmshio itself does on rank 0.
+the mesh and one more mesh creation, as the gmsh reader itself does on rank 0.
 """
 from __future__ import annotations
 
@@ -29,20 +30,29 @@ from .distributed_mesh import DistributedJointMesh, distribute
 _CELL_TYPE = {2: "triangle", 3: "tetrahedron"}
 
 
-def split_joints(mesh, cell_tags, facet_tags, joints: Mapping[str, int],
+def split_joints(mesh, cell_tags=None, facet_tags=None, joints: Mapping[str, int] | None = None,
                  blocks: Mapping[str, int] | None = None,
                  boundaries: Mapping[str, int] | None = None) -> DistributedJointMesh:
-    """The DistributedJointMesh of a gmshio mesh split along its joint facets. Collective.
+    """The DistributedJointMesh of a gmsh-read mesh split along its joint facets. Collective.
 
-    mesh, cell_tags, facet_tags: as returned by dolfinx.io.gmshio.model_to_mesh (P1 triangles or
-    tetrahedra). joints: {joint name: facet tag} (physical groups of dimension d-1 between blocks).
+    mesh: the MeshData that dolfinx.io.gmsh.model_to_mesh returns (DOLFINx 0.10+), or the mesh
+    itself with cell_tags and facet_tags (P1 triangles or tetrahedra). joints: {joint name: facet tag} (physical groups of dimension d-1 between blocks).
     blocks: {block name: cell tag} (default: every cell tag, named "block_<tag>").
     boundaries: {name: facet tag} of the named outer boundaries (default: every facet tag that is
     not a joint, named "boundary_<tag>"). Raises ValueError naming a missing tag or an untagged cell.
     """
+    if hasattr(mesh, "facet_tags") and hasattr(mesh, "mesh"):  # a MeshData
+        if cell_tags is not None or facet_tags is not None:
+            raise TypeError("split_joints: give a MeshData alone, or a mesh with cell_tags and facet_tags")
+        mesh, cell_tags, facet_tags = mesh.mesh, mesh.cell_tags, mesh.facet_tags
+    if cell_tags is None or facet_tags is None:
+        raise ValueError("split_joints: the mesh has no cell tags or no facet tags (physical groups of "
+                         "the blocks and of the joints are needed)")
+    if joints is None:
+        raise TypeError("split_joints: joints={name: facet tag} is required")
     comm = mesh.comm
     tdim = mesh.topology.dim
-    if tdim not in _CELL_TYPE or mesh.geometry.cmap.degree != 1:
+    if tdim not in _CELL_TYPE or mesh.geometry.cmaps[0].degree != 1:
         raise ValueError("split_joints: a P1 triangle or tetrahedron mesh is needed")
     cell_values = _gather_values(comm, cell_tags)
     facet_values = _gather_values(comm, facet_tags)
@@ -60,7 +70,7 @@ def split_joints(mesh, cell_tags, facet_tags, joints: Mapping[str, int],
     x = mesh.geometry.x[:, :mesh.geometry.dim]
     inputs = np.asarray(mesh.geometry.input_global_indices, dtype=np.int64)
     n_cells = mesh.topology.index_map(tdim).size_local
-    cells = inputs[mesh.geometry.dofmap[:n_cells]]
+    cells = inputs[mesh.geometry.dofmaps[0][:n_cells]]
     block_of = np.full(n_cells, -1, dtype=np.int64)
     owned = cell_tags.indices < n_cells
     block_of[cell_tags.indices[owned]] = cell_tags.values[owned]

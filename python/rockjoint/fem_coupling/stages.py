@@ -73,8 +73,7 @@ class Stage:
 
 
 class JointedProblem(JointedSNESProblem):
-    """The model's nonlinear problem F(u) = 0 for PETSc SNES, DOLFINx's NewtonSolver or a user's
-    Newton, through the one adapter the user's problems use too (snes_problem.JointedSNESProblem).
+    """The model's nonlinear problem F(u) = 0 for PETSc SNES or a user's Newton, through the one adapter the user's problems use too (snes_problem.JointedSNESProblem).
 
     F = bulk internal force + joint forces - external loads at the model's current load factor,
     zero at supported dofs (whose values the model sets to the prescribed displacement); J the
@@ -130,7 +129,7 @@ def snes_load_path(model, load_steps: int, options) -> list:
         snes.solve(None, x)
         reason = snes.getConvergedReason()
         if reason > 0:
-            problem.form(x)  # the converged x into u before the state is committed
+            problem.update_solution(x)  # the converged x into u before the state is committed
         return StepReport(target, residual_norms=list(norms), step_lengths=[1.0] * snes.getIterationNumber(),
                           converged=reason > 0, reason=f"SNES reason {_snes_reason(reason)}")
 

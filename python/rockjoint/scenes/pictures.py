@@ -19,7 +19,7 @@ def boundary_triangles(u):
     # P1 on simplices: a cell's geometry nodes and its dofs follow the same vertex order
     n_cells = mesh.topology.index_map(tdim).size_local + mesh.topology.index_map(tdim).num_ghosts
     node_dof = np.zeros(mesh.geometry.x.shape[0], dtype=np.int64)
-    node_dof[mesh.geometry.dofmap[:n_cells].ravel()] = V.dofmap.list[:n_cells].ravel()
+    node_dof[mesh.geometry.dofmaps[0][:n_cells].ravel()] = V.dofmap.list[:n_cells].ravel()
     x = mesh.geometry.x[nodes]
     values = u.x.array.reshape(-1, 3)[node_dof[nodes]]
     parts = [mesh.comm.gather(p, root=0) for p in (x, values)]
