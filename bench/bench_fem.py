@@ -57,6 +57,13 @@ BLOCKY_STRESS = (2e6, 2e6, 5e6)   #: principal stresses (compression) along x, y
 BLOCKY_SIZE_FACTOR = 1.0
 
 
+def _stack_versions() -> str:
+    """'0.11.0.post0, PETSc 3.25.5' of the DOLFINx and PETSc the workers import."""
+    import dolfinx
+    from petsc4py import PETSc
+    return f"{dolfinx.__version__}, PETSc {'.'.join(map(str, PETSc.Sys.getVersion()))}"
+
+
 # ---------------------------------------------------------------------------------------------
 # worker (inside mpirun)
 def make_mesh(case: str, h: float):
@@ -291,7 +298,7 @@ def report(ratio_results, scaling_results, args, wall, load_start) -> str:
          f"--ratio-size {args.ratio_size} --scaling-sizes {' '.join(map(str, args.scaling_sizes))} "
          f"--scaling-repeat {args.scaling_repeat} --scaling-ranks {args.scaling_ranks}")
     L = [
-        "# A jointed analysis at the cost of an intact linear solve (DOLFINx, 3D)",
+        f"# A jointed analysis at the cost of an intact linear solve (DOLFINx {_stack_versions()}, 3D)",
         "",
         f"Produced by `bench/bench_fem.py` on {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}, "
         f"{platform.machine()}, {os.cpu_count()} CPUs; whole run {wall:.0f} s. Machine load average "

@@ -269,8 +269,10 @@ def test_closure_limiter_lets_newton_and_snes_pass_a_stiffening_law():
     plain = problem()
     plain.closure_fraction = None  # no limiter: SNES's full Newton step
     plain.solve()
-    # Past V_m the joint traction is infinite: SNES is told (function-domain error) and stops.
-    assert plain.solver.getConvergedReason() == PETSc.SNES.ConvergedReason.DIVERGED_FUNCTION_DOMAIN
+    # Past V_m the joint traction is infinite: SNES is told (function-domain error) and stops
+    # without converging (PETSc 3.25 reports DIVERGED_FUNCTION_DOMAIN, 3.22 the line search's
+    # failure on it).
+    assert plain.solver.getConvergedReason() < 0
     assert plain.domain_errors > 0
 
     limited = problem()
