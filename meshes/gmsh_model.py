@@ -42,7 +42,7 @@ def from_gmsh_model(joints: Sequence[str], blocks: Sequence[str] | None = None,
     boundaries: names of the boundary groups (dimension d-1); default: every dimension-(d-1)
         group that is not a joint.
     comm: an mpi4py communicator; ranks other than 0 return None without touching gmsh (build the
-        model on rank 0 only, as with dolfinx.io.gmshio.model_to_mesh).
+        model on rank 0 only, as with dolfinx.io.gmsh.model_to_mesh).
     Raises ValueError naming the offending group or entity (see the module docstring).
     """
     if comm is not None and comm.rank != 0:

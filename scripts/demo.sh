@@ -4,7 +4,8 @@
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/host.sh"
 build="$rj_build_dir"
-bash "$rj_repo/scripts/build.sh"
+# The demo needs the Python package's two compiled modules, not the tests and benchmarks.
+ROCKJOINT_BUILD_TARGETS="_rockjoint _rockjoint_fem_coupling" bash "$rj_repo/scripts/build.sh"
 rj_setup
 export PYTHONPATH="$rj_repo/python:$build/python${PYTHONPATH:+:$PYTHONPATH}" MPLBACKEND=Agg
 mkdir -p "$rj_repo/out"
