@@ -1,0 +1,77 @@
+#!/usr/bin/env python3
+"""bench/results/fem.md: the FE benchmark on DOLFINx 0.11 beside 0.9, from their two reports.
+
+Each report is a run of bench/bench_fem.py in its own userland (scripts/host.sh):
+
+    bash scripts/run.sh python3 bench/bench_fem.py --scaling-sizes --output bench/results/fem_dolfinx0.11.md
+    ROCKJOINT_DOLFINX=0.9 bash scripts/run.sh python3 bench/bench_fem.py --scaling-sizes \\
+        --output bench/results/fem_dolfinx0.9.md
+    python3 bench/fem_versions.py
+
+This script only reads the two reports' ratio tables and writes them side by side (no number of
+its own); the full tables, settings and residual histories stay in the two reports.
+"""
+from __future__ import annotations
+
+import argparse
+import os
+import re
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+RESULTS = os.path.join(HERE, "results")
+VERSIONS = ("0.11", "0.9")
+
+
+def ratio_rows(path: str) -> tuple[str, dict]:
+    """(title, {(case, ranks): row}) of a bench_fem.py report's ratio table."""
+    with open(path, encoding="utf-8") as f:
+        text = f.read()
+    title = text.splitlines()[0].lstrip("# ").strip()
+    section = text.split("## Jointed analysis / one intact linear solve", 1)[1].split("\n## ", 1)[0]
+    lines = [ln for ln in section.splitlines() if ln.startswith("|")]
+    header = [c.strip() for c in lines[0].strip("|").split("|")]
+    rows = {}
+    for ln in lines[2:]:
+        cells = dict(zip(header, (c.strip() for c in ln.strip("|").split("|"))))
+        rows[(cells["case"], int(cells["ranks"]))] = cells
+    if not rows:
+        raise ValueError(f"{path}: no ratio table found")
+    return title, rows
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--output", default=os.path.join(RESULTS, "fem.md"))
+    args = ap.parse_args()
+    reports = {v: ratio_rows(os.path.join(RESULTS, f"fem_dolfinx{v}.md")) for v in VERSIONS}
+    keys = sorted(set.intersection(*(set(r) for _, r in reports.values())))
+    out = ["# A jointed analysis at the cost of an intact linear solve: DOLFINx 0.11 beside 0.9", "",
+           "Written by `python3 bench/fem_versions.py` from the two runs of `bench/bench_fem.py` "
+           "(same cases, same settings, each in its own Debian userland on the same machine):", ""]
+    out += [f"- {reports[v][0]}: [`fem_dolfinx{v}.md`](fem_dolfinx{v}.md)" for v in VERSIONS]
+    out += ["", "Ratio = jointed analysis / one intact linear solve on the same mesh (min of the runs; "
+            "target <= 2); CPU ratio is the headline on a shared machine (see the reports).", "",
+            "| case | ranks | dofs (jointed) | " + " | ".join(
+                f"intact LS [s] {v} | jointed [s] {v} | ratio wall {v} | ratio CPU {v} | Newton its {v} | "
+                f"error vs closed form {v}" for v in VERSIONS) + " |",
+            "|---|---:|---:|" + "---:|---:|---|---:|---:|---|" * len(VERSIONS)]
+    for case, ranks in keys:
+        row = f"| {case} | {ranks} | {reports[VERSIONS[0]][1][(case, ranks)]['dofs (jointed / intact)'].split('/')[0].strip()} |"
+        for v in VERSIONS:
+            c = reports[v][1][(case, ranks)]
+            row += (f" {c['intact LS [s]']} | {c['jointed [s]']} | {c['ratio (wall)']} | {c['ratio (CPU)']} | "
+                    f"{c['Newton its']} | {c['error vs closed form (jointed / intact)']} |")
+        out.append(row)
+    cpu = {v: [float(re.sub(r"[^0-9.]", "", reports[v][1][k]["ratio (CPU)"])) for k in keys] for v in VERSIONS}
+    worse = [(k, a, b) for k, a, b in zip(keys, cpu["0.11"], cpu["0.9"]) if a > b]
+    out += ["", "CPU ratio on 0.11 against 0.9: " + ", ".join(
+        f"{case} {ranks} rank(s) {a:.2f} vs {b:.2f}" for (case, ranks), a, b in zip(keys, cpu["0.11"], cpu["0.9"]))
+        + (". No case is worse on 0.11." if not worse else
+           ". Worse on 0.11: " + ", ".join(f"{c} {r} rank(s)" for (c, r), _, _ in worse) + "."), ""]
+    with open(args.output, "w", encoding="utf-8") as f:
+        f.write("\n".join(out))
+    print("\n".join(out))
+
+
+if __name__ == "__main__":
+    main()
