@@ -6,8 +6,8 @@ on its branch."""
 import numpy as np
 import pytest
 
-pytest.importorskip("dolfinx")
-pytest.importorskip("rockjoint._rockjoint_fem_coupling")
+from fe_stack import require_fe  # noqa: E402
+require_fe()
 
 from jacobian_checks import assert_jacobian_matches_fd  # noqa: E402
 from hysteresis_cases import (KNI, M, PEAK, R, VM, check_cycle, expected_closures,  # noqa: E402

@@ -5,8 +5,8 @@ tunnel bench's period-2 cycle takes minutes to reach), so that the continuation 
 import numpy as np
 import pytest
 
-pytest.importorskip("dolfinx")
-pytest.importorskip("rockjoint._rockjoint_fem_coupling")
+from fe_stack import require_fe  # noqa: E402
+require_fe()
 
 from rockjoint.fem_coupling import ConvergenceError, NewtonOptions  # noqa: E402
 from continuum_cases import fail_first_newton, sliding_answer as answer, sliding_column  # noqa: E402

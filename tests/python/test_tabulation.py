@@ -198,7 +198,6 @@ def test_cli_tabulates_a_toml_parameter_file(tmp_path):
     np.testing.assert_array_equal(table.knot_stiffness, ref.knot_stiffness)
 
 
-@pytest.mark.skipif(not hasattr(rockjoint, "TangSubstrate"), reason="no asperity laws")
 def test_cli_tabulates_tang_jiao_with_spec_parameters(tmp_path):
     params = tmp_path / "tj.toml"
     params.write_text(

@@ -106,7 +106,12 @@ class LinearSolver:
         self.ksp = PETSc.KSP().create(comm)
         self._prefix = prefix if prefix is not None else f"rockjoint_ls_{id(self)}_"
         self.ksp.setOptionsPrefix(self._prefix)
-        opts = PETSc.Options()
+        # Our own settings go through the API where petsc4py has one; the GAMG settings it lacks
+        # are put into the global options database only for the one setFromOptions that reads
+        # them, then removed. Left there, settings the solver never reads (MUMPS's on an
+        # iterative solver, the level smoothers of a one-level GAMG) end every program with
+        # PETSc's "options you set that were not used" warning (issue 30, item 7).
+        internal = {}
         if kind == "direct":
             self.ksp.setType("preonly")
             pc = self.ksp.getPC()
@@ -114,10 +119,11 @@ class LinearSolver:
             # (LDLᵀ), about half the work and memory of LU.
             pc.setType("cholesky" if symmetric else "lu")
             pc.setFactorSolverType("mumps")
-            opts[f"{self._prefix}mat_mumps_icntl_24"] = 1  # null-pivot detection
+            # MUMPS null-pivot detection, ICNTL(24) = 1: set on the factor matrix in _solve.
         else:
             self.ksp.setType("cg" if symmetric else "gmres")
-            self.ksp.getPC().setType("gamg")
+            pc = self.ksp.getPC()
+            pc.setType("gamg")
             self.ksp.setTolerances(rtol=rtol, atol=1e-50, max_it=2000)
             if not symmetric:
                 # Right preconditioning: GMRES then minimises the true residual, so the forcing
@@ -126,19 +132,23 @@ class LinearSolver:
             # Stop on the true residual ||b - A x||, not the preconditioned one: then one
             # solve meets Newton's residual tolerance (a linear, intact model: one iteration).
             self.ksp.setNormType(PETSc.KSP.NormType.UNPRECONDITIONED)
-            opts[f"{self._prefix}pc_gamg_type"] = "agg"
+            pc.setGAMGType(PETSc.PC.GAMGType.AGG)
             # Plain (unsmoothed) aggregation: more CG iterations than smoothed aggregation but a
             # far cheaper set-up; measured on the 203k-dof benchmark block (CPU s, 1 rank): set-up
             # 1.1 + 58 iterations 3.3 = 4.3 s, against 8.8 + 20 iterations 1.8 = 10.6 s smoothed.
-            opts[f"{self._prefix}pc_gamg_agg_nsmooths"] = 0
+            pc.setGAMGSmooths(0)
             # Dropping weak graph edges: 16 CG iterations instead of 69 on the benchmark block
-            # (48k dofs, 2 joints), 4x faster overall.
-            opts[f"{self._prefix}pc_gamg_threshold"] = 0.01
-            opts[f"{self._prefix}mg_levels_ksp_type"] = "chebyshev"
-            opts[f"{self._prefix}mg_levels_pc_type"] = "jacobi"
-        for k, v in (options or {}).items():
+            # (48k dofs, 2 joints), 4x faster overall. (No petsc4py call for the threshold.)
+            internal["pc_gamg_threshold"] = 0.01
+            # The level smoothers are GAMG's defaults, Chebyshev/Jacobi (checked by
+            # test_fem_linear_solver.py on both PETSc versions).
+        options = dict(options or {})
+        opts = PETSc.Options()
+        for k, v in {**internal, **options}.items():   # the user's options win
             opts[f"{self._prefix}{k}"] = v
         self.ksp.setFromOptions()
+        for k in internal.keys() - options.keys():
+            opts.delValue(f"{self._prefix}{k}")
         self.rtol = self.ksp.getTolerances()[0]   # after the user's options (ksp_rtol)
         self.iterations = []
 
@@ -170,6 +180,12 @@ class LinearSolver:
         if self.kind == "direct" and self.symmetric:
             A.setOption(PETSc.Mat.Option.SYMMETRIC, True)  # MUMPS Cholesky requires the flag
         self.ksp.setOperators(A)
+        pc = self.ksp.getPC()
+        if pc.getType() in ("lu", "cholesky") and pc.getFactorSolverType() == "mumps":
+            # Null-pivot detection, ICNTL(24) = 1, on this solver's own factor matrix (a user's
+            # -<prefix>mat_mumps_icntl_24 is read later, at the factorisation, and wins).
+            pc.setFactorSetUpSolverType()
+            pc.getFactorMatrix().setMumpsIcntl(24, 1)
         self.ksp.getPC().setReusePreconditioner(reuse)
         if not reuse:
             self.setups += 1
