@@ -170,7 +170,15 @@ def test_mumps_reports_the_null_pivot_of_a_singular_matrix():
     b.setValue(n - 1, -1.0)
     b.assemble()
     x = b.duplicate()
-    solver = LinearSolver(PETSc.COMM_SELF, "direct")
+    solver = LinearSolver(PETSc.COMM_SELF, "direct", prefix="rockjoint_mumps_test_",
+                          options={"mat_mumps_icntl_14": 50})
     with pytest.raises(LinearSolveError, match=r"MUMPS found 1 null pivot"):
         solver.solve(A, b, x)
-    assert solver.ksp.getPC().getFactorMatrix().getMumpsIcntl(24) == 1
+    factor = solver.ksp.getPC().getFactorMatrix()
+    # ICNTL(24) was read from the solver's prefix, and so was the user's own MUMPS option; then
+    # the solver's option left the database, the user's stays (it is the user's).
+    assert factor.getMumpsIcntl(24) == 1 and factor.getMumpsIcntl(14) == 50
+    options = PETSc.Options().getAll()
+    assert "rockjoint_mumps_test_mat_mumps_icntl_24" not in options
+    assert options.get("rockjoint_mumps_test_mat_mumps_icntl_14") == "50"
+    PETSc.Options().delValue("rockjoint_mumps_test_mat_mumps_icntl_14")

@@ -106,11 +106,13 @@ class LinearSolver:
         self.ksp = PETSc.KSP().create(comm)
         self._prefix = prefix if prefix is not None else f"rockjoint_ls_{id(self)}_"
         self.ksp.setOptionsPrefix(self._prefix)
-        # Our own settings go through the API where petsc4py has one; the GAMG settings it lacks
-        # are put into the global options database only for the one setFromOptions that reads
-        # them, then removed. Left there, settings the solver never reads (MUMPS's on an
-        # iterative solver, the level smoothers of a one-level GAMG) end every program with
-        # PETSc's "options you set that were not used" warning (issue 30, item 7).
+        # Our own settings go through the API where petsc4py has one; the others are put into
+        # the global options database only while PETSc reads them (GAMG's threshold: this
+        # setFromOptions; MUMPS's ICNTL(24): the solves, flag()/unflag()), then removed. Left
+        # there, settings the solver never reads (MUMPS's on an iterative solver or one never
+        # used, the level smoothers of a one-level GAMG) end every program with PETSc's
+        # "options you set that were not used" warning (issue 30, item 7).
+        self._flagged = None   # the option flag() put into the database, until unflag()
         internal = {}
         if kind == "direct":
             self.ksp.setType("preonly")
@@ -119,7 +121,8 @@ class LinearSolver:
             # (LDLᵀ), about half the work and memory of LU.
             pc.setType("cholesky" if symmetric else "lu")
             pc.setFactorSolverType("mumps")
-            # MUMPS null-pivot detection, ICNTL(24) = 1: set on the factor matrix in _solve.
+            # MUMPS null-pivot detection, ICNTL(24) = 1: put under the prefix by flag() for the
+            # solve only.
         else:
             self.ksp.setType("cg" if symmetric else "gmres")
             pc = self.ksp.getPC()
@@ -174,25 +177,42 @@ class LinearSolver:
                 self.ksp.setTolerances(rtol=self.rtol)
             self.ksp.getPC().setReusePreconditioner(False)
 
-    def _solve(self, A, b, x, reuse: bool) -> int:
+    def flag(self, A) -> None:
+        """Tell what a solve needs, whoever drives the KSP (this solver, or SNES in
+        stages.snes_load_path): GAMG's near-nullspace and MUMPS Cholesky's symmetry on A, and
+        MUMPS's null-pivot detection ICNTL(24) = 1 as an option under this solver's prefix unless
+        the user gave one. MUMPS reads it when it factorises; petsc4py cannot set it on the factor
+        matrix before then without losing the prefix (the user's -<prefix>mat_mumps_* would be
+        ignored). unflag() removes it again."""
         if self.near_nullspace is not None and self.kind == "iterative":
             A.setNearNullSpace(self.near_nullspace)
         if self.kind == "direct" and self.symmetric:
             A.setOption(PETSc.Mat.Option.SYMMETRIC, True)  # MUMPS Cholesky requires the flag
-        self.ksp.setOperators(A)
         pc = self.ksp.getPC()
-        if pc.getType() in ("lu", "cholesky") and pc.getFactorSolverType() == "mumps":
-            # Null-pivot detection, ICNTL(24) = 1, on this solver's own factor matrix (a user's
-            # -<prefix>mat_mumps_icntl_24 is read later, at the factorisation, and wins).
-            pc.setFactorSetUpSolverType()
-            pc.getFactorMatrix().setMumpsIcntl(24, 1)
+        key = f"{self._prefix}mat_mumps_icntl_24"
+        if (self._flagged is None and pc.getType() in ("lu", "cholesky")
+                and pc.getFactorSolverType() == "mumps" and not PETSc.Options().hasName(key)):
+            PETSc.Options()[key] = 1
+            self._flagged = key
+
+    def unflag(self) -> None:
+        """Remove what flag() put into the options database (read, or not needed any more)."""
+        if self._flagged is not None:
+            PETSc.Options().delValue(self._flagged)
+            self._flagged = None
+
+    def _solve(self, A, b, x, reuse: bool) -> int:
+        self.ksp.setOperators(A)
         self.ksp.getPC().setReusePreconditioner(reuse)
         if not reuse:
             self.setups += 1
+        self.flag(A)
         try:
             self.ksp.solve(b, x)
         except PETSc.Error as e:
             raise LinearSolveError(f"linear solve failed in PETSc ({self.kind}): {e}") from e
+        finally:
+            self.unflag()
         reason = self.ksp.getConvergedReason()
         its = self.ksp.getIterationNumber()
         self.iterations.append(its)
