@@ -79,7 +79,8 @@ TEST(ContactHertz, PeriodicApproachIsHertzPlusTheLatticeCorrection)
   const double expected = ref.approach + lattice_constant * load / (modulus * side);
   std::printf("periodic a/h = %.1f: approach %.6e, Hertz %.6e, Hertz + lattice %.6e\n",
               ref.a / (side / n), st.approach, ref.approach, expected);
-  EXPECT_NEAR(st.approach, expected, 1e-3 * expected);
+  // docs/contact.md states 0.03 % (measured 2.7e-4 on both Debian userlands).
+  EXPECT_NEAR(st.approach, expected, 3e-4 * expected);
 }
 
 TEST(ContactHertz, LoadBalanceComplementarityAndSigns)

@@ -16,9 +16,9 @@ import re
 import numpy as np
 import pytest
 
-pytest.importorskip("dolfinx")
-pytest.importorskip("rockjoint._rockjoint_fem_coupling")
-meshio = pytest.importorskip("meshio")
+from fe_stack import require, require_fe  # noqa: E402
+require_fe()
+meshio = require("meshio")
 
 import demo_runner  # noqa: E402
 

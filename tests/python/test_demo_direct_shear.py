@@ -4,10 +4,9 @@ shear box (displacement control under constant normal load) levels off at the Co
 import math
 
 import numpy as np
-import pytest
 
-pytest.importorskip("dolfinx")
-pytest.importorskip("rockjoint._rockjoint_fem_coupling")
+from fe_stack import require_fe  # noqa: E402
+require_fe()
 
 import demo_runner  # noqa: E402
 

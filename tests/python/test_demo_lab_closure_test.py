@@ -8,8 +8,8 @@ Newton tolerance (1e-10) adds nothing visible. Serial and parallel agree to solv
 import numpy as np
 import pytest
 
-pytest.importorskip("dolfinx")
-pytest.importorskip("rockjoint._rockjoint_fem_coupling")
+from fe_stack import require_fe  # noqa: E402
+require_fe()
 
 import demo_runner  # noqa: E402
 

@@ -17,8 +17,8 @@ import re
 import numpy as np
 import pytest
 
-pytest.importorskip("dolfinx")
-pytest.importorskip("rockjoint._rockjoint_fem_coupling")
+from fe_stack import require_fe  # noqa: E402
+require_fe()
 
 import demo_runner  # noqa: E402
 from rockjoint.reference import KirschSolution  # noqa: E402

@@ -6,8 +6,8 @@ same answer as a serial solve of the same mesh on MPI.COMM_SELF (1 vs 2 ranks).
 import numpy as np
 import pytest
 
-pytest.importorskip("dolfinx")
-pytest.importorskip("rockjoint._rockjoint_fem_coupling")
+from fe_stack import require_fe  # noqa: E402
+require_fe()
 
 from mpi4py import MPI  # noqa: E402
 

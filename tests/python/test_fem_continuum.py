@@ -12,8 +12,8 @@ against the discrete joints they replace.
 import numpy as np
 import pytest
 
-pytest.importorskip("dolfinx")
-pytest.importorskip("rockjoint._rockjoint_fem_coupling")
+from fe_stack import require_fe  # noqa: E402
+require_fe()
 
 from mpi4py import MPI  # noqa: E402
 

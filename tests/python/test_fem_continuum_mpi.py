@@ -3,8 +3,8 @@ set give the serial answers (closed forms, and the serial run of the slip case o
 import numpy as np
 import pytest
 
-pytest.importorskip("dolfinx")
-pytest.importorskip("rockjoint._rockjoint_fem_coupling")
+from fe_stack import require_fe  # noqa: E402
+require_fe()
 
 from mpi4py import MPI  # noqa: E402
 

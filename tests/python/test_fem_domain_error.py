@@ -10,8 +10,8 @@ closed form top displacement -(σ H / E' + N Δ(σ)), Δ(σ) = V_m σ / (K_ni V_
 """
 import pytest
 
-pytest.importorskip("dolfinx")
-pytest.importorskip("rockjoint._rockjoint_fem_coupling")
+from fe_stack import require_fe  # noqa: E402
+require_fe()
 
 import rockjoint  # noqa: E402
 from rockjoint.fem_coupling import NewtonOptions  # noqa: E402

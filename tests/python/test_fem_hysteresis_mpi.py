@@ -2,8 +2,8 @@
 checks as the serial test, test_fem_hysteresis.py), with the point history kept per rank."""
 import pytest
 
-pytest.importorskip("dolfinx")
-pytest.importorskip("rockjoint._rockjoint_fem_coupling")
+from fe_stack import require_fe  # noqa: E402
+require_fe()
 
 from hysteresis_cases import check_cycle, hysteretic_column, run_cycle  # noqa: E402
 

@@ -11,8 +11,8 @@ zero, whatever the linear tolerances of the Newton steps were.
 import numpy as np
 import pytest
 
-pytest.importorskip("dolfinx")
-pytest.importorskip("rockjoint._rockjoint_fem_coupling")
+from fe_stack import require_fe  # noqa: E402
+require_fe()
 
 from mpi4py import MPI  # noqa: E402
 from petsc4py import PETSc  # noqa: E402

@@ -2,8 +2,8 @@
 case (test_fem_inexact_newton.py) and one GAMG set-up, as in serial."""
 import pytest
 
-pytest.importorskip("dolfinx")
-pytest.importorskip("rockjoint._rockjoint_fem_coupling")
+from fe_stack import require_fe  # noqa: E402
+require_fe()
 
 from test_fem_inexact_newton import assert_exact, blocky_model, dmesh  # noqa: E402,F401
 

@@ -3,8 +3,8 @@ assembled residual, in 2D and 3D, for the nodal and Gauss rules and both shear m
 import numpy as np
 import pytest
 
-pytest.importorskip("dolfinx")
-pytest.importorskip("rockjoint._rockjoint_fem_coupling")
+from fe_stack import require_fe  # noqa: E402
+require_fe()
 
 from mpi4py import MPI  # noqa: E402
 

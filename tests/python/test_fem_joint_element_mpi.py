@@ -2,8 +2,8 @@
 direction reduced over ranks, the pre-closure force balance summed over ranks)."""
 import pytest
 
-pytest.importorskip("dolfinx")
-pytest.importorskip("rockjoint._rockjoint_fem_coupling")
+from fe_stack import require_fe  # noqa: E402
+require_fe()
 
 import test_fem_joint_element as element  # noqa: E402  (tests/python is on sys.path under pytest)
 from mpi_ranks import two_ranks  # noqa: E402

@@ -19,8 +19,8 @@ import sys
 
 import pytest
 
-pytest.importorskip("dolfinx")
-pytest.importorskip("rockjoint._rockjoint_fem_coupling")
+from fe_stack import require_fe  # noqa: E402
+require_fe()
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "..", "bench"))
 import bench_kirsch  # noqa: E402

@@ -3,11 +3,12 @@ rebuilt after a solve that needed more than rebuild_factor times the iterations 
 solve that built it; per-solve tolerances (the forcing term of inexact Newton)."""
 import pytest
 
-pytest.importorskip("dolfinx")
+from fe_stack import require  # noqa: E402
+require("dolfinx")
 
 from petsc4py import PETSc  # noqa: E402
 
-from rockjoint.fem_coupling.linear_solver import LinearSolver  # noqa: E402
+from rockjoint.fem_coupling.linear_solver import LinearSolver, LinearSolveError  # noqa: E402
 
 
 def laplacian(n, shift=0.0):
@@ -115,3 +116,69 @@ def test_auto_picks_mumps_only_below_the_measured_crossover():
         resolve_kind("lu", 100, 2)
     with pytest.raises(ValueError, match="gdim must be 2 or 3"):
         resolve_kind("auto", 100, 1)
+
+
+def gamg_view(solver, tmp_path):
+    v = PETSc.Viewer().createASCII(str(tmp_path / "ksp.txt"), comm=PETSc.COMM_SELF)
+    solver.ksp.view(v)
+    v.destroy()
+    return (tmp_path / "ksp.txt").read_text()
+
+
+@pytest.mark.parametrize("threshold", [None, 0.05])
+def test_gamg_gets_its_settings_without_the_options_database(tmp_path, threshold):
+    """Our GAMG settings reach the preconditioner (set through the API, the threshold through
+    one setFromOptions) and a user's option overrides ours; the level smoothers are GAMG's
+    defaults, Chebyshev/Jacobi, which the solver relies on instead of setting them."""
+    options = {} if threshold is None else {"pc_gamg_threshold": threshold}
+    solver = LinearSolver(PETSc.COMM_SELF, "iterative", rtol=1e-10, options=options,
+                          prefix=f"rockjoint_gamg_test_{len(options)}_")
+    A = laplacian(60)
+    b = A.createVecLeft()
+    b.set(1.0)
+    x = b.duplicate()
+    solver.solve(A, b, x)
+    assert residual(A, x, b) <= 1e-10
+    pc = solver.ksp.getPC()
+    assert pc.getMGLevels() >= 2
+    for level in range(1, pc.getMGLevels()):
+        smoother = pc.getMGSmoother(level)
+        assert (smoother.getType(), smoother.getPC().getType()) == ("chebyshev", "jacobi")
+    view = gamg_view(solver, tmp_path)
+    assert "AGG specific options" in view and "Number smoothing steps to construct prolongation 0" in view
+    expected = 0.01 if threshold is None else threshold
+    line = next(line for line in view.splitlines() if "Threshold for dropping small values" in line)
+    assert float(line.split("=")[1].split()[0]) == pytest.approx(expected), line
+    for key in options:
+        PETSc.Options().delValue(f"rockjoint_gamg_test_1_{key}")
+
+
+def test_mumps_reports_the_null_pivot_of_a_singular_matrix():
+    """ICNTL(24) (null-pivot detection) is set on the solver's own factor matrix: a pure-Neumann
+    Laplacian (constants in its kernel) is refused as singular, with the number of null pivots."""
+    n = 20
+    A = PETSc.Mat().createAIJ([n, n], nnz=3, comm=PETSc.COMM_SELF)
+    for i in range(n):
+        A.setValue(i, i, 2.0 if 0 < i < n - 1 else 1.0)
+        for j in (i - 1, i + 1):
+            if 0 <= j < n:
+                A.setValue(i, j, -1.0)
+    A.assemble()
+    b = A.createVecLeft()
+    b.set(0.0)
+    b.setValue(0, 1.0)
+    b.setValue(n - 1, -1.0)
+    b.assemble()
+    x = b.duplicate()
+    solver = LinearSolver(PETSc.COMM_SELF, "direct", prefix="rockjoint_mumps_test_",
+                          options={"mat_mumps_icntl_14": 50})
+    with pytest.raises(LinearSolveError, match=r"MUMPS found 1 null pivot"):
+        solver.solve(A, b, x)
+    factor = solver.ksp.getPC().getFactorMatrix()
+    # ICNTL(24) was read from the solver's prefix, and so was the user's own MUMPS option; then
+    # the solver's option left the database, the user's stays (it is the user's).
+    assert factor.getMumpsIcntl(24) == 1 and factor.getMumpsIcntl(14) == 50
+    options = PETSc.Options().getAll()
+    assert "rockjoint_mumps_test_mat_mumps_icntl_24" not in options
+    assert options.get("rockjoint_mumps_test_mat_mumps_icntl_14") == "50"
+    PETSc.Options().delValue("rockjoint_mumps_test_mat_mumps_icntl_14")

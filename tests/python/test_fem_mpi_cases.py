@@ -3,8 +3,8 @@ test's body with MPI.COMM_WORLD meshes: ghosted joint nodes, pairs on the minus-
 residual contributions sent to owners, Jacobian blocks in off-process rows."""
 import pytest
 
-pytest.importorskip("dolfinx")
-pytest.importorskip("rockjoint._rockjoint_fem_coupling")
+from fe_stack import require_fe  # noqa: E402
+require_fe()
 
 from mpi4py import MPI  # noqa: E402
 

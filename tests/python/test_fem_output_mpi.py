@@ -4,7 +4,8 @@ import numpy as np
 import pytest
 from mpi4py import MPI
 
-pytest.importorskip("rockjoint._rockjoint_fem_coupling")
+from fe_stack import require  # noqa: E402
+require("rockjoint._rockjoint_fem_coupling")
 
 from dolfinx import fem  # noqa: E402
 

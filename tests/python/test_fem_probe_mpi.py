@@ -7,7 +7,8 @@ different blocks, near the opening, on 1 or 2 ranks); a point inside the opening
 import numpy as np
 import pytest
 
-pytest.importorskip("dolfinx")
+from fe_stack import require  # noqa: E402
+require("dolfinx")
 from dolfinx import fem  # noqa: E402
 from mpi4py import MPI  # noqa: E402
 

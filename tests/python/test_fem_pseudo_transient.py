@@ -5,8 +5,8 @@ tunnel bench's period-2 cycle takes minutes to reach), so that the continuation 
 import numpy as np
 import pytest
 
-pytest.importorskip("dolfinx")
-pytest.importorskip("rockjoint._rockjoint_fem_coupling")
+from fe_stack import require_fe  # noqa: E402
+require_fe()
 
 from rockjoint.fem_coupling import ConvergenceError, NewtonOptions  # noqa: E402
 from continuum_cases import fail_first_newton, sliding_answer as answer, sliding_column  # noqa: E402
@@ -22,7 +22,7 @@ def test_continuation_ends_at_a_rate_independent_equilibrium(first_newton_fails)
     its residual, evaluated afresh from the committed state, meets the tolerance, and every point's
     shear traction on the set is within the Coulomb strength. The path differs from one
     rate-independent step (sliding is path dependent: the rollers make the slip non-uniform), so
-    the answer is compared with that step's to 1 % only (measured: 5e-4)."""
+    the answer is compared with that step's to 1 % only (measured: 5e-4 to 8e-4 on PETSc 3.22 and 3.25)."""
     first_newton_fails["first"] = False
     reference = sliding_column()
     reference.solve()

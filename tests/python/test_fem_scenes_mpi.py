@@ -6,8 +6,8 @@ import os
 import numpy as np
 import pytest
 
-pytest.importorskip("dolfinx")
-pytest.importorskip("rockjoint._rockjoint_fem_coupling")
+from fe_stack import require_fe  # noqa: E402
+require_fe()
 from mpi4py import MPI  # noqa: E402
 
 from rockjoint.scenes import load_scene, make_plan, run_scene  # noqa: E402

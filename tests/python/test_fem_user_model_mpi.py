@@ -7,8 +7,8 @@ depend on them: boundary means of u and the joint point state matched by coordin
 import numpy as np
 import pytest
 
-pytest.importorskip("dolfinx")
-pytest.importorskip("rockjoint._rockjoint_fem_coupling")
+from fe_stack import require_fe  # noqa: E402
+require_fe()
 
 import gmsh  # noqa: E402
 import ufl  # noqa: E402

@@ -18,8 +18,9 @@ from rockjoint.calibration import ClosureCurve, calibrate
 from rockjoint.laws import make_law
 
 from demo_runner import SOURCE
+from fe_stack import require_fe
 
-toy = pytest.importorskip("toy_law_plugin")  # registers the toy law on import (for the CLI) ...
+import toy_law_plugin as toy  # noqa: E402  registers the toy law on import (for the CLI) ...
 law_registry.unregister(toy.KEY)              # ... which other test modules must not see
 
 
@@ -83,7 +84,7 @@ def test_cli_tabulates_and_calibrates_a_plugin_law(tmp_path):
 
 
 def test_fe_joint_takes_the_registered_law():
-    pytest.importorskip("dolfinx")
+    require_fe()
     from test_fem_column import column_model, expected_top
     stress = 10e6
     model = column_model(2, make_law(toy.KEY, initial_normal_stiffness=K0, maximum_closure=VM))

@@ -12,8 +12,8 @@ import os
 
 import pytest
 
-pytest.importorskip("dolfinx")
-pytest.importorskip("rockjoint._rockjoint_fem_coupling")
+from fe_stack import require_fe  # noqa: E402
+require_fe()
 
 from rockjoint.scenes import load_scene, make_plan, run_scene  # noqa: E402
 from rockjoint.scenes.joint_laws import source_law  # noqa: E402

@@ -5,8 +5,8 @@ factory). Table: rtol 1e-5 (a 1e-6 table); curve: rtol 1e-3 (a least-squares fit
 import numpy as np
 import pytest
 
-pytest.importorskip("dolfinx")
-pytest.importorskip("rockjoint._rockjoint_fem_coupling")
+from fe_stack import require_fe  # noqa: E402
+require_fe()
 
 import rockjoint  # noqa: E402
 from rockjoint.laws import make_law  # noqa: E402

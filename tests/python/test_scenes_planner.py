@@ -15,6 +15,7 @@ import pytest
 
 from rockjoint.scenes import SceneError, load_scene, make_plan
 from rockjoint.scenes.ladder import LADDER
+from fe_stack import require_fe
 from scene_cases import COLUMN, SCENES, SOURCE, cli, write
 
 LADDER_FILE = os.path.join(SOURCE, "bench", "results", "accuracy_ladder.md")
@@ -61,13 +62,17 @@ def test_law_meets_the_budget_on_the_ladders_joints(tmp_path, budget):
         assert any("no law meets" in c.why for c in plan.choices)
 
 
-dolfinx = pytest.importorskip("dolfinx")
-pytest.importorskip("rockjoint._rockjoint_fem_coupling")
-from rockjoint.scenes import run_scene  # noqa: E402
+@pytest.fixture
+def run_scene():
+    """The scene runner, for the cases that solve: only they need the FE stack (the plan-only
+    cases above and below run without DOLFINx; a module-level skip hid them too)."""
+    require_fe()
+    from rockjoint.scenes import run_scene
+    return run_scene
 
 
 @pytest.mark.parametrize("name", ["tunnel", "blocky_rock_mass"])
-def test_table_covers_what_the_scene_reaches(tmp_path, name):
+def test_table_covers_what_the_scene_reaches(tmp_path, name, run_scene):
     scene = load_scene(os.path.join(SCENES, name + ".yaml"))
     plan = make_plan(scene, reduced=True)
     result = run_scene(scene, plan, str(tmp_path / "out"), reduced=True)
@@ -80,7 +85,7 @@ def test_table_covers_what_the_scene_reaches(tmp_path, name):
 SHEARED = COLUMN.replace("[0 MPa, -10 MPa]", "[3 MPa, -10 MPa]")   # τ/σ_n = 0.3 < tan 30° = 0.58
 
 
-def test_slip_left_out_far_from_the_envelope_and_the_answer_barely_changes(tmp_path):
+def test_slip_left_out_far_from_the_envelope_and_the_answer_barely_changes(tmp_path, run_scene):
     # 2 MPa shear over 10 MPa normal load: τ/(σ_n tan 30°) = 0.35 on the joint, below the 0.5 margin
     text = COLUMN.replace("[0 MPa, -10 MPa]", "[2 MPa, -10 MPa]")
     scene = load_scene(write(tmp_path, text))
@@ -99,7 +104,7 @@ def test_slip_left_out_far_from_the_envelope_and_the_answer_barely_changes(tmp_p
             assert share > 0 and abs(ua[k] - ub[k]) < scene["error_budget"] * share, (k, ua, ub)
 
 
-def test_slip_put_in_where_the_joint_reaches_its_envelope(tmp_path):
+def test_slip_put_in_where_the_joint_reaches_its_envelope(tmp_path, run_scene):
     # the shear box: 0.8 MPa shear over 2 MPa normal load, mobilised friction 0.69 of tan 30° on
     # average and more at the box's edges (bending): the plan includes slip and the run slips there
     scene = load_scene(os.path.join(SCENES, "direct_shear.yaml"))

@@ -5,8 +5,8 @@ a uniform vertical stress gives the discrete answer: the top settles by σH/E' +
 closed form of both (four joints s = H/4 apart in the discrete model)."""
 import pytest
 
-pytest.importorskip("dolfinx")
-pytest.importorskip("rockjoint._rockjoint_fem_coupling")
+from fe_stack import require_fe  # noqa: E402
+require_fe()
 
 from scene_cases import SCENES, cli, write  # noqa: E402
 

@@ -5,7 +5,8 @@ import gmsh
 import numpy as np
 import pytest
 
-pytest.importorskip("dolfinx")
+from fe_stack import require  # noqa: E402
+require("dolfinx")
 from rockjoint.fem_coupling.compat import io_gmsh  # noqa: E402  (dolfinx.io.gmsh on 0.10+)
 from mpi4py import MPI  # noqa: E402
 

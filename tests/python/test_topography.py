@@ -191,11 +191,6 @@ def test_cli_reports_malformed_file_cleanly(tmp_path):
     assert "Traceback" not in r.stderr
 
 
-laws_missing = not all(hasattr(rockjoint, n) for n in ("GreenwoodWilliamson", "TangSubstrate",
-                                                        "TangJiao", "AsperityParameters"))
-
-
-@pytest.mark.skipif(laws_missing, reason="closure laws not in this build")
 def test_closure_laws_take_the_measured_parameters():
     u, l = topo.mated_pair(topo.SelfAffineSpec(0.8, 1e-3), (96, 96), H, 2.5e-3, seed=8)
     joint = topo.composite_topography(u, l)

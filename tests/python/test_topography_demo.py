@@ -4,16 +4,11 @@ import re
 import subprocess
 import sys
 
-import pytest
-
-import rockjoint
-
 DEMO = os.path.join(os.environ.get("ROCKJOINT_SOURCE_DIR",
                                    os.path.join(os.path.dirname(__file__), "..", "..")),
                     "demos", "demo_topography_to_closure.py")
 
 
-@pytest.mark.skipif(not hasattr(rockjoint, "TangJiao"), reason="closure laws not in this build")
 def test_demo_topography_to_closure_runs(tmp_path):
     env = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in sys.path if p),
                MPLBACKEND="Agg")

@@ -2,11 +2,19 @@
 
     from rockjoint.fem_coupling import JointedRockModel, distribute
 """
+from importlib.util import find_spec
+
+from .._fe_required import fe_required
 from .distributed_mesh import (DistributedJointMesh, JointPairs, distribute,  # noqa: F401
                                pair_vertex_positions)
 from .split_joints import split_joints  # noqa: F401
 
-try:  # the joint elements need the compiled _rockjoint_fem_coupling (built with -DROCKJOINT_FEM=ON)
+# The joint elements need the compiled _rockjoint_fem_coupling (built with -DROCKJOINT_FEM=ON).
+# Only a build without that file leaves them out, and only outside CI / ROCKJOINT_REQUIRE_FE=1:
+# an extension that exists but fails to load (undefined symbol, ABI mismatch) raises its own
+# ImportError here instead of silently removing JointedRockModel and friends.
+_HAS_FE = find_spec("rockjoint._rockjoint_fem_coupling") is not None
+if _HAS_FE or fe_required():
     from .behaviours import joint_behaviours  # noqa: F401
     from .coupling import JointCoupling, JointedNonlinearProblem, supported_dofs  # noqa: F401
     from .interface import JointInterface, QuadratureRule  # noqa: F401
@@ -20,6 +28,15 @@ try:  # the joint elements need the compiled _rockjoint_fem_coupling (built with
     from ..joint import (JointBehaviour, JointPointState, JointStrength, ShearModel,  # noqa: F401
                          ShearState, StrengthModel, barton_bandis_shear_stiffness,
                          closure_at_normal_stress, joint_response, make_strength)
-except ImportError as _error:  # pragma: no cover
-    if "_rockjoint_fem_coupling" not in str(_error):
-        raise
+else:
+    _FE_NAMES = {"joint_behaviours", "JointCoupling", "JointedNonlinearProblem", "supported_dofs",
+                 "JointInterface", "QuadratureRule", "LinearSolveError", "InSituStress", "Load",
+                 "Support", "JointedRockModel", "JointedProblem", "Stage", "StageResult",
+                 "ConvergenceError", "NewtonOptions"}
+
+    def __getattr__(name):
+        if name in _FE_NAMES:
+            raise AttributeError(f"rockjoint.fem_coupling.{name} needs the compiled extension "
+                                 f"rockjoint._rockjoint_fem_coupling, which this build lacks "
+                                 f"(configure with -DROCKJOINT_FEM=ON)")
+        raise AttributeError(f"module 'rockjoint.fem_coupling' has no attribute {name!r}")

@@ -106,7 +106,14 @@ class LinearSolver:
         self.ksp = PETSc.KSP().create(comm)
         self._prefix = prefix if prefix is not None else f"rockjoint_ls_{id(self)}_"
         self.ksp.setOptionsPrefix(self._prefix)
-        opts = PETSc.Options()
+        # Our own settings go through the API where petsc4py has one; the others are put into
+        # the global options database only while PETSc reads them (GAMG's threshold: this
+        # setFromOptions; MUMPS's ICNTL(24): the solves, flag()/unflag()), then removed. Left
+        # there, settings the solver never reads (MUMPS's on an iterative solver or one never
+        # used, the level smoothers of a one-level GAMG) end every program with PETSc's
+        # "options you set that were not used" warning (issue 30, item 7).
+        self._flagged = None   # the option flag() put into the database, until unflag()
+        internal = {}
         if kind == "direct":
             self.ksp.setType("preonly")
             pc = self.ksp.getPC()
@@ -114,10 +121,12 @@ class LinearSolver:
             # (LDLᵀ), about half the work and memory of LU.
             pc.setType("cholesky" if symmetric else "lu")
             pc.setFactorSolverType("mumps")
-            opts[f"{self._prefix}mat_mumps_icntl_24"] = 1  # null-pivot detection
+            # MUMPS null-pivot detection, ICNTL(24) = 1: put under the prefix by flag() for the
+            # solve only.
         else:
             self.ksp.setType("cg" if symmetric else "gmres")
-            self.ksp.getPC().setType("gamg")
+            pc = self.ksp.getPC()
+            pc.setType("gamg")
             self.ksp.setTolerances(rtol=rtol, atol=1e-50, max_it=2000)
             if not symmetric:
                 # Right preconditioning: GMRES then minimises the true residual, so the forcing
@@ -126,19 +135,23 @@ class LinearSolver:
             # Stop on the true residual ||b - A x||, not the preconditioned one: then one
             # solve meets Newton's residual tolerance (a linear, intact model: one iteration).
             self.ksp.setNormType(PETSc.KSP.NormType.UNPRECONDITIONED)
-            opts[f"{self._prefix}pc_gamg_type"] = "agg"
+            pc.setGAMGType(PETSc.PC.GAMGType.AGG)
             # Plain (unsmoothed) aggregation: more CG iterations than smoothed aggregation but a
             # far cheaper set-up; measured on the 203k-dof benchmark block (CPU s, 1 rank): set-up
             # 1.1 + 58 iterations 3.3 = 4.3 s, against 8.8 + 20 iterations 1.8 = 10.6 s smoothed.
-            opts[f"{self._prefix}pc_gamg_agg_nsmooths"] = 0
+            pc.setGAMGSmooths(0)
             # Dropping weak graph edges: 16 CG iterations instead of 69 on the benchmark block
-            # (48k dofs, 2 joints), 4x faster overall.
-            opts[f"{self._prefix}pc_gamg_threshold"] = 0.01
-            opts[f"{self._prefix}mg_levels_ksp_type"] = "chebyshev"
-            opts[f"{self._prefix}mg_levels_pc_type"] = "jacobi"
-        for k, v in (options or {}).items():
+            # (48k dofs, 2 joints), 4x faster overall. (No petsc4py call for the threshold.)
+            internal["pc_gamg_threshold"] = 0.01
+            # The level smoothers are GAMG's defaults, Chebyshev/Jacobi (checked by
+            # test_fem_linear_solver.py on both PETSc versions).
+        options = dict(options or {})
+        opts = PETSc.Options()
+        for k, v in {**internal, **options}.items():   # the user's options win
             opts[f"{self._prefix}{k}"] = v
         self.ksp.setFromOptions()
+        for k in internal.keys() - options.keys():
+            opts.delValue(f"{self._prefix}{k}")
         self.rtol = self.ksp.getTolerances()[0]   # after the user's options (ksp_rtol)
         self.iterations = []
 
@@ -164,19 +177,42 @@ class LinearSolver:
                 self.ksp.setTolerances(rtol=self.rtol)
             self.ksp.getPC().setReusePreconditioner(False)
 
-    def _solve(self, A, b, x, reuse: bool) -> int:
+    def flag(self, A) -> None:
+        """Tell what a solve needs, whoever drives the KSP (this solver, or SNES in
+        stages.snes_load_path): GAMG's near-nullspace and MUMPS Cholesky's symmetry on A, and
+        MUMPS's null-pivot detection ICNTL(24) = 1 as an option under this solver's prefix unless
+        the user gave one. MUMPS reads it when it factorises; petsc4py cannot set it on the factor
+        matrix before then without losing the prefix (the user's -<prefix>mat_mumps_* would be
+        ignored). unflag() removes it again."""
         if self.near_nullspace is not None and self.kind == "iterative":
             A.setNearNullSpace(self.near_nullspace)
         if self.kind == "direct" and self.symmetric:
             A.setOption(PETSc.Mat.Option.SYMMETRIC, True)  # MUMPS Cholesky requires the flag
+        pc = self.ksp.getPC()
+        key = f"{self._prefix}mat_mumps_icntl_24"
+        if (self._flagged is None and pc.getType() in ("lu", "cholesky")
+                and pc.getFactorSolverType() == "mumps" and not PETSc.Options().hasName(key)):
+            PETSc.Options()[key] = 1
+            self._flagged = key
+
+    def unflag(self) -> None:
+        """Remove what flag() put into the options database (read, or not needed any more)."""
+        if self._flagged is not None:
+            PETSc.Options().delValue(self._flagged)
+            self._flagged = None
+
+    def _solve(self, A, b, x, reuse: bool) -> int:
         self.ksp.setOperators(A)
         self.ksp.getPC().setReusePreconditioner(reuse)
         if not reuse:
             self.setups += 1
+        self.flag(A)
         try:
             self.ksp.solve(b, x)
         except PETSc.Error as e:
             raise LinearSolveError(f"linear solve failed in PETSc ({self.kind}): {e}") from e
+        finally:
+            self.unflag()
         reason = self.ksp.getConvergedReason()
         its = self.ksp.getIterationNumber()
         self.iterations.append(its)

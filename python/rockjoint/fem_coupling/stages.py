@@ -136,6 +136,7 @@ def snes_load_path(model, load_steps: int, options) -> list:
     try:
         return solve_load_path(model, load_steps, options, solve_step=solve_step)
     finally:
+        model.linear_solver.unflag()
         snes.setKSP(PETSc.KSP().create(model.comm))  # the model keeps its own KSP alive
         snes.destroy()
         x.destroy()
@@ -148,11 +149,9 @@ def _snes_reason(reason: int) -> str:
 
 
 def _flag_matrix(solver, A) -> None:
-    """What LinearSolver.solve tells a matrix before a solve, for the matrix SNES hands its KSP."""
-    if solver.near_nullspace is not None and solver.kind == "iterative":
-        A.setNearNullSpace(solver.near_nullspace)
-    if solver.kind == "direct" and solver.symmetric:
-        A.setOption(PETSc.Mat.Option.SYMMETRIC, True)  # MUMPS Cholesky requires the flag
+    """What LinearSolver.solve tells before a solve, for the matrix SNES hands its KSP (undone by
+    solver.unflag() when the load path ends)."""
+    solver.flag(A)
 
 
 class StageClock:

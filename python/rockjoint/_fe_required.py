@@ -1,0 +1,12 @@
+"""Whether the FE stack (DOLFINx and the compiled rockjoint._rockjoint_fem_coupling) must be there.
+
+Under CI (the CI variable set, as every CI service does) or with ROCKJOINT_REQUIRE_FE=1 a missing
+or broken FE stack is an error, never something quietly left out: otherwise a broken extension
+turns the whole FE test suite into skips and the run stays green (issue 30). No DOLFINx import
+here, so anything can ask."""
+import os
+
+
+def fe_required() -> bool:
+    ci = os.environ.get("CI", "").strip().lower()
+    return ci not in ("", "0", "false", "no") or os.environ.get("ROCKJOINT_REQUIRE_FE", "") == "1"
