@@ -99,3 +99,10 @@ def summary(path) -> dict:
             words.pop()
         out[" ".join(words[1:])] = numbers
     return out
+
+
+def test_sliding_block_on_two_ranks_says_it_once(tmp_path):
+    code, out, err = cli("run", os.path.join(HARD, "sliding_block.yaml"), "--output", tmp_path / "out", ranks=2)
+    assert code != 0
+    assert err.count("no static equilibrium in stage 'load': joint set slope slides") == 1, err
+    assert not (tmp_path / "out").exists()

@@ -42,12 +42,12 @@ def main(args) -> int:
     except SceneError as err:  # found while building (e.g. a block name the mesh does not have)
         print(f"rockjoint run: bad scene: {err}", file=sys.stderr)
         return 2
-    except NoEquilibrium as err:  # the statics explain the failed solve: say why, not how it failed
-        print(f"rockjoint run: the scene could not be solved, nothing was written: {err}", file=sys.stderr)
-        return 1
-    except (ConvergenceError, LinearSolveError) as err:  # a valid scene the FE model cannot solve
-        print(f"rockjoint run: the scene could not be solved, nothing was written: {err}",
-              file=sys.stderr)
+    except (NoEquilibrium, ConvergenceError, LinearSolveError) as err:
+        # a valid scene the FE model cannot solve (NoEquilibrium: the statics say why); every rank
+        # raised it, rank 0 says it once
+        if MPI.COMM_WORLD.rank == 0:
+            print(f"rockjoint run: the scene could not be solved, nothing was written: {err}",
+                  file=sys.stderr)
         return 1
     say(summary_table(result))
     say(f"wrote {', '.join(result.files)} in {output} ({result.seconds:.1f} s)")
