@@ -106,3 +106,26 @@ def test_sliding_block_on_two_ranks_says_it_once(tmp_path):
     assert code != 0
     assert err.count("no static equilibrium in stage 'load': joint set slope slides") == 1, err
     assert not (tmp_path / "out").exists()
+
+
+def _motions(tmp_path, text):
+    from scene_cases import write
+    from rockjoint.scenes import load_scene
+    from rockjoint.scenes.statics import free_rigid_motions
+    return free_rigid_motions(load_scene(write(tmp_path, text)))
+
+
+def test_free_rigid_motions_of_supports(tmp_path):
+    from scene_cases import COLUMN, SCENES
+    from rockjoint.scenes import load_scene
+    from rockjoint.scenes.statics import free_rigid_motions
+    for name in sorted(os.listdir(SCENES)):  # every demo scene is supported
+        assert free_rigid_motions(load_scene(os.path.join(SCENES, name))) == [], name
+    assert _motions(tmp_path, COLUMN) == []
+    assert _motions(tmp_path, COLUMN.replace("{bottom: y, left: x}", "{bottom: y}")) == ["translation along x"]
+    # rollers on the bottom of a 3D column: x, y and the turn about the vertical axis are free
+    text = COLUMN.replace("kind: column,", "kind: column, dimension: 3,").replace(
+        "{bottom: y, left: x}", "{bottom: z}").replace("[0 MPa, -10 MPa]", "[0 MPa, 0 MPa, -10 MPa]")
+    free = _motions(tmp_path, text)
+    assert sorted(free[:2]) == ["translation along x", "translation along y"]
+    assert free[2:] == ["rotation about an axis along z"]

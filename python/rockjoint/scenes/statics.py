@@ -23,17 +23,25 @@ _COMPONENT = {"x": 0, "y": 1, "z": 2}
 
 def _face_points(g, face: str, dim: int) -> np.ndarray:
     """Corner points of a named boundary (an opening: points round its circle)."""
-    ext = planner._extent(g)
+    ext = _extent(g, dim)
     if face == "opening":
         (cx, cy), r = g["opening"]["centre"][:2], g["opening"]["radius"]
         a = np.linspace(0.0, 2 * math.pi, 8, endpoint=False)
-        ring = np.c_[cx + r * np.cos(a), cy + r * np.sin(a)]
+        x, y = cx + r * np.cos(a), cy + r * np.sin(a)
         if dim == 2:
-            return ring
-        return np.vstack([np.c_[ring, np.zeros(8)], np.c_[ring, np.full(8, ext[2])]])
+            return np.c_[x, y]
+        # 3D tunnel: the section in the x-z plane, extruded along y (meshes/tunnel.py)
+        return np.vstack([np.c_[x, np.full(8, end), y] for end in (0.0, ext[1])])
     axis, side = (dim - 1, 0 if face == "bottom" else 1) if face in ("bottom", "top") else _FACE_AXIS[face]
     corners = np.array(np.meshgrid(*[[0.0, e] for e in ext], indexing="ij")).reshape(dim, -1).T
     return corners[np.isclose(corners[:, axis], side * ext[axis])]
+
+
+def _extent(g, dim: int) -> np.ndarray:
+    """The box the scene fills, axes x, y(, z); a 3D tunnel is (width, length, height)."""
+    if g["kind"] == "tunnel" and dim == 3:
+        return np.array([g["width"], g["length"], g["height"]])
+    return planner._extent(g)[:dim]
 
 
 def _modes(x: np.ndarray, dim: int) -> np.ndarray:
@@ -58,7 +66,7 @@ def free_rigid_motions(scene) -> list:
     n = 3 if dim == 2 else 6
     a = np.array(rows).reshape(-1, n)
     _, s, vt = np.linalg.svd(a) if a.size else (None, np.zeros(0), np.eye(n))
-    scale = max(1.0, float(np.max(planner._extent(g))))
+    scale = max(1.0, float(np.max(_extent(g, dim))))
     null = vt[int(np.sum(s > 1e-9 * scale * max(s.max(initial=0.0), 1.0))):]
     # Canonical basis: the free translations first, then rotations without translation parts
     # (an arbitrary SVD basis would mix them into rotations about arbitrary points).
@@ -68,6 +76,11 @@ def free_rigid_motions(scene) -> list:
     rest = vw[:k] @ null
     if len(translations):
         rest = rest - (rest @ translations.T) @ translations
+        # free translations along the axes where they span them (any basis of the same plane would do)
+        axes = [np.eye(n)[i] for i in range(dim)
+                if np.linalg.norm(np.eye(n)[i] - (translations @ np.eye(n)[i]) @ translations) < 1e-9]
+        if len(axes) == len(translations):
+            translations = np.array(axes)
     words = []
     for v in list(translations) + list(rest):
         v = v / np.abs(v).max()
