@@ -158,7 +158,10 @@ def smeared_state(scene, plan, model) -> dict:
             strength = scene.data["joints"][js.label].get("strength") if plan.slip.get(js.label) else None
             slipping = 0
             if strength is not None and sn.size:
-                cap = np.array([strength["cohesion"] + max(v, 0.0) * planner.friction(strength, v) for v in sn])
+                if strength["model"] == "coulomb":  # tan φ constant; Barton's depends on σ_n
+                    cap = strength["cohesion"] + np.maximum(sn, 0.0) * planner.friction(strength, 0.0)
+                else:
+                    cap = np.array([strength["cohesion"] + max(v, 0.0) * planner.friction(strength, v) for v in sn])
                 slipping = int(np.sum((cap > 0) & (tau >= (1.0 - 1e-6) * cap)))
             c0, s0, n0 = local.get(js.label, (-np.inf, -np.inf, 0))
             local[js.label] = (max(c0, float(closure.max(initial=-np.inf))),
@@ -197,9 +200,10 @@ def _record(scene, plan, model, label, stage, solution) -> StageRow:
     for name, (closure, sn, slipping) in smeared.items():
         row.per_set[name] = (closure, sn)
         row.slipping_per_set[name] = slipping
-        row.max_closure = max(row.max_closure, closure)
-        row.max_normal_stress = max(row.max_normal_stress, sn)
         row.slipping += slipping
+    if smeared:  # the largest over every set, discrete and smeared (an opening is a negative closure)
+        row.max_closure = max(c for c, _ in row.per_set.values())
+        row.max_normal_stress = max(s for _, s in row.per_set.values())
     row.smeared = tuple(smeared)
     return row
 
