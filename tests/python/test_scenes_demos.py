@@ -95,8 +95,10 @@ def test_cli_runs_a_scene_clean(tmp_path):
 def test_a_run_that_fails_writes_nothing(tmp_path):
     # 6 MPa shear over 10 MPa normal load on a 30° joint with no lateral support: the upper block
     # slides away (no equilibrium), the solve fails; no output folder, no temporary folder left
+    # (supports x and y on the bottom only: {bottom: y, left: y} would leave the whole column free
+    # to translate, which the planner now refuses before anything runs)
     from scene_cases import COLUMN, write
-    text = COLUMN.replace("[0 MPa, -10 MPa]", "[6 MPa, -10 MPa]").replace("left: x", "left: y")
+    text = COLUMN.replace("[0 MPa, -10 MPa]", "[6 MPa, -10 MPa]").replace("{bottom: y, left: x}", "{bottom: xy}")
     code, out, err = cli("run", write(tmp_path, text), "--output", tmp_path / "out")
     assert code == 1 and "could not be solved, nothing was written" in err, out + err
     assert sorted(os.listdir(tmp_path)) == ["scene.yaml"]

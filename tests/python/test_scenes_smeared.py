@@ -96,3 +96,75 @@ def test_unknown_smeared_set_is_named(tmp_path):
     path = write(tmp_path, BLOCK + "plan: {smeared: [cross]}\n")
     code, out, err = cli("plan", path)
     assert code == 2 and "plan.smeared" in err and "cross" in err and "line" in err
+
+
+def _summary_value(text, label):
+    line = next(t for t in text.splitlines() if label in t)
+    return float(line.split()[-1])
+
+
+def test_smeared_sets_have_summary_rows_equal_to_the_law(tmp_path):
+    # Mixed model (bed smeared, vertical discrete) under a uniform 10 MPa: every point of the
+    # smeared set sits at σ_n = 10 MPa and closes the law's Δ(σ) = σ V_m / (K_ni V_m + σ), which
+    # the run reports for the set (a 1e-6 table: its share is far below the check).
+    scene = load_scene(write(tmp_path, BLOCK + "plan: {smeared: [bed], table_tolerance: 1e-6}\n"))
+    result = run_scene(scene, make_plan(scene), str(tmp_path / "o"))
+    row = result.row("jointed", "load")
+    closure = SIGMA * VM / (KNI * VM + SIGMA)
+    assert row.smeared == ("bed",)
+    assert row.per_set["bed"][0] == pytest.approx(closure, rel=1e-5)
+    assert row.per_set["bed"][1] == pytest.approx(SIGMA, rel=1e-6)
+    assert row.slipping_per_set["bed"] == 0
+    assert row.max_closure == pytest.approx(closure, rel=1e-5)
+    # the discrete vertical set carries nothing (σ_xx = 0): σ_n 0 to roundoff
+    assert abs(row.per_set["vertical"][1]) < 1e-3 * SIGMA
+    # summary.txt has the rows, as the table prints them (5 digits)
+    summary = (tmp_path / "o" / "summary.txt").read_text(encoding="utf-8")
+    assert "bed (smeared): max closure [mm]" in summary
+    assert _summary_value(summary, "bed (smeared): max closure [mm]") == float(f"{closure * 1e3:.5g}")
+    assert _summary_value(summary, "bed (smeared): max σ_n [MPa]") == float(f"{SIGMA * 1e-6:.5g}")
+    assert _summary_value(summary, "bed (smeared): slipping points") == 0
+
+
+def test_the_table_range_check_covers_smeared_sets(tmp_path):
+    text = BLOCK + "plan: {smeared: [bed], table_max_stress: 5 MPa}\n"
+    code, out, err = cli("run", write(tmp_path, text), "--output", tmp_path / "o")
+    assert code == 0, out + err
+    assert ("warning: smeared joint set bed: σ_n reaches 10 MPa in stage 'load', beyond its table "
+            "(0 - 5 MPa)") in out + err
+    assert "warning: joint set vertical" not in out + err  # the discrete set stays at 0
+
+
+def test_smeared_slipping_points_are_counted(tmp_path):
+    # A smeared set dipping 45° with φ = 20°, c = 0 in a uniaxial 10 MPa: τ/σ_n = tan 45° > tan 20°
+    # at every point, so every quadrature point of the set slides (plane strain, rock laterally
+    # supported on the left: the mass still stands, the set is smeared in every block).
+    text = f"""\
+name: smeared slip
+geometry:
+  kind: block
+  size: [1 m, 1 m]
+  joint_sets:
+    - {{name: inclined, point: [0.5 m, 0.5 m], dip: 45 deg, dip_direction: 90 deg, spacing: 0.1 m, count: 1}}
+rock: {{young: 50 GPa, poisson: 0.25}}
+joints:
+  inclined:
+    law:
+      model: barton_bandis
+      parameters: {{initial_normal_stiffness: 20 MPa/mm, maximum_closure: 0.2 mm}}
+    residual_stiffness: 1 MPa/m
+    strength: {{model: coulomb, friction_angle: 20 deg, cohesion: 0 MPa}}
+supports: {{bottom: y, left: x, right: x}}
+stages:
+  - name: load
+    steps: 2
+    loads: {{top: {{traction: [0 MPa, -10 MPa]}}}}
+error_budget: 10 %
+mesh: {{size: 0.5 m}}
+plan: {{smeared: [inclined], intact: false}}
+outputs: {{pictures: false, xdmf: false, monitor: [top]}}
+"""
+    code, out, err = cli("run", write(tmp_path, text), "--output", tmp_path / "o")
+    assert code == 0, out + err
+    summary = (tmp_path / "o" / "summary.txt").read_text(encoding="utf-8")
+    assert _summary_value(summary, "inclined (smeared): slipping points") > 0

@@ -27,7 +27,7 @@ def main(args) -> int:
     from mpi4py import MPI
     from ..console import quiet_compiler_logging, say
     from ..fem_coupling import ConvergenceError, LinearSolveError
-    from ..scenes.runner import run_scene, summary_table
+    from ..scenes.runner import NoEquilibrium, run_scene, summary_table
     quiet_compiler_logging()
     log = logging.getLogger("rockjoint.scenes")
     log.propagate = False
@@ -42,9 +42,12 @@ def main(args) -> int:
     except SceneError as err:  # found while building (e.g. a block name the mesh does not have)
         print(f"rockjoint run: bad scene: {err}", file=sys.stderr)
         return 2
-    except (ConvergenceError, LinearSolveError) as err:  # a valid scene the FE model cannot solve
-        print(f"rockjoint run: the scene could not be solved, nothing was written: {err}",
-              file=sys.stderr)
+    except (NoEquilibrium, ConvergenceError, LinearSolveError) as err:
+        # a valid scene the FE model cannot solve (NoEquilibrium: the statics say why); every rank
+        # raised it, rank 0 says it once
+        if MPI.COMM_WORLD.rank == 0:
+            print(f"rockjoint run: the scene could not be solved, nothing was written: {err}",
+                  file=sys.stderr)
         return 1
     say(summary_table(result))
     say(f"wrote {', '.join(result.files)} in {output} ({result.seconds:.1f} s)")

@@ -138,6 +138,14 @@ def normal_stress_bound(scene) -> float:
     return bound
 
 
+def _largest_stress(scene) -> float:
+    """The largest principal stress magnitude [Pa] of any stage (pressures included); 1 MPa if
+    nothing loads the scene (a table needs a range)."""
+    top = max((max(float(np.abs(np.linalg.eigvalsh(s)).max(initial=0.0)), p)
+               for _, s, p in stage_stresses(scene)), default=0.0)
+    return top if top > 0 else 1e6
+
+
 def friction(strength: dict, normal_stress: float) -> float:
     """tan of the mobilised friction angle at `normal_stress` (Coulomb, or Barton's
     φ_r + JRC log10(JCS/σ_n), capped at 70° as in docs/joint-strength.md)."""
@@ -206,6 +214,8 @@ def _estimate_dofs(scene, dim, h, hj, ho) -> float:
 
 
 def make_plan(scene, reduced: bool = False) -> Plan:
+    from . import statics
+    statics.check(scene)  # supports and excavations that leave no equilibrium: a bad scene
     d = scene.data
     over = d["plan"]
     g = d["geometry"]
@@ -231,14 +241,19 @@ def make_plan(scene, reduced: bool = False) -> Plan:
     bound = normal_stress_bound(scene)
     opening = "opening" in g
     sets = _joint_sets(scene)
-    table_top = choose("table range", "table_max_stress", defaults.TABLE_MARGIN * bound,
-                       f"{defaults.TABLE_MARGIN * bound * 1e-6:.3g} MPa",
+    # No compression anywhere (a scene pulled in tension): the joints open and the table is never
+    # read past 0, but it must exist; it covers the largest stress magnitude instead of 0.
+    cover = bound if bound > 0 else _largest_stress(scene)
+    table_top = choose("table range", "table_max_stress", defaults.TABLE_MARGIN * cover,
+                       f"{defaults.TABLE_MARGIN * cover * 1e-6:.3g} MPa",
                        text=lambda v: f"normal stress 0 - {v * 1e-6:.3g} MPa",
-                       why=(f"upper bound of joint normal stress {bound * 1e-6:.3g} MPa (largest "
-                            "compressive principal stress of in-situ + all loads"
-                            + (" + bending 6 τ H/W of shear tractions" if max(bending(scene)) > 0 else "")
-                            + ", "
-                            + concentration(scene)[1] + f"), x {defaults.TABLE_MARGIN} margin"),
+                       why=((f"upper bound of joint normal stress {bound * 1e-6:.3g} MPa (largest "
+                             "compressive principal stress of in-situ + all loads"
+                             + (" + bending 6 τ H/W of shear tractions" if max(bending(scene)) > 0 else "")
+                             + ", " + concentration(scene)[1] + ")") if bound > 0 else
+                            ("no load compresses the joints (every principal stress is tensile or 0): "
+                             f"they open; the table covers the largest stress magnitude, {cover * 1e-6:.3g} MPa")
+                            ) + f", x {defaults.TABLE_MARGIN} margin",
                        cost="knots grow with log(range); a table evaluation costs ~0.05 µs whatever the law",
                        error="the loads cannot take a joint outside it (checked after the run)")
     fe, met = defaults.fe_settings(budget)

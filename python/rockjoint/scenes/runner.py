@@ -14,7 +14,7 @@ import time
 
 import numpy as np
 
-from . import geometry, joint_laws
+from . import geometry, joint_laws, planner, statics
 
 log = logging.getLogger("rockjoint.scenes")
 
@@ -30,8 +30,14 @@ class StageRow:
     max_displacement: float        # max |u| [m]
     max_closure: float = 0.0       # [m], all joints
     max_normal_stress: float = 0.0  # [Pa]
-    slipping: int = 0              # joint points in the slip state
+    slipping: int = 0              # joint points in the slip state (smeared: quadrature points)
     per_set: dict = dataclasses.field(default_factory=dict)  # set -> (max closure [m], max σ_n [Pa])
+    slipping_per_set: dict = dataclasses.field(default_factory=dict)  # set -> slipping points
+    smeared: tuple = ()            # the sets of per_set that are smeared (equivalent continuum)
+
+
+class NoEquilibrium(RuntimeError):
+    """A valid scene whose jointed model has no static equilibrium (statics.diagnose's words)."""
 
 
 @dataclasses.dataclass
@@ -127,7 +133,49 @@ def mean_normal_displacement(model, boundary: str) -> float:
     return model.comm.allreduce(fem.assemble_scalar(fem.form(ufl.dot(model.u, n) * ds))) / area
 
 
-def _record(scene, model, label, stage, solution) -> StageRow:
+def smeared_state(scene, plan, model) -> dict:
+    """{smeared set: (max closure [m], max σ_n [Pa], slipping points)} over all ranks: closure
+    -j_n of the set's converged jumps, σ_n = -n·σ·n of the converged stress at every quadrature
+    point, slipping where τ reaches c + σ_n tan φ (sets the plan lets slip)."""
+    sm = getattr(model, "smeared", None)
+    if sm is None:
+        return {}
+    from mpi4py import MPI
+    dim = sm.gdim
+    local = {}
+    for tag, pts in sm.points.items():
+        voigt = np.asarray(sm._committed[tag][0]).reshape(-1, sm.nv)
+        sigma = np.zeros((voigt.shape[0], dim, dim))
+        pairs = [(0, 0), (1, 1), (0, 1)] if dim == 2 else [(0, 0), (1, 1), (2, 2), (1, 2), (0, 2), (0, 1)]
+        for k, (a, b) in enumerate(pairs):
+            sigma[:, a, b] = sigma[:, b, a] = voigt[:, k]
+        for k, js in enumerate(pts.material.sets):
+            n = np.asarray(js.normal[:dim])
+            t = sigma @ n
+            sn = -(t @ n)
+            tau = np.linalg.norm(t + sn[:, None] * n, axis=1)
+            closure = -np.asarray(pts.set_state(k)["jump"])[:, 0]
+            strength = scene.data["joints"][js.label].get("strength") if plan.slip.get(js.label) else None
+            slipping = 0
+            if strength is not None and sn.size:
+                if strength["model"] == "coulomb":  # tan φ constant; Barton's depends on σ_n
+                    cap = strength["cohesion"] + np.maximum(sn, 0.0) * planner.friction(strength, 0.0)
+                else:
+                    cap = np.array([strength["cohesion"] + max(v, 0.0) * planner.friction(strength, v) for v in sn])
+                slipping = int(np.sum((cap > 0) & (tau >= (1.0 - 1e-6) * cap)))
+            c0, s0, n0 = local.get(js.label, (-np.inf, -np.inf, 0))
+            local[js.label] = (max(c0, float(closure.max(initial=-np.inf))),
+                               max(s0, float(sn.max(initial=-np.inf))), n0 + slipping)
+    names = sorted(set().union(*model.comm.allgather(set(local))))
+    out = {}
+    for name in names:
+        c, s, n = local.get(name, (-np.inf, -np.inf, 0))
+        out[name] = (model.comm.allreduce(c, op=MPI.MAX), model.comm.allreduce(s, op=MPI.MAX),
+                     model.comm.allreduce(n, op=MPI.SUM))
+    return out
+
+
+def _record(scene, plan, model, label, stage, solution) -> StageRow:
     monitors = {b: np.r_[model.boundary_mean_displacement(b), mean_normal_displacement(model, b)]
                 for b in scene.data["outputs"]["monitor"]}
     u = model.u.x.array.reshape(-1, model.gdim)
@@ -145,8 +193,34 @@ def _record(scene, model, label, stage, solution) -> StageRow:
                                       float(np.max(state["normal_stress"][at])))
         if "shear_state" in state:
             from rockjoint.fem_coupling import ShearState
-            row.slipping = int(np.sum(np.asarray(state["shear_state"]) == int(ShearState.slip)))
+            slip = np.asarray(state["shear_state"]) == int(ShearState.slip)
+            row.slipping = int(np.sum(slip))
+            row.slipping_per_set = {str(name): int(np.sum(slip[sets == name])) for name in np.unique(sets)}
+    smeared = smeared_state(scene, plan, model)
+    for name, (closure, sn, slipping) in smeared.items():
+        row.per_set[name] = (closure, sn)
+        row.slipping_per_set[name] = slipping
+        row.slipping += slipping
+    if smeared:  # the largest over every set, discrete and smeared (an opening is a negative closure)
+        row.max_closure = max(c for c, _ in row.per_set.values())
+        row.max_normal_stress = max(s for _, s in row.per_set.values())
+    row.smeared = tuple(smeared)
     return row
+
+
+def beyond_tables(rows, tables: dict) -> list:
+    """Words for every (stage, set) whose largest normal stress passed its table's last knot:
+    the answer there is the table's linear continuation, not the law."""
+    out = []
+    for row in rows:
+        for name, (_, sn) in row.per_set.items():
+            top = tables[name].table_maximum_stress
+            if sn > top * (1.0 + 1e-9):
+                kind = "smeared joint set" if name in row.smeared else "joint set"
+                out.append(f"{kind} {name}: σ_n reaches {sn * 1e-6:.4g} MPa in stage '{row.stage}', beyond "
+                           f"its table (0 - {top * 1e-6:.4g} MPa): the response there is the table's linear "
+                           "continuation, not the law; raise plan: {table_max_stress: ...}")
+    return out
 
 
 def _max():
@@ -154,14 +228,18 @@ def _max():
     return MPI.MAX
 
 
-def run_stages(scene, plan, model, label: str) -> list:
-    """In-situ (when given), then every stage; a StageRow after each."""
+def run_stages(scene, plan, model, label: str, current: list | None = None) -> list:
+    """In-situ (when given), then every stage; a StageRow after each. current[0]: the stage
+    being solved (for the caller's message when a solve fails)."""
+    current = current if current is not None else [None]
     rows = []
     if "in_situ" in scene.data:
-        rows.append(_record(scene, model, label, "in-situ", model.solve(name="in-situ")))
+        current[0] = "in-situ"
+        rows.append(_record(scene, plan, model, label, "in-situ", model.solve(name="in-situ")))
     handles = {}
     for stage in scene.data["stages"]:
         t0 = time.perf_counter()
+        current[0] = stage["name"]
         if "excavate" in stage:
             model.excavate(stage["excavate"])
         for face, load in stage["loads"].items():
@@ -174,7 +252,7 @@ def run_stages(scene, plan, model, label: str) -> list:
                 handles[face, kind] = add(face, value)
         steps = plan.load_steps if plan.reduced else stage.get("steps", plan.load_steps)
         solution = model.solve(load_steps=steps, name=stage["name"])
-        rows.append(_record(scene, model, label, stage["name"], solution))
+        rows.append(_record(scene, plan, model, label, stage["name"], solution))
         log.info("%s: stage %s, %d load step(s), %d Newton iterations (%.1f s)", label, stage["name"],
                  steps, solution.newton_iterations, time.perf_counter() - t0)
     return rows
@@ -202,8 +280,11 @@ def run_scene(scene, plan, output: str, comm=None, reduced: bool = False) -> Sce
         rows, files, models = [], [], {}
         for label, dmesh in meshes.items():
             model = build_model(scene, plan, dmesh, tables if label == "jointed" else None)
-            rows += run_stages(scene, plan, model, label)
+            rows += _run_explained(scene, plan, model, label, jm, comm)
             models[label] = model
+            if label == "jointed" and comm.rank == 0:
+                for words in beyond_tables(rows, tables):
+                    log.warning("warning: %s", words)
             if scene.data["outputs"]["xdmf"]:
                 files += model.write_xdmf(os.path.join(tmp, f"{label}.xdmf"))
         if scene.data["outputs"]["pictures"]:
@@ -226,12 +307,28 @@ def run_scene(scene, plan, output: str, comm=None, reduced: bool = False) -> Sce
             shutil.rmtree(tmp, ignore_errors=True)
 
 
+def _run_explained(scene, plan, model, label, jm, comm) -> list:
+    """run_stages; a failed solve of the jointed model that statics.diagnose explains (a joint
+    set that opens, slides or carries no shear and frees a block) becomes NoEquilibrium."""
+    from rockjoint.fem_coupling import ConvergenceError, LinearSolveError
+    current = [None]
+    try:
+        return run_stages(scene, plan, model, label, current)
+    except (ConvergenceError, LinearSolveError) as err:
+        words = statics.diagnose(scene, plan, jm, current[0]) if (comm.rank == 0 and label == "jointed") else None
+        words = comm.bcast(words)
+        if words is None:
+            raise
+        raise NoEquilibrium(words) from err
+
+
 def summary_table(result: SceneResult) -> str:
     """Jointed beside intact, per stage: monitored displacements [mm], max |u| [mm], joints."""
     stages = [r.stage for r in result.rows if r.model == "jointed"]
     has_intact = any(r.model == "intact" for r in result.rows)
     w = max([len(s) for s in stages] + [5]) + 2
-    lines = [f"{'stage':{w}}{'quantity':28}{'jointed':>14}{'intact':>14}{'joints share':>14}"]
+    q = max([len(f"  {n} (smeared): slipping points") + 2 for r in result.rows for n in r.per_set] + [28])
+    lines = [f"{'stage':{w}}{'quantity':{q}}{'jointed':>14}{'intact':>14}{'joints share':>14}"]
     for stage in stages:
         j = result.row("jointed", stage)
         i = result.row("intact", stage) if has_intact else None
@@ -242,8 +339,13 @@ def summary_table(result: SceneResult) -> str:
         for name, a, b in quantities:
             share = f"{(a - b) * 1e3:14.5g}" if b is not None else f"{'':>14}"
             other = f"{b * 1e3:14.5g}" if b is not None else f"{'-':>14}"
-            lines.append(f"{stage:{w}}{name:28}{a * 1e3:14.5g}{other}{share}")
-        lines.append(f"{stage:{w}}{'joints: max closure [mm]':28}{j.max_closure * 1e3:14.5g}")
-        lines.append(f"{stage:{w}}{'joints: max σ_n [MPa]':28}{j.max_normal_stress * 1e-6:14.5g}")
-        lines.append(f"{stage:{w}}{'joints: slipping points':28}{j.slipping:14d}")
+            lines.append(f"{stage:{w}}{name:{q}}{a * 1e3:14.5g}{other}{share}")
+        lines.append(f"{stage:{w}}{'joints: max closure [mm]':{q}}{j.max_closure * 1e3:14.5g}")
+        lines.append(f"{stage:{w}}{'joints: max σ_n [MPa]':{q}}{j.max_normal_stress * 1e-6:14.5g}")
+        lines.append(f"{stage:{w}}{'joints: slipping points':{q}}{j.slipping:14d}")
+        for name, (closure, sn) in sorted(j.per_set.items()):  # every set, smeared ones too
+            kind = f"{name} (smeared)" if name in j.smeared else name
+            lines.append(f"{stage:{w}}{'  ' + kind + ': max closure [mm]':{q}}{closure * 1e3:14.5g}")
+            lines.append(f"{stage:{w}}{'  ' + kind + ': max σ_n [MPa]':{q}}{sn * 1e-6:14.5g}")
+            lines.append(f"{stage:{w}}{'  ' + kind + ': slipping points':{q}}{j.slipping_per_set.get(name, 0):14d}")
     return "\n".join(lines)
