@@ -608,6 +608,9 @@ TEST(TabulatedLawFile, MalformedFilesFailWithAClearMessage)
        },
        {"line " + std::to_string(find_line(lines, "table_maximum_stress ") + 1),
         "table_maximum_stress", "disagrees with the last knot"}},
+      {"signed %-escape",  // from_chars into a signed int once accepted "%-1" as a byte
+       [&](auto& l) { l[find_line(l, "source_model ")] = "source_model bb%-1"; },
+       {"source_model", "malformed %-escape"}},
       {"foreign interpolation",
        [&](auto& l) { l[find_line(l, "interpolation ")] = "interpolation linear"; },
        {"interpolation", "linear"}},
