@@ -14,7 +14,8 @@ targets=(law_table height_grid xyz)
 # What each target compiles besides itself: the reader and what it calls, nothing more.
 sources_of() {
   case "$1" in
-    law_table) echo constitutive/law_table_file.cpp ;;
+    law_table) echo constitutive/law_table_file.cpp constitutive/tabulated_law.cpp \
+                    constitutive/adaptive_knots.cpp constitutive/closure_law.cpp ;;
     height_grid|xyz) echo topography/surface_io.cpp topography/surface.cpp topography/units.cpp ;;
     *) echo "fuzz.sh: unknown target '$1' (use: ${targets[*]})" >&2; return 2 ;;
   esac

@@ -664,3 +664,24 @@ TEST(TabulatedLaw, ResidualStiffnessIsSeenThroughTheBaseInterface)
   EXPECT_EQ(s[0], -1e3 * 1e-4);
   EXPECT_EQ(k[0], 1e3);
 }
+
+// fuzz/regressions/law_table/subnormal_range.rjt: a valid-looking table over subnormal closures
+// made the segment index's cell numbers NaN (undefined conversion, UBSan in fuzz/fuzz_law_table).
+TEST(TabulatedLawFile, SubnormalRangeIsRefusedNamingTheFile)
+{
+  const std::string path = temp_path("subnormal.rjt");
+  write_lines(path, {"rockjoint-law-table 1", "units closure=m stress=Pa stiffness=Pa/m",
+                     "interpolation monotone_hermite_sqrt_first_segment",
+                     "compression_extension linear_end_tangent",
+                     "opening_extension residual_stiffness", "source_model linear",
+                     "source_seating_stress 0x0p+0 Pa", "tolerance 0x1p-7",
+                     "checked_error_stress 0x0p+0", "checked_error_stiffness 0x0p+0",
+                     "residual_stiffness 0x0p+0 Pa/m", "table_maximum_closure 0x1p-1029 m",
+                     "table_maximum_stress 0x1p-1029 Pa", "knots 3", "knot 0 0x0p+0 0x0p+0 0x1p+0",
+                     "knot 1 0x1p-1030 0x1p-1030 0x1p+0", "knot 2 0x1p-1029 0x1p-1029 0x1p+0",
+                     "end"});
+  rockjoint::testing::expect_error<std::runtime_error>([&] { TabulatedLaw::load(path); },
+                                                       {path, "table_maximum_closure",
+                                                        "too small to index"});
+  std::remove(path.c_str());
+}
