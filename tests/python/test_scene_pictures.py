@@ -118,3 +118,15 @@ def test_nice_scale_and_joint_segments():
     segments = pictures.joint_segments(x, state, np.zeros(5, int), lambda p: np.zeros_like(p))
     lengths = {k: float(np.abs(v[:, 1, 0] - v[:, 0, 0]).sum()) for k, v in segments.items()}
     assert lengths == pytest.approx({"stick": 1.0, "slip": 1.5, "open": 0.5})
+
+
+def test_joints_near_a_3d_section_are_its_layer_of_nodes_in_section_coordinates():
+    # a horizontal joint z = 5 with nodes at y = 0, 1, 2 (1 apart); the section y = 1.2 takes the
+    # layer y = 1 and gives (x, z)
+    x = np.array([[float(i), float(y), 5.0] for y in (0, 1, 2) for i in range(3)])
+    joints = {"x": x, "state": np.array(["stick", "slip", "open"] * 3, dtype=object),
+              "tag": np.zeros(9, int)}
+    section = np.array([[[0, 0], [1, 0], [0, 1]]], float)    # edges about 1 long
+    near = pictures._near_section(joints, 1.2, section)
+    np.testing.assert_array_equal(near["x"], [[0, 5], [1, 5], [2, 5]])
+    assert list(near["state"]) == ["stick", "slip", "open"]
