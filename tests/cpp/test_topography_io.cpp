@@ -152,7 +152,8 @@ TEST(TopographyIO, XyzWithAStrayCoordinateIsRefusedNotAllocated)
                                                    "69349422 0 0.09\n0 0.5 -0.19\n");
   expect_error([&] { read_xyz(path); },
                {path, "span a lattice of 2 x 1.38699e+08 points", "mistyped"});
-  const std::string far = temp_file("far.xyz", "# unit: mm\n0 0 1\n1 0 1\n0 1 1\n1e300 1 2\n");
+  // 10 apart, one point 1e9 out: a 2 x 1e8 lattice for 4 points
+  const std::string far = temp_file("far.xyz", "# unit: mm\n0 0 1\n10 0 1\n0 10 1\n1e9 10 2\n");
   expect_error([&] { read_xyz(far); }, {far, "span a lattice", "mistyped"});
 }
 
