@@ -93,7 +93,8 @@ bool decode(const std::string& field, std::string& text)
     }
     if (i + 2 >= field.size())
       return false;
-    int value = 0;
+    // Unsigned: from_chars into a signed int would accept "%-1" as a byte.
+    unsigned value = 0;
     auto [ptr, ec] = std::from_chars(field.data() + i + 1, field.data() + i + 3, value, 16);
     if (ec != std::errc() || ptr != field.data() + i + 3)
       return false;

@@ -4,6 +4,7 @@
 #include "validation.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 #include <stdexcept>
 
@@ -114,6 +115,17 @@ TabulatedLaw::TabulatedLaw(LawTable table) : _table(std::move(table))
   _cells = wanted >= static_cast<double>(most) ? most
                                                : std::max(least, static_cast<std::size_t>(wanted));
   _inv_cell_width = static_cast<double>(_cells) / _closure_max;
+  // A range so small (subnormal closures: found by fuzz/fuzz_law_table) that the cell width
+  // underflows would make every cell number inf or NaN, and their conversion undefined.
+  if (!std::isfinite(_inv_cell_width))
+  {
+    std::ostringstream msg;
+    msg.precision(17);
+    msg << "TabulatedLaw: invalid table: table_maximum_closure " << _closure_max
+        << " m is too small to index (" << _cells << " cells over it are narrower than the "
+        << "smallest double)";
+    throw std::invalid_argument(msg.str());
+  }
   _cell_index.assign(_cells, 0);
   std::vector<std::size_t> start_cell(n - 1);
   for (std::size_t i = 0; i + 1 < n; ++i)
@@ -142,7 +154,15 @@ std::uint32_t TabulatedLaw::crowded_segment(double closure) const
 
 TabulatedLaw TabulatedLaw::load(const std::string& path)
 {
-  return TabulatedLaw(read_law_table(path));
+  LawTable table = read_law_table(path);
+  try
+  {
+    return TabulatedLaw(std::move(table));
+  }
+  catch (const std::invalid_argument& e) // the file reads but makes no law: name the file
+  {
+    throw std::runtime_error("law table file '" + path + "': " + e.what());
+  }
 }
 
 void TabulatedLaw::save(const std::string& path) const { write_law_table(path, _table); }

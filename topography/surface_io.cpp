@@ -107,6 +107,17 @@ double header_number(const std::string& path, std::size_t line, const std::strin
   return v;
 }
 
+/// A row or column count: a whole number >= 1 (checked before the conversion to an integer,
+/// which is undefined for values out of range).
+long header_count(const std::string& path, std::size_t line, const std::string& key,
+                  const std::string& value)
+{
+  const double v = header_number(path, line, key, value);
+  if (!(v >= 1.0 && v <= 1e15 && v == std::floor(v)))
+    fail_at(path, line, "header '" + key + "': '" + value + "' is not a whole number >= 1");
+  return static_cast<long>(v);
+}
+
 std::string format_number(double v)
 {
   if (std::isnan(v))
@@ -171,9 +182,9 @@ void read_header_line(const std::string& path, std::size_t n, const std::string&
   else if (key == "height_unit")
     h.height_unit = value;
   else if (key == "rows")
-    h.rows = std::lround(header_number(path, n, key, value)), h.rows_line = n;
+    h.rows = header_count(path, n, key, value), h.rows_line = n;
   else if (key == "cols" || key == "columns")
-    h.cols = std::lround(header_number(path, n, key, value)), h.cols_line = n;
+    h.cols = header_count(path, n, key, value), h.cols_line = n;
   if (key == "unit" && !h.height_unit)
     h.height_unit = value;
 }
@@ -312,6 +323,9 @@ void write_height_grid(const std::string& path, const Surface& surface,
 
 namespace
 {
+/// At most this many lattice points per point in an XYZ file (the rest are missing, NaN).
+constexpr double max_lattice_fill = 100.0;
+
 /// Lattice of a set of coordinates: origin and step.
 struct Axis
 {
@@ -359,6 +373,28 @@ Axis lattice_axis(std::vector<double> c, const std::string& path, const char* na
                                 + " coordinates");
   return {origin, step};
 }
+/// The lattice the points span must be mostly filled: a stray or mistyped coordinate (1e6
+/// instead of 1.0) would otherwise ask for a grid of billions of points. Checked in floating
+/// point before any index is formed, so no integer can overflow.
+void check_lattice_size(const std::string& path, const std::vector<double>& xs,
+                        const std::vector<double>& ys, const Axis& ax, const Axis& ay)
+{
+  const auto [x0, x1] = std::minmax_element(xs.begin(), xs.end());
+  const auto [y0, y1] = std::minmax_element(ys.begin(), ys.end());
+  const double cols = std::floor((*x1 - *x0) / ax.step + 0.5) + 1.0;
+  const double rows = std::floor((*y1 - *y0) / ay.step + 0.5) + 1.0;
+  const double points = static_cast<double>(xs.size());
+  if (!(rows * cols <= max_lattice_fill * points))
+  {
+    std::ostringstream msg;
+    msg.precision(6);
+    msg << "the " << xs.size() << " points span a lattice of " << rows << " x " << cols
+        << " points (steps " << ax.step << " in x, " << ay.step << " in y; x from " << *x0
+        << " to " << *x1 << ", y from " << *y0 << " to " << *y1 << "), more than "
+        << max_lattice_fill << " lattice points per point given: is a coordinate mistyped?";
+    throw std::invalid_argument(path + ": " + msg.str());
+  }
+}
 } // namespace
 
 SurfaceFile read_xyz(const std::string& path, const ReadOptions& options)
@@ -390,6 +426,7 @@ SurfaceFile read_xyz(const std::string& path, const ReadOptions& options)
     throw std::invalid_argument(path + ": no points");
   resolve(path, h, options, false);
   const Axis ax = lattice_axis(xs, path, "x"), ay = lattice_axis(ys, path, "y");
+  check_lattice_size(path, xs, ys, ax, ay);
   const double tol = 1e-6;
   std::vector<long> ii(xs.size()), jj(xs.size());
   for (std::size_t k = 0; k < xs.size(); ++k)

@@ -16,7 +16,8 @@
 /// XYZ point list (".xyz"): "x y z" per line (whitespace or comma separated), optional
 /// "# lateral_unit:" and "# height_unit:" lines. The points must lie on a regular lattice
 /// (any order, lattice points may be absent: they become NaN); the lattice step in x and y is
-/// the smallest gap between distinct coordinates.
+/// the smallest gap between distinct coordinates. The lattice the points span may have at most
+/// 100 lattice points per point given (a mistyped coordinate is an error, not a huge grid).
 
 #include "surface.hpp"
 
@@ -54,8 +55,8 @@ void write_height_grid(const std::string& path, const Surface& surface,
                        const std::string& height_unit = "mm");
 
 /// Read an XYZ point list on a regular lattice. Throws std::invalid_argument
-/// "<path>:<line>: ..." for lines that are not three numbers, points off the lattice and
-/// duplicated lattice points.
+/// "<path>:<line>: ..." for lines that are not three numbers, points off the lattice,
+/// duplicated lattice points and a lattice far larger than the points given.
 SurfaceFile read_xyz(const std::string& path, const ReadOptions& options = {});
 
 /// Write every lattice point as "x y z" (missing heights as "nan"), origin at (0, 0).

@@ -11,9 +11,13 @@ the search space has no boundary; standard uncertainties are carried back to fir
 (σ_p = p σ_ln p, σ_r = r (1 - r) σ_logit, σ_m = (m - 1) σ_ln(m-1)). The path starts at the law's
 datum (Δ = 0 at σ = 0; no closure offset).
 
-The report gives the rms residual of each branch (virgin loading, unloading, reloading), the
-permanent closure of each cycle (r Δ_m at the end of each unloading) and the parameters with
-their uncertainties.
+The report gives the rms residual of each branch (virgin loading, unloading, reloading), per
+cycle the measured and fitted closure at the lowest stress of its unloading (what the data show),
+and the parameters with their uncertainties. A parameter whose standard uncertainty exceeds its
+value (or is not finite) is reported as not identifiable from these data instead of as a value:
+a cycle that ends at a seating load leaves r Δ_m, the closure at zero stress, to an extrapolation
+that m can mimic (Δ ∝ σ^(1/m) falls steeply near σ = 0), so the fit may drive r to 0 with an
+uncertainty larger than r while the data keep a large closure at their lowest stress.
 """
 from __future__ import annotations
 
@@ -27,7 +31,8 @@ from ._rockjoint import calibration as _cpp_calibration
 from ._rockjoint.constitutive import NormalHysteresis
 from .calibration import FittedParameter, calibration_spec, check_points, read_columns
 
-__all__ = ["LoadCycles", "read_load_cycles", "calibrate_cycles", "CycleCalibration", "BRANCHES"]
+__all__ = ["LoadCycles", "read_load_cycles", "calibrate_cycles", "CycleCalibration", "BRANCHES",
+           "UnloadingEnd", "identifiable"]
 
 #: branch labels of the points of a path
 BRANCHES = ("loading", "unloading", "reloading")
@@ -75,6 +80,22 @@ def read_load_cycles(path) -> LoadCycles:
     return LoadCycles(stress, closure, lines, source)
 
 
+def identifiable(p: FittedParameter) -> bool:
+    """True if the data determine ``p``: a finite standard uncertainty no larger than the value."""
+    return math.isfinite(p.standard_error) and p.standard_error <= abs(p.value)
+
+
+@dataclass(frozen=True)
+class UnloadingEnd:
+    """The lowest stress of one unloading run (one cycle) and the closure there [SI]."""
+    cycle: int               # 1-based, in test order
+    line: int                # line of the point in the data file (1-based point index for arrays)
+    peak_stress: float       # largest stress reached before this unloading [Pa]
+    normal_stress: float     # lowest stress of the unloading [Pa]
+    measured_closure: float  # [m]
+    fitted_closure: float    # [m]
+
+
 @dataclass
 class CycleCalibration:
     """Result of calibrate_cycles: the fitted NormalHysteresis and the statistics of the fit."""
@@ -105,6 +126,24 @@ class CycleCalibration:
                 out.append(self.law.permanent_closure(dm))
         return np.array(out)
 
+    def unloading_ends(self) -> List[UnloadingEnd]:
+        """Per cycle, the measured and fitted closure at the lowest stress of its unloading: the
+        closure the data keep (the permanent closure proper, at zero stress, is an
+        extrapolation unless the unloading reaches zero)."""
+        c, labels, predicted = self.cycles, self.cycles.branches(), self.predicted_closure()
+        out, top = [], 0.0
+        for i, b in enumerate(labels):
+            top = max(top, float(c.normal_stress[i]))
+            if b == "unloading" and (i + 1 == labels.size or labels[i + 1] != "unloading"):
+                out.append(UnloadingEnd(len(out) + 1, int(c.lines[i]), top,
+                                        float(c.normal_stress[i]), float(c.closure[i]),
+                                        float(predicted[i])))
+        return out
+
+    def not_identifiable(self) -> List[str]:
+        """Names of the parameters these data do not determine (see ``identifiable``)."""
+        return [p.name for p in self.parameters if not identifiable(p)]
+
     def predicted_closure(self) -> np.ndarray:
         return np.asarray(self.law.closure_path(self.cycles.normal_stress), dtype=float)
 
@@ -124,14 +163,35 @@ class CycleCalibration:
             lines.append(f"  given: {k} = {v}")
         lines.append("  fitted parameters (± standard uncertainty from the covariance scaled by the "
                      "residual variance):")
-        lines += [f"    {p}" for p in self.parameters]
+        for p in self.parameters:
+            if identifiable(p):
+                lines.append(f"    {p}")
+            else:
+                unit = "" if p.unit == "-" else f" {p.unit}"
+                lines.append(f"    {p.symbol:>4}   not identifiable from these data (the fit gives "
+                             f"{p.value / p.scale:.3g} ± {p.standard_error / p.scale:.2g}{unit}: "
+                             "the uncertainty exceeds the value)")
         for b, rms in self.branch_rms().items():
             lines.append(f"  {b:9s} rms {rms * 1e6:.4g} µm = {rms / top:.2%} of the maximum closure")
-        perm = self.permanent_closures()
-        if perm.size:
-            lines.append("  permanent closure after each unloading: "
-                         + ", ".join(f"{p * 1e3:.4g} mm" for p in perm)
-                         + f" (r = {self.law.permanent_fraction:.3g} of the largest closure)")
+        ends = self.unloading_ends()
+        lines.append("  closure at the lowest stress of each unloading (measured, fitted):")
+        for e in ends:
+            lines.append(f"    cycle {e.cycle}: {e.peak_stress * 1e-6:.4g} -> "
+                         f"{e.normal_stress * 1e-6:.4g} MPa (line {e.line}): "
+                         f"{e.measured_closure * 1e3:.4g} mm, {e.fitted_closure * 1e3:.4g} mm")
+        r = self.parameter("permanent_fraction")
+        lowest = min(e.normal_stress for e in ends)
+        if not identifiable(r):
+            lines.append("  permanent closure (at zero stress): not identifiable from these data: "
+                         f"the unloading stops at {lowest * 1e-6:.4g} MPa and the closure kept "
+                         "there does not fix r (the branch exponent m reproduces it over r's whole "
+                         "uncertainty); unload closer to zero stress to measure it")
+        else:
+            where = ("" if lowest == 0.0 else
+                     f", extrapolated below the lowest unloaded stress {lowest * 1e-6:.4g} MPa")
+            lines.append("  permanent closure after each unloading (at zero stress" + where + "): "
+                         + ", ".join(f"{p * 1e3:.4g} mm" for p in self.permanent_closures())
+                         + f" (r = {r.value:.3g} of the largest closure)")
         return "\n".join(lines)
 
 

@@ -608,6 +608,9 @@ TEST(TabulatedLawFile, MalformedFilesFailWithAClearMessage)
        },
        {"line " + std::to_string(find_line(lines, "table_maximum_stress ") + 1),
         "table_maximum_stress", "disagrees with the last knot"}},
+      {"signed %-escape",  // from_chars into a signed int once accepted "%-1" as a byte
+       [&](auto& l) { l[find_line(l, "source_model ")] = "source_model bb%-1"; },
+       {"source_model", "malformed %-escape"}},
       {"foreign interpolation",
        [&](auto& l) { l[find_line(l, "interpolation ")] = "interpolation linear"; },
        {"interpolation", "linear"}},
@@ -660,4 +663,25 @@ TEST(TabulatedLaw, ResidualStiffnessIsSeenThroughTheBaseInterface)
   base.evaluate(d, s, k);
   EXPECT_EQ(s[0], -1e3 * 1e-4);
   EXPECT_EQ(k[0], 1e3);
+}
+
+// fuzz/regressions/law_table/subnormal_range.rjt: a valid-looking table over subnormal closures
+// made the segment index's cell numbers NaN (undefined conversion, UBSan in fuzz/fuzz_law_table).
+TEST(TabulatedLawFile, SubnormalRangeIsRefusedNamingTheFile)
+{
+  const std::string path = temp_path("subnormal.rjt");
+  write_lines(path, {"rockjoint-law-table 1", "units closure=m stress=Pa stiffness=Pa/m",
+                     "interpolation monotone_hermite_sqrt_first_segment",
+                     "compression_extension linear_end_tangent",
+                     "opening_extension residual_stiffness", "source_model linear",
+                     "source_seating_stress 0x0p+0 Pa", "tolerance 0x1p-7",
+                     "checked_error_stress 0x0p+0", "checked_error_stiffness 0x0p+0",
+                     "residual_stiffness 0x0p+0 Pa/m", "table_maximum_closure 0x1p-1029 m",
+                     "table_maximum_stress 0x1p-1029 Pa", "knots 3", "knot 0 0x0p+0 0x0p+0 0x1p+0",
+                     "knot 1 0x1p-1030 0x1p-1030 0x1p+0", "knot 2 0x1p-1029 0x1p-1029 0x1p+0",
+                     "end"});
+  rockjoint::testing::expect_error<std::runtime_error>([&] { TabulatedLaw::load(path); },
+                                                       {path, "table_maximum_closure",
+                                                        "too small to index"});
+  std::remove(path.c_str());
 }

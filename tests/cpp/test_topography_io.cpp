@@ -142,3 +142,36 @@ TEST(TopographyIO, UnreadableFileIsNamed)
 {
   EXPECT_THROW(read_height_grid("/nonexistent/rockjoint.txt"), std::runtime_error);
 }
+
+// Found by fuzz/fuzz_xyz (fuzz/regressions/xyz/oom-*): one mistyped coordinate made the reader
+// allocate a 13 GB lattice (and, further out, overflow the lattice indices).
+TEST(TopographyIO, XyzWithAStrayCoordinateIsRefusedNotAllocated)
+{
+  const std::string path = temp_file("stray.xyz", "# lateral_unit: mm\n# height_unit: mm\n"
+                                                   "0 0 0.3\n0.5 0 0.4\n1 0 0.2\n"
+                                                   "69349422 0 0.09\n0 0.5 -0.19\n");
+  expect_error([&] { read_xyz(path); },
+               {path, "span a lattice of 2 x 1.38699e+08 points", "mistyped"});
+  // 10 apart, one point 1e9 out: a 2 x 1e8 lattice for 4 points
+  const std::string far = temp_file("far.xyz", "# unit: mm\n0 0 1\n10 0 1\n0 10 1\n1e9 10 2\n");
+  expect_error([&] { read_xyz(far); }, {far, "span a lattice", "mistyped"});
+}
+
+// A circular scan in its square keeps most of its lattice: a sparse but honest lattice reads.
+TEST(TopographyIO, XyzWithManyMissingPointsStillReads)
+{
+  std::string text = "# unit: mm\n";
+  for (int k = 0; k < 10; ++k)  // 10 points on the diagonal of a 10 x 10 lattice
+    text += std::to_string(k) + " " + std::to_string(k) + " 1\n";
+  const SurfaceFile f = read_xyz(temp_file("diagonal.xyz", text));
+  EXPECT_EQ(f.surface.rows(), 10);
+  EXPECT_EQ(f.surface.cols(), 10);
+}
+
+TEST(TopographyIO, HeightGridRowCountMustBeAWholeNumber)
+{
+  const std::string path = temp_file("rows.txt", "# spacing: 0.5\n# unit: mm\n# rows: 1e300\n1 2\n");
+  expect_error([&] { read_height_grid(path); }, {path + ":3:", "rows", "whole number"});
+  const std::string half = temp_file("half.txt", "# spacing: 0.5\n# unit: mm\n# cols: 2.5\n1 2\n");
+  expect_error([&] { read_height_grid(half); }, {half + ":3:", "cols", "whole number"});
+}

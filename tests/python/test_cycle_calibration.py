@@ -2,7 +2,9 @@
 Barton-Bandis + branch parameters with seeded closure noise are fitted back; each parameter is
 recovered within 3 of its stated standard uncertainties (and the uncertainty is not vacuous), each
 branch is fitted within 3 % rms of the maximum closure, and the permanent closure of each cycle is
-the generating one. The generating path is written out here with the closed forms (H1-H2 and the
+the generating one; the report gives each cycle's measured and fitted closure at its lowest
+unloaded stress. A cycle unloaded only to a seating load along a differently shaped curve leaves r
+undetermined: it is reported as not identifiable, not as a value. The generating path is written out here with the closed forms (H1-H2 and the
 Barton-Bandis inverse), not through the code under test."""
 import numpy as np
 import pytest
@@ -63,6 +65,61 @@ def test_permanent_closure_per_cycle(fitted):
     second = R * 15e6 * VM / (KNI * VM + 15e6)
     np.testing.assert_allclose(perm, [first, second], rtol=0.1)
     assert "permanent closure" in fit.report() and "unloading" in fit.report()
+
+
+def test_identifiable_r_is_reported_with_the_closure_kept_at_each_lowest_stress(fitted):
+    """Here r is identified: it is a result, and each cycle's lowest unloaded stress (0.2 MPa)
+    shows the measured and fitted closure the data keep there."""
+    fit, closure = fitted
+    assert fit.not_identifiable() == []
+    ends = fit.unloading_ends()
+    assert [(e.cycle, e.peak_stress, e.normal_stress) for e in ends] == [(1, 10e6, 0.2e6),
+                                                                           (2, 15e6, 0.2e6)]
+    last = [25, closure.size - 1]     # the last point of each unloading, in the generated path
+    for e, i in zip(ends, last):
+        assert e.line == i + 1
+        assert e.measured_closure == fit.cycles.closure[i]
+        assert abs(e.fitted_closure - closure[i]) < 3 * NOISE     # the fit, at the noise level
+    text = fit.report()
+    assert "not identifiable" not in text
+    assert f"cycle 2: 15 -> 0.2 MPa (line {closure.size}): " \
+           f"{ends[1].measured_closure * 1e3:.4g} mm, {ends[1].fitted_closure * 1e3:.4g} mm" in text
+    assert "extrapolated below the lowest unloaded stress 0.2 MPa" in text
+
+
+def seating_load_cycle():
+    """One cycle unloaded to a seating load of 0.3 MPa along a hyperbolic (Barton-Bandis shaped)
+    unloading curve, not the H2 power branch: the data keep 0.082 mm of closure at 0.3 MPa, and
+    the power branch reproduces that with r -> 0 and a larger m (the laboratory case of issue 30)."""
+    up, down = np.linspace(0, 10e6, 15), np.linspace(10e6, 0.3e6, 12)[1:]
+    ku, vu = 15e9, 0.3e-3
+    top = 10e6 * VM_S / (KNI * VM_S + 10e6)
+    unload = top - 10e6 * vu / (ku * vu + 10e6) + down * vu / (ku * vu + down)
+    closure = np.r_[up * VM_S / (KNI * VM_S + up), unload]
+    rng = np.random.default_rng(7)
+    return np.r_[up, down], closure + rng.normal(0.0, NOISE, closure.size)
+
+
+VM_S = 0.4e-3
+
+
+def test_r_not_identifiable_from_a_cycle_ending_at_the_seating_load():
+    stress, measured = seating_load_cycle()
+    fit = calibrate_cycles(LoadCycles(stress, measured), "barton_bandis")
+    r = fit.parameter("permanent_fraction")
+    assert r.standard_error > r.value                  # what makes it not identifiable
+    assert fit.not_identifiable() == ["permanent_fraction"]
+    (end,) = fit.unloading_ends()
+    assert end.normal_stress == 0.3e6 and end.measured_closure == measured[-1]
+    assert end.measured_closure > 0.075e-3             # the data keep closure at 0.3 MPa ...
+    assert abs(end.fitted_closure - end.measured_closure) < 3 * NOISE   # ... and so does the fit
+    text = fit.report()
+    assert "r   not identifiable from these data" in text
+    assert "permanent closure (at zero stress): not identifiable from these data" in text
+    assert "stops at 0.3 MPa" in text
+    assert f"{end.measured_closure * 1e3:.4g} mm, {end.fitted_closure * 1e3:.4g} mm" in text
+    # r is not presented as a result anywhere: no "r = <value>" line, no r Δ_m in mm.
+    assert " r = " not in text and "of the largest closure" not in text
 
 
 def test_cycle_file_and_bad_input(tmp_path):

@@ -1,8 +1,22 @@
-"""PNG pictures drawn on the mesh: |u| on filled triangles, the deformed outline of every block
-(displacements magnified so that the largest is 5 % of the scene), jointed beside intact."""
+"""PNG pictures drawn on the mesh: |u| on filled triangles, the deformed outline of every block,
+joints coloured by their state (stick, slip, open) with a legend, jointed beside intact.
+
+The overview shows the whole scene (displacements magnified so that the largest is 5 % of it).
+A tunnel adds the view a rock engineer reads first: the opening, four radii across, at a
+magnification chosen so that the largest displacement there is 2-5 % of the radius and stated on
+the plot (a magnification that fits the 80 m section turns a 4 m opening into a sliver). In 3D the
+same views are drawn on the section through the opening at half its length."""
 from __future__ import annotations
 
+import math
+
 import numpy as np
+
+#: joint point states, drawn in this order and colour; "closed" is a joint without strength in
+#: contact (it has no stick/slip distinction)
+STATE_COLOURS = {"stick": "#1f3a93", "slip": "#e8112d", "open": "#ff9900", "closed": "#1f3a93"}
+#: the largest displacement in the opening view is drawn as at most this fraction of the radius
+OPENING_FRACTION = 0.05
 
 
 def boundary_triangles(u):
@@ -28,42 +42,194 @@ def boundary_triangles(u):
     return tuple(np.concatenate(p) for p in parts)
 
 
+def nice_scale(raw: float) -> float:
+    """The largest 1, 2 or 5 x 10^k not above `raw` (a magnification people can read)."""
+    if not (raw > 0 and math.isfinite(raw)):
+        return 1.0
+    k = math.floor(math.log10(raw))
+    return max(m * 10.0 ** k for m in (1, 2, 5) if m * 10.0 ** k <= raw * (1 + 1e-12))
+
+
+def joint_states(model) -> dict:
+    """The joint points of `model` (all ranks, on every rank): coordinates (n, gdim) [m], state
+    names (n,) ('stick', 'slip', 'open'; 'closed' for joints without strength) and joint tags.
+    Collective."""
+    from rockjoint._rockjoint.constitutive import Status
+    from rockjoint.fem_coupling import ShearState
+    state = model.solution.gather_joints()
+    x = np.asarray(state["coordinates"], dtype=float).reshape(-1, model.gdim)
+    if "shear_state" in state:
+        names = {int(ShearState.stick): "stick", int(ShearState.slip): "slip",
+                 int(ShearState.open): "open"}
+        labels = [names[int(v)] for v in np.asarray(state["shear_state"])]
+    else:
+        labels = ["open" if int(v) == int(Status.open) else "closed" for v in np.asarray(state["status"])]
+    return {"x": x, "state": np.array(labels, dtype=object), "tag": np.asarray(state["tag"])}
+
+
+def joint_segments(x: np.ndarray, labels: np.ndarray, tags: np.ndarray, u_at):
+    """Deformed joint traces as short segments, each coloured by the point it belongs to: the
+    points of one joint (a straight trace in the drawing plane) are ordered along it and each
+    point owns half of the gap to each neighbour; gaps wider than 3 median gaps (an opening that
+    cuts the joint) are not bridged. `u_at(points)` gives the drawn displacement there.
+    Returns {state: array (m, 2, 2)}."""
+    out = {}
+    for tag in np.unique(tags):
+        p = x[tags == tag][:, :2]
+        s = labels[tags == tag]
+        if len(p) < 2:
+            continue
+        centre = p.mean(axis=0)
+        direction = np.linalg.svd(p - centre, full_matrices=False)[2][0]
+        t = (p - centre) @ direction
+        order = np.argsort(t, kind="stable")
+        p, s, t = p[order], s[order], t[order]
+        keep = np.r_[True, np.diff(t) > 1e-9 * max(np.ptp(t), 1e-300)]  # a node once, not per pair
+        p, s, t = p[keep], s[keep], t[keep]
+        if len(p) < 2:
+            continue
+        gaps = np.diff(t)
+        bridged = gaps <= 3.0 * np.median(gaps)
+        moved = p + u_at(p)
+        mid = 0.5 * (moved[1:] + moved[:-1])
+        for i in np.flatnonzero(bridged):
+            out.setdefault(s[i], []).append([moved[i], mid[i]])
+            out.setdefault(s[i + 1], []).append([mid[i], moved[i + 1]])
+    return {k: np.array(v) for k, v in out.items()}
+
+
+def _vertex_displacement(tri: np.ndarray, u: np.ndarray):
+    """u at a point (mean over the mesh vertices at that place: on a joint, the mid-plane of its
+    two faces), as a function of points (n, 2); nearest vertex."""
+    from scipy.spatial import cKDTree
+    xy = tri.reshape(-1, 2)
+    key, inverse = np.unique(np.round(xy, 9), axis=0, return_inverse=True)
+    inverse = inverse.ravel()
+    total = np.zeros((len(key), 2))
+    np.add.at(total, inverse, u.reshape(-1, 2))
+    mean = total / np.bincount(inverse, minlength=len(key))[:, None]
+    tree = cKDTree(key)
+    return lambda p: mean[tree.query(p)[1]]
+
+
 def draw(models: dict, scene, path: str) -> list:
-    """One panel per model (P1 only): 2D filled triangles with block outlines; 3D the boundary
-    faces (outer faces and joint faces) of the deformed mesh. Collective; rank 0 writes `path`."""
+    """One column per model (P1 only): the whole scene, and for a tunnel the opening below it.
+    2D: filled triangles with block outlines; 3D: the boundary faces of the deformed mesh, and
+    for a tunnel the section through the opening. Joints by state in every 2D view and section.
+    Collective; rank 0 writes `path`."""
     from rockjoint.fem_coupling.output import gather_triangles
     if any(m.degree != 1 for m in models.values()):
         return []
+    geometry = scene.data["geometry"]
+    opening = geometry.get("opening") if geometry["kind"] == "tunnel" else None
+    joints = {label: joint_states(m) for label, m in models.items() if m.gdim == 2 or opening}
     if models["jointed"].gdim == 3:
-        return _draw_3d(models, scene, path)
+        sections = ({label: section_triangles(m.u, 0.5 * geometry["length"])
+                     for label, m in models.items()} if opening else None)
+        return _draw_3d(models, scene, path, sections, joints)
     gathered = {label: gather_triangles(m.u) for label, m in models.items()}
     if models["jointed"].comm.rank != 0:
         return [path]
+    plt = _pyplot()
+    rows = 2 if opening else 1
+    fig, axes = plt.subplots(rows, len(models), figsize=(5.8 * len(models), 4.9 * rows), squeeze=False)
+    top = max(float(np.linalg.norm(u, axis=2).max()) for _, u in gathered.values()) or 1.0
+    for k, (label, (tri, u)) in enumerate(gathered.items()):
+        extent = float(np.ptp(tri.reshape(-1, 2), axis=0).max())
+        scale = 0.05 * extent / top
+        _field(axes[0][k], tri, u, scale, top, joints[label])
+        axes[0][k].set_title(f"{scene.data['name']}: {label} (u x {scale:.3g})")
+        if opening:
+            axes[0][k].add_patch(_view_box(plt, opening))
+    if opening:
+        _opening_views(axes[1], gathered, joints, opening, scene.data["name"])
+    _save(fig, path)
+    return [path]
+
+
+def _pyplot():
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    from matplotlib.collections import LineCollection, PolyCollection
-    fig, axes = plt.subplots(1, len(models), figsize=(5.5 * len(models), 4.6), squeeze=False)
-    top = max(float(np.linalg.norm(u, axis=2).max()) for _, u in gathered.values()) or 1.0
-    for ax, (label, (tri, u)) in zip(axes[0], gathered.items()):
-        extent = float(np.ptp(tri.reshape(-1, 2), axis=0).max())
-        scale = 0.05 * extent / top
-        mag = np.linalg.norm(u, axis=2).mean(axis=1) * 1e3
-        polys = PolyCollection(tri + scale * u, array=mag, cmap="viridis", edgecolors="none")
-        polys.set_clim(0.0, top * 1e3)
-        ax.add_collection(polys)
-        edges = _outline(tri, u, scale)
-        ax.add_collection(LineCollection(edges, colors="k", linewidths=0.6))
-        ax.autoscale()
-        ax.set_aspect("equal")
-        ax.set_title(f"{scene.data['name']}: {label} (u x {scale:.3g})")
-        ax.set_xlabel("x [m]")
-        ax.set_ylabel("y [m]")
-        fig.colorbar(polys, ax=ax, label="|u| [mm]")
+    return plt
+
+
+def _save(fig, path: str) -> None:
+    """Write and close the figure (one place, so a test can look at the figure it writes)."""
     fig.tight_layout()
     fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return [path]
+    fig.clf()
+    _pyplot().close(fig)
+
+
+def _view_box(plt, opening):
+    (cx, cy), r = opening["centre"][:2], opening["radius"]
+    return plt.Rectangle((cx - 2 * r, cy - 2 * r), 4 * r, 4 * r, fill=False, ec="w", ls="--", lw=0.8)
+
+
+def _field(ax, tri, u, scale, top, joints, limits=None):
+    """|u| on the deformed triangles, block outlines, joints by state (legend of those drawn)."""
+    from matplotlib.collections import LineCollection, PolyCollection
+    mag = np.linalg.norm(u, axis=2).mean(axis=1) * 1e3
+    # edges in the face colour: no white seams between filled triangles
+    polys = PolyCollection(tri + scale * u, array=mag, cmap="viridis", edgecolors="face",
+                           linewidths=0.2)
+    polys.set_clim(0.0, top * 1e3)
+    ax.add_collection(polys)
+    ax.add_collection(LineCollection(_outline(tri, u, scale), colors="k", linewidths=0.6))
+    if joints is not None and len(joints["x"]):
+        u_at = _vertex_displacement(tri, u)
+        segments = joint_segments(joints["x"], joints["state"], joints["tag"], lambda p: scale * u_at(p))
+        for state in STATE_COLOURS:
+            if state in segments:
+                ax.add_collection(LineCollection(segments[state], colors=STATE_COLOURS[state],
+                                                 linewidths=2.0 if state in ("slip", "open") else 0.9,
+                                                 label=f"joint: {state}"))
+        if segments:
+            ax.legend(loc="upper right", fontsize=7, framealpha=0.85)
+    if limits is None:
+        ax.autoscale()
+    else:
+        ax.set_xlim(*limits[0])
+        ax.set_ylim(*limits[1])
+    ax.set_aspect("equal")
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+    ax.figure.colorbar(polys, ax=ax, label="|u| [mm]")
+
+
+def _opening_views(axes, gathered, joints, opening, name):
+    """The opening four radii across, one magnification for all models: the largest displacement
+    in the views drawn as 2-5 % of the radius (OPENING_FRACTION, rounded down to 1-2-5)."""
+    (cx, cy), r = opening["centre"][:2], opening["radius"]
+    limits = ((cx - 2 * r, cx + 2 * r), (cy - 2 * r, cy + 2 * r))
+    largest = {}
+    for label, (tri, u) in gathered.items():
+        inside = _in_view(tri, limits)
+        largest[label] = float(np.linalg.norm(u[inside], axis=2).max()) if inside.any() else 0.0
+    top = max(largest.values()) or 1.0
+    scale = nice_scale(OPENING_FRACTION * r / top)
+    for ax, (label, (tri, u)) in zip(axes, gathered.items()):
+        _field(ax, tri, u, scale, top, joints.get(label), limits)  # the axes clip to the view
+        t = np.linspace(0, 2 * np.pi, 200)
+        ax.plot(cx + r * np.cos(t), cy + r * np.sin(t), "w--", lw=0.8, label="_opening before")
+        ax.set_title(f"{name}: {label}, opening (4 radii across)")
+        ax.text(0.02, 0.02, opening_caption(scale, largest[label], r), transform=ax.transAxes,
+                fontsize=7.5, va="bottom", bbox=dict(fc="w", alpha=0.85, lw=0))
+
+
+def opening_caption(scale: float, largest: float, radius: float) -> str:
+    """The stated magnification of an opening view (tests read it back)."""
+    return (f"displacements x {scale:g}: the largest, {largest * 1e3:.3g} mm,\n"
+            f"is drawn as {100 * scale * largest / radius:.2g} % of the radius ({radius:g} m);\n"
+            "dashed: the opening before deformation")
+
+
+def _in_view(tri, limits):
+    """Triangles with a vertex inside the view (or, 3D sections, any point in it)."""
+    (x0, x1), (y0, y1) = limits
+    x, y = tri[..., 0], tri[..., 1]
+    return ((x >= x0) & (x <= x1) & (y >= y0) & (y <= y1)).any(axis=1)
 
 
 def _outline(tri: np.ndarray, u: np.ndarray, scale: float) -> np.ndarray:
@@ -93,20 +259,55 @@ def _outline(tri: np.ndarray, u: np.ndarray, scale: float) -> np.ndarray:
     return moved[single | split]
 
 
-def _draw_3d(models: dict, scene, path: str) -> list:
+def section_triangles(u, y: float):
+    """The section of a 3D P1 displacement's mesh by the plane y = `y`, across a tunnel whose axis
+    is y (meshes.tunnel_section: the 2D section's (x, y) are (x, z) in 3D), gathered on rank 0:
+    triangles (n, 3, 2) [m] in section coordinates (x, z), u at their corners (n, 3, 3) [m] (linear
+    in each tetrahedron, so exact for P1). None elsewhere. Collective."""
+    V = u.function_space
+    mesh = V.mesh
+    n_cells = mesh.topology.index_map(3).size_local
+    x = mesh.geometry.x[mesh.geometry.dofmaps[0][:n_cells]]          # (cells, 4, 3)
+    values = u.x.array.reshape(-1, 3)[V.dofmap.list[:n_cells]]      # P1: dof i on vertex i
+    x = x[:, :, [0, 2, 1]]                      # (x, z) in the plane, y across it
+    values = values[:, :, [0, 2, 1]]
+    d = x[:, :, 2] - y
+    cut = (d.min(axis=1) < 0) & (d.max(axis=1) > 0)
+    tris, us = [], []
+    for xc, uc, dc in zip(x[cut], values[cut], d[cut]):
+        points, at = [], []
+        for i, j in ((0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)):
+            if (dc[i] < 0) != (dc[j] < 0):
+                w = dc[i] / (dc[i] - dc[j])
+                points.append(xc[i, :2] + w * (xc[j, :2] - xc[i, :2]))
+                at.append(uc[i] + w * (uc[j] - uc[i]))
+        points, at = np.array(points), np.array(at)
+        order = np.argsort(np.arctan2(*(points - points.mean(axis=0)).T[::-1]))
+        points, at = points[order], at[order]
+        for k in range(1, len(points) - 1):   # a triangle or a quadrilateral: fan triangles
+            tris.append(points[[0, k, k + 1]])
+            us.append(at[[0, k, k + 1]])
+    parts = [np.array(tris).reshape(-1, 3, 2), np.array(us).reshape(-1, 3, 3)]
+    gathered = [mesh.comm.gather(p, root=0) for p in parts]
+    if mesh.comm.rank != 0:
+        return None, None
+    tri, us = (np.concatenate(g) for g in gathered)
+    return tri, us[:, :, [0, 2, 1]]             # u back in (x, y, z)
+
+
+def _draw_3d(models: dict, scene, path: str, sections, joints) -> list:
     gathered = {label: boundary_triangles(m.u) for label, m in models.items()}
     if models["jointed"].comm.rank != 0:
         return [path]
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = _pyplot()
     from matplotlib import cm, colors
     from mpl_toolkits.mplot3d.art3d import Poly3DCollection
     top = max(float(np.linalg.norm(u, axis=2).max()) for _, u in gathered.values()) or 1.0
     norm = colors.Normalize(0.0, top * 1e3)
-    fig = plt.figure(figsize=(5.5 * len(models), 5.0))
+    rows = 2 if sections else 1
+    fig = plt.figure(figsize=(5.8 * len(models), 5.0 * rows))
     for k, (label, (tri, u)) in enumerate(gathered.items()):
-        ax = fig.add_subplot(1, len(models), k + 1, projection="3d")
+        ax = fig.add_subplot(rows, len(models), k + 1, projection="3d")
         extent = float(np.ptp(tri.reshape(-1, 3), axis=0).max())
         scale = 0.05 * extent / top
         mag = np.linalg.norm(u, axis=2).mean(axis=1) * 1e3
@@ -122,7 +323,24 @@ def _draw_3d(models: dict, scene, path: str) -> list:
         ax.set_zlabel("z [m]")
         ax.set_title(f"{scene.data['name']}: {label} (u x {scale:.3g})")
         fig.colorbar(cm.ScalarMappable(norm=norm, cmap="viridis"), ax=ax, label="|u| [mm]", shrink=0.7)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    if sections:
+        y = 0.5 * scene.data["geometry"]["length"]
+        axes = [fig.add_subplot(rows, len(models), len(models) + k + 1) for k in range(len(models))]
+        # the section's own displacement: u_x and u_z (the axial u_y is across the picture)
+        in_plane = {label: (tri, u[:, :, [0, 2]]) for label, (tri, u) in sections.items()}
+        near = {label: _near_section(j, y, sections[label][0]) for label, j in joints.items()}
+        _opening_views(axes, in_plane, near, scene.data["geometry"]["opening"], scene.data["name"])
+        for ax in axes:
+            ax.set_title(ax.get_title() + f"\nsection y = {y:g} m")
+            ax.set_ylabel("z [m]")
+    _save(fig, path)
     return [path]
+
+
+def _near_section(joints: dict, y: float, tri: np.ndarray) -> dict:
+    """The joint points in the layer of mesh nodes closest to the section y (within half the
+    section's typical edge), projected on it (x, z): the joints' traces in the section."""
+    dz = np.abs(joints["x"][:, 1] - y)
+    edge = float(np.median(np.linalg.norm(tri[:, 1] - tri[:, 0], axis=1))) if len(tri) else 0.0
+    keep = dz <= dz.min() + 0.5 * edge if len(dz) else dz > 0
+    return {"x": joints["x"][keep][:, [0, 2]], "state": joints["state"][keep], "tag": joints["tag"][keep]}
