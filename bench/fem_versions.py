@@ -47,16 +47,20 @@ def main() -> None:
     keys = sorted(set.intersection(*(set(r) for _, r in reports.values())))
     out = ["# A jointed analysis at the cost of an intact linear solve: DOLFINx 0.11 beside 0.9", "",
            "Written by `python3 bench/fem_versions.py` from the two runs of `bench/bench_fem.py` "
-           "(same cases, same settings, each in its own Debian userland on the same machine):", ""]
+           "(same cases, same settings, each in its own Debian userland on the same machine, one "
+           "after the other; the meshes differ slightly, gmsh 4.15 and 4.13 placing nodes "
+           "differently):", ""]
     out += [f"- {reports[v][0]}: [`fem_dolfinx{v}.md`](fem_dolfinx{v}.md)" for v in VERSIONS]
     out += ["", "Ratio = jointed analysis / one intact linear solve on the same mesh (min of the runs; "
             "target <= 2); CPU ratio is the headline on a shared machine (see the reports).", "",
-            "| case | ranks | dofs (jointed) | " + " | ".join(
+            "| case | ranks | dofs (jointed) 0.11 / 0.9 | " + " | ".join(
                 f"intact LS [s] {v} | jointed [s] {v} | ratio wall {v} | ratio CPU {v} | Newton its {v} | "
                 f"error vs closed form {v}" for v in VERSIONS) + " |",
             "|---|---:|---:|" + "---:|---:|---|---:|---:|---|" * len(VERSIONS)]
     for case, ranks in keys:
-        row = f"| {case} | {ranks} | {reports[VERSIONS[0]][1][(case, ranks)]['dofs (jointed / intact)'].split('/')[0].strip()} |"
+        dofs = " / ".join(reports[v][1][(case, ranks)]["dofs (jointed / intact)"].split("/")[0].strip()
+                          for v in VERSIONS)
+        row = f"| {case} | {ranks} | {dofs} |"
         for v in VERSIONS:
             c = reports[v][1][(case, ranks)]
             row += (f" {c['intact LS [s]']} | {c['jointed [s]']} | {c['ratio (wall)']} | {c['ratio (CPU)']} | "
