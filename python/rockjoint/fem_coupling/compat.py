@@ -98,8 +98,8 @@ if _LEGACY:
         @staticmethod
         def create_vector(maps, kind=None) -> "PETSc.Vec":  # noqa: F821
             if kind is not None or len(maps) != 1:
-                raise NotImplementedError("compat.la_petsc.create_vector: one (index map, block size) "
-                                          "on DOLFINx 0.9")
+                raise ValueError(f"compat.la_petsc.create_vector on DOLFINx 0.9 takes one (index map, "
+                                 f"block size) pair and no kind; got {len(maps)} pair(s), kind={kind!r}")
             (index_map, bs), = maps
             return dolfinx.la.create_petsc_vector(index_map, bs)
 
