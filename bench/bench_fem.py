@@ -219,8 +219,8 @@ def worker(args) -> None:
                 with open(args.mesh_cache, "wb") as fh:
                     pickle.dump((jm, t_mesh), fh)
     corner = comm.bcast(corner_block(jm) if comm.rank == 0 else None)
-    meshes = {"intact": distribute(glued(jm) if comm.rank == 0 else None, comm),
-              "jointed": distribute(jm, comm)}
+    meshes = distribute_cached({"intact": glued(jm) if comm.rank == 0 else None, "jointed": jm}, comm,
+                               args.mesh_cache)
     del jm
     runs = {"intact": [], "jointed": []}
     for k in range(args.repeat):
@@ -238,6 +238,23 @@ def worker(args) -> None:
             json.dump({"case": args.case, "ranks": comm.size, "mesh_size": args.mesh_size,
                        "mesh_generation": t_mesh, "runs": runs, "variants": variants,
                        "load": [load0, os.getloadavg()]}, fh)
+
+
+def distribute_cached(jointed_meshes: dict, comm, cache: str | None) -> dict:
+    """{label: DistributedJointMesh}. With a mesh cache, the partition is cached beside it
+    (<cache>.owners<ranks>.npz) and reused: a run on another DOLFINx version (another partitioner
+    build) then solves on the same mesh *and* the same partition."""
+    import numpy as np
+    from rockjoint.fem_coupling.distributed_mesh import distribute
+    path = f"{cache}.owners{comm.size}.npz" if cache else None
+    have = comm.bcast(bool(path) and os.path.exists(path) if comm.rank == 0 else None)
+    owners = dict(np.load(path)) if have and comm.rank == 0 else {}
+    meshes = {label: distribute(jm, comm, owners=owners.get(label)) for label, jm in jointed_meshes.items()}
+    if path and not have:
+        found = {label: d.cell_owners() for label, d in meshes.items()}
+        if comm.rank == 0:
+            np.savez(path, **found)
+    return meshes
 
 
 # ---------------------------------------------------------------------------------------------
@@ -296,7 +313,13 @@ def report(ratio_results, scaling_results, args, wall, load_start) -> str:
     cmd = "/usr/bin/python3 bench/bench_fem.py" + (" --quick" if args.quick else "") + \
         ("" if args.quick else f" --repeat {args.repeat} --ranks {' '.join(map(str, args.ranks))} "
          f"--ratio-size {args.ratio_size} --scaling-sizes {' '.join(map(str, args.scaling_sizes))} "
-         f"--scaling-repeat {args.scaling_repeat} --scaling-ranks {args.scaling_ranks}")
+         f"--scaling-repeat {args.scaling_repeat} --scaling-ranks {args.scaling_ranks}") + \
+        (f" --mesh-dir {args.mesh_dir}" if args.mesh_dir else "")
+    reused = [case for case, r in _REUSED.items() if r]
+    meshes = (f"Meshes and partitions of the ratio rows: {', '.join(reused)} read from `{args.mesh_dir}` "
+              "(made by an earlier run, e.g. on the other DOLFINx version: same mesh, same partition), "
+              "the others made here and kept there." if args.mesh_dir and reused else
+              "Meshes made by gmsh and partitioned by DOLFINx's partitioner in this run.")
     L = [
         f"# A jointed analysis at the cost of an intact linear solve (DOLFINx {_stack_versions()}, 3D)",
         "",
@@ -307,7 +330,7 @@ def report(ratio_results, scaling_results, args, wall, load_start) -> str:
         "times are inflated and noisy; intact and jointed alternate in the same process, so their "
         "ratio is less affected than the times.",
         "",
-        f"Reproduce: `{cmd}` (workers run under `mpirun -n k --bind-to core`).",
+        f"Reproduce: `{cmd}` (workers run under `mpirun -n k --bind-to core`). {meshes}",
         "",
         "Definitions (module docstring of the script): *jointed* = `JointedRockModel.solve()` wall "
         "time (all Newton iterations: joint residuals and Jacobians, linear solves with their GAMG "
@@ -386,6 +409,7 @@ def report(ratio_results, scaling_results, args, wall, load_start) -> str:
 
 
 _VARIANTS = {}
+_REUSED = {}   # case -> whether its ratio-row mesh came from --mesh-dir
 
 
 def ratio_results_variants(ratio_results):
@@ -432,6 +456,9 @@ def main() -> None:
     ap.add_argument("--scaling-ranks", type=int, default=1)
     ap.add_argument("--quick", action="store_true", help="~50k dofs, 2 runs, no scaling, no variants")
     ap.add_argument("--output", default=os.path.join(HERE, "results", "fem.md"))
+    ap.add_argument("--mesh-dir", default=None,
+                    help="keep the ratio rows' meshes and partitions here and reuse them: a run on "
+                         "the other DOLFINx version then compares on the same mesh and partition")
     ap.add_argument("--worker", action="store_true", help=argparse.SUPPRESS)
     ap.add_argument("--case", default="column", help=argparse.SUPPRESS)
     ap.add_argument("--mesh-size", type=float, default=0.0235, help=argparse.SUPPRESS)
@@ -451,8 +478,11 @@ def main() -> None:
     t0 = time.perf_counter()
     ratio_results, scaling_results = [], []
     with tempfile.TemporaryDirectory() as tmp:
+        mesh_dir = args.mesh_dir or tmp
+        os.makedirs(mesh_dir, exist_ok=True)
         for case in ("column", "blocky"):
-            cache = os.path.join(tmp, f"{case}_{args.ratio_size}.pkl")
+            cache = os.path.join(mesh_dir, f"{case}_{args.ratio_size}.pkl")
+            _REUSED[case] = os.path.exists(cache)
             for n in args.ranks:
                 variants = ("fixed_forcing", "no_reuse", "smoothed_aggregation") \
                     if (case == "column" and n == 1 and not args.quick) else ()

@@ -3,10 +3,15 @@
 
 Each report is a run of bench/bench_fem.py in its own userland (scripts/host.sh):
 
-    bash scripts/run.sh python3 bench/bench_fem.py --scaling-sizes --output bench/results/fem_dolfinx0.11.md
+    rm -rf .scratch/fem_meshes
+    bash scripts/run.sh python3 bench/bench_fem.py --scaling-sizes --mesh-dir .scratch/fem_meshes \\
+        --output bench/results/fem_dolfinx0.11.md
     ROCKJOINT_DOLFINX=0.9 bash scripts/run.sh python3 bench/bench_fem.py --scaling-sizes \\
-        --output bench/results/fem_dolfinx0.9.md
+        --mesh-dir .scratch/fem_meshes --output bench/results/fem_dolfinx0.9.md
     python3 bench/fem_versions.py
+
+The second run reads the meshes and partitions the first one made (--mesh-dir): both versions
+solve the same systems, and only DOLFINx, PETSc and their build differ.
 
 This script only reads the two reports' ratio tables and writes them side by side (no number of
 its own); the full tables, settings and residual histories stay in the two reports.
@@ -48,8 +53,9 @@ def main() -> None:
     out = ["# A jointed analysis at the cost of an intact linear solve: DOLFINx 0.11 beside 0.9", "",
            "Written by `python3 bench/fem_versions.py` from the two runs of `bench/bench_fem.py` "
            "(same cases, same settings, each in its own Debian userland on the same machine, one "
-           "after the other; the meshes differ slightly, gmsh 4.15 and 4.13 placing nodes "
-           "differently):", ""]
+           "after the other; with `--mesh-dir` as in the script's docstring, the second run reads the "
+           "first one's meshes and partitions, so both solve the same systems; each report says "
+           "where its meshes came from):", ""]
     out += [f"- {reports[v][0]}: [`fem_dolfinx{v}.md`](fem_dolfinx{v}.md)" for v in VERSIONS]
     out += ["", "Ratio = jointed analysis / one intact linear solve on the same mesh (min of the runs; "
             "target <= 2); CPU ratio is the headline on a shared machine (see the reports).", "",

@@ -4,6 +4,8 @@ References: the JointedMesh's own facet pairs (built by a different code path: g
 input mesh) and closed-form block volumes / face areas. Facet vertices are read through DOLFINx's
 cell->facet and facet->vertex connectivity, independently of the pairing code's local numbering.
 """
+import os
+
 import numpy as np
 import pytest
 from mpi4py import MPI
@@ -125,3 +127,38 @@ def test_pair_vertex_positions_match_and_orient(dim):
     up0 = np.eye(dim)[-1]
     first = p.joint_tags == d.joint_tag("joint_1")
     assert np.allclose(n[first], up25) and np.allclose(n[~first], up0)
+
+
+_PARTITION_SCRIPT = """
+import hashlib
+import numpy as np
+from mpi4py import MPI
+import rockjoint.fem_coupling  # noqa: F401 - the import sets the partitioner's threads
+from dolfinx.mesh import CellType, create_unit_cube
+comm = MPI.COMM_WORLD
+mesh = create_unit_cube(comm, 30, 30, 30, CellType.tetrahedron)
+n = mesh.topology.index_map(3).size_local
+mine = np.sort(np.asarray(mesh.topology.original_cell_index[:n], dtype=np.int64))
+digests = comm.gather(hashlib.sha1(mine.tobytes()).hexdigest(), root=0)
+if comm.rank == 0:
+    print("partition", mesh.topology.index_map(3).size_global, *digests)
+"""
+
+
+def test_partition_is_the_same_at_every_launch():
+    """Three launches on 2 ranks partition a mesh of 162k cells identically. PT-SCOTCH's threads
+    made Debian 13's partition differ at every launch (distributed_mesh.py, docs/fem.md pitfall 17);
+    rockjoint.fem_coupling runs it with one thread unless the user chose otherwise."""
+    import subprocess
+    import sys
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in sys.path if p),
+               OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    env.pop("SCOTCH_PTHREAD_NUMBER", None)
+    runs = [subprocess.run(["mpirun", "-n", "2", sys.executable, "-c", _PARTITION_SCRIPT], env=env,
+                           capture_output=True, text=True, timeout=600) for _ in range(3)]
+    for r in runs:
+        assert r.returncode == 0, r.stderr[-2000:]
+    lines = [[w for w in r.stdout.splitlines() if w.startswith("partition")] for r in runs]
+    assert all(len(x) == 1 for x in lines), [r.stdout for r in runs]
+    assert int(lines[0][0].split()[1]) > 50_000
+    assert lines[0] == lines[1] == lines[2]

@@ -22,8 +22,8 @@ def owned_measures(d):
     return np.array([m[t] for t in sorted(m)])
 
 
-def check_parallel(jm, comm):
-    d = distribute(jm, comm)
+def check_parallel(jm, comm, owners=None):
+    d = distribute(jm, comm, owners=owners)
     p = d.pairs
     mesh = d.mesh
     tdim = mesh.topology.dim
@@ -105,3 +105,58 @@ def test_mpi_partition_balance_is_reported_and_even():
     assert sum(b["pairs"]) == comm.bcast(jm.joint_tags.size if comm.rank == 0 else None, root=0)
     assert b == comm.bcast(b, root=0)   # the same report on every rank
     assert 1.0 <= b["cell_imbalance"] <= 1.25
+
+
+def _chained(jm):
+    """Cells that are in a chain of paired cells (their owner follows the chain's first cell)."""
+    chained = np.zeros(jm.cells.shape[0], dtype=bool)
+    chained[jm.joint_facet_cells.ravel()] = True
+    return chained
+
+
+def test_mpi_given_owners_reproduce_a_partition():
+    """cell_owners() of one distribution, given back to distribute, rebuilds the same partition
+    (every rank owns the same input cells); a partition of our own (by the x of the cell centre)
+    is followed for every cell outside a chain of paired cells, and the result passes the same
+    checks as DOLFINx's partition."""
+    comm = MPI.COMM_WORLD
+    js = [Joint((0.5, 0.5, 0.3), 10.0, 30.0, "h1"), Joint((0.5, 0.5, 0.7), 0.0, 90.0, "h2")]
+    jm = jointed_block((1.0, 1.0, 1.0), js, mesh_size=0.2, comm=comm)
+
+    def owned_input_cells(d):
+        n = d.mesh.topology.index_map(3).size_local
+        return np.sort(np.asarray(d.mesh.topology.original_cell_index[:n], dtype=np.int64))
+
+    first = distribute(jm, comm)
+    owners = first.cell_owners()
+    if comm.rank == 0:
+        assert owners.min() >= 0 and owners.max() < comm.size
+    again = distribute(jm, comm, owners=owners)
+    assert np.array_equal(owned_input_cells(again), owned_input_cells(first))
+
+    mine = None
+    if comm.rank == 0:
+        centre = jm.points[jm.cells].mean(axis=1)[:, 0]
+        mine = np.minimum((centre * comm.size).astype(np.int64), comm.size - 1)
+    d = distribute(jm, comm, owners=mine)
+    cells = owned_input_cells(d)
+    gathered = comm.gather(cells, root=0)
+    if comm.rank == 0:
+        free = ~_chained(jm)
+        for rank, c in enumerate(gathered):
+            assert np.all(mine[c][free[c]] == rank)
+        assert sum(c.size for c in gathered) == jm.cells.shape[0]
+    check_parallel(jm, comm, owners=mine)
+
+
+@pytest.mark.parametrize("bad, message", [
+    (lambda n, size: np.zeros(n - 1, dtype=np.int64), "one rank per cell"),
+    (lambda n, size: np.full(n, size, dtype=np.int64), r"must lie in \[0,"),
+    (lambda n, size: np.zeros(n, dtype=float), "integer array"),
+])
+def test_mpi_bad_owners_are_refused_on_every_rank(bad, message):
+    comm = MPI.COMM_WORLD
+    jm = column(1.0, 1.0, [0.5], dim=2, mesh_size=0.25, comm=comm)
+    owners = bad(jm.cells.shape[0], comm.size) if comm.rank == 0 else None
+    with pytest.raises(ValueError, match=message):
+        distribute(jm, comm, owners=owners)

@@ -16,6 +16,7 @@ node's original input index (``geometry.input_global_indices``).
 """
 from __future__ import annotations
 
+import os
 import time
 from dataclasses import dataclass
 
@@ -34,6 +35,14 @@ from ..meshes.node_splitting import facet_keys
 
 _GMSH_CELL_ID = {"triangle": 2, "tetrahedron": 4}
 _ROOT = 0
+
+# Reproducible partitions. PT-SCOTCH (DOLFINx's default partitioner) partitions with threads, and
+# Debian 13's 7.0.7 then returns a different partition at every launch even with a fixed seed:
+# the blocky benchmark on 2 ranks needed 85 to 121 Krylov iterations on one mesh, launch to launch
+# (docs/fem.md, pitfall 17). With one thread the partition is the same at every launch. SCOTCH
+# reads the variable when it partitions, so setting it here covers every mesh created after
+# rockjoint.fem_coupling is imported, also the user's own; a value the user set is kept.
+os.environ.setdefault("SCOTCH_PTHREAD_NUMBER", "1")
 
 
 @dataclass
@@ -105,6 +114,21 @@ class DistributedJointMesh:
         return {"cells": cells, "vertices": vertices, "pairs": pairs,
                 "cell_imbalance": max(cells) / (sum(cells) / len(cells))}
 
+    def cell_owners(self):
+        """The owning rank of every input cell, in the JointedMesh's cell order, on rank 0 (None
+        elsewhere; collective): `distribute(jm, comm, owners=...)` rebuilds this partition."""
+        comm = self.mesh.comm
+        topology = self.mesh.topology
+        n = topology.index_map(topology.dim).size_local
+        mine = np.asarray(topology.original_cell_index[:n], dtype=np.int64)
+        gathered = comm.gather(mine, root=_ROOT)
+        if comm.rank != _ROOT:
+            return None
+        owners = np.full(sum(g.size for g in gathered), -1, dtype=np.int64)
+        for rank, cells in enumerate(gathered):
+            owners[cells] = rank
+        return owners
+
 
 def _tag(names: dict, kind: str, name: str) -> int:
     for tag, n in names[kind].items():
@@ -113,10 +137,15 @@ def _tag(names: dict, kind: str, name: str) -> int:
     raise KeyError(f"no {kind[:-1]} named {name!r}; available: {sorted(names[kind].values())}")
 
 
-def distribute(jointed_mesh: JointedMesh | None, comm) -> DistributedJointMesh:
+def distribute(jointed_mesh: JointedMesh | None, comm, owners=None) -> DistributedJointMesh:
     """Build the distributed mesh. Collective: rank 0 passes the JointedMesh, other ranks None.
 
-    Raises ValueError on every rank if rank 0 has no JointedMesh.
+    owners: optional, on rank 0: the owning rank of every cell of the JointedMesh (int array of
+    length jm.cells.shape[0], values in [0, comm.size)), e.g. `cell_owners` of an earlier
+    distribution, to reproduce a partition exactly (across launches, machines, DOLFINx versions);
+    default: DOLFINx's partitioner on the glued cells. Chains of paired cells still go with their
+    lowest-numbered cell. Raises ValueError on every rank if rank 0 has no JointedMesh or the
+    owners do not fit it.
     """
     rank = comm.rank
     _idle_barrier(comm)
@@ -124,6 +153,8 @@ def distribute(jointed_mesh: JointedMesh | None, comm) -> DistributedJointMesh:
         jm = jointed_mesh
         if not isinstance(jm, JointedMesh):
             header = {"error": f"distribute: rank 0 must pass a JointedMesh, got {type(jm).__name__}"}
+        elif owners is not None and (error := _owners_error(owners, jm, comm.size)):
+            header = {"error": error}
         else:
             header = {"cell_type": jm.cell_type, "gdim": jm.gdim, "names": jm.names,
                       "n_original": int(jm.glue.max()) + 1 if jm.glue.size else 0,
@@ -144,7 +175,7 @@ def distribute(jointed_mesh: JointedMesh | None, comm) -> DistributedJointMesh:
     if rank == _ROOT:
         cells = jm.cells[:, perm]
         x = jm.points
-        partitioner = _JointPartitioner(jm, cells)
+        partitioner = _JointPartitioner(jm, cells, None if owners is None else np.asarray(owners, np.int64))
     else:
         cells = np.empty((0, nv), dtype=np.int64)
         x = np.empty((0, gdim))
@@ -255,9 +286,10 @@ class _JointPartitioner:
     DOLFINx calls it as (comm, nparts, cell_types, cells) with one flat int64 array of cell
     vertices per cell type; the ghost mode is the default partitioner's (shared_facet here)."""
 
-    def __init__(self, jm: JointedMesh | None, cells: np.ndarray):
+    def __init__(self, jm: JointedMesh | None, cells: np.ndarray, owners: np.ndarray | None = None):
         self._jm = jm
         self._cells = cells
+        self._owners = owners   # given by the caller (rank 0), or None: DOLFINx's partitioner
         self._default = create_cell_partitioner(GhostMode.shared_facet)
 
     def __call__(self, comm, nparts, cell_types, cells):
@@ -270,12 +302,33 @@ class _JointPartitioner:
             glued = [np.ascontiguousarray(jm.glue[self._cells], dtype=np.int64).ravel()]
         else:
             glued = cells
+        # Every rank takes part in the collective default partitioner unless owners are given
+        # (all ranks know which: the header check makes it rank 0's choice, broadcast below).
+        given = comm.bcast(self._owners is not None if jm is not None else None, root=_ROOT)
+        if given:
+            if jm is None:
+                return cpp_adjacency_list(np.empty(0, np.int32), np.zeros(1, np.int32))
+            return _joint_destinations(jm, self._owners, nparts)
         dest = self._default(comm, nparts, cell_types, glued)
         if jm is None:
             return dest
         offsets = np.asarray(dest.offsets)
         owners = np.asarray(dest.array)[offsets[:-1]].astype(np.int64)
         return _joint_destinations(jm, owners, nparts)
+
+
+def _owners_error(owners, jm: JointedMesh, size: int) -> str | None:
+    """Why `owners` cannot partition jm over `size` ranks, or None."""
+    try:
+        a = np.asarray(owners)
+    except Exception as exc:   # noqa: BLE001 - any unconvertible object is the caller's error
+        return f"distribute: owners must be an integer array, got {type(owners).__name__} ({exc})"
+    nc = jm.cells.shape[0]
+    if a.ndim != 1 or a.shape[0] != nc or not np.issubdtype(a.dtype, np.integer):
+        return f"distribute: owners must be an integer array of one rank per cell ({nc}), got shape {a.shape} dtype {a.dtype}"
+    if nc and (a.min() < 0 or a.max() >= size):
+        return f"distribute: owners must lie in [0, {size}) (the communicator's size), got [{a.min()}, {a.max()}]"
+    return None
 
 
 def _joint_destinations(jm: JointedMesh, owners: np.ndarray, nparts: int):
