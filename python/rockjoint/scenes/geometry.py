@@ -12,12 +12,19 @@ def joint_objects(scene, exclude=()):
     """The scene's joint sets as rockjoint.meshes.Joint lists (names <set>_<i>), without the sets
     named in `exclude` (smeared ones)."""
     from rockjoint import meshes
+    g = scene.data["geometry"]
+    # A 3D tunnel is its section (x-z plane) extruded along y: its joint sets run along y (the
+    # schema checks it), so each is the section's joint through (x, z), with the same dip and
+    # spacing (the normal has no y component); meshes.tunnel_section extrudes them into planes.
+    section = g["kind"] == "tunnel" and g["dimension"] == 3
     out = []
-    for s in scene.data["geometry"].get("joint_sets", []):
+    for s in g.get("joint_sets", []):
         if s["name"] in exclude:
             continue
-        out += meshes.joint_set(s["spacing"], math.degrees(s["dip"]), math.degrees(s["dip_direction"]),
-                                origin=tuple(s["point"]), count=s["count"], name=s["name"])
+        point = (s["point"][0], s["point"][2]) if section else tuple(s["point"])
+        dip_direction = 90.0 if section and s["dip"] == 0.0 else math.degrees(s["dip_direction"])
+        out += meshes.joint_set(s["spacing"], math.degrees(s["dip"]), dip_direction,
+                                origin=point, count=s["count"], name=s["name"])
     return out
 
 

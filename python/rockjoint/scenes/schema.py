@@ -41,18 +41,25 @@ def _geometry_rule(g, path, c):
         g["dimension"] = len(g["size"])
     else:
         g["dimension"] = 3 if "length" in g else 2
-    box = {"block": g.get("size"), "tunnel": [g.get("width"), g.get("height")] + (
-        [g["length"]] if "length" in g else [])}.get(kind)
+    # the box in the order of a joint set's point: (x, y) in 2D; (x, y, z) in 3D, where a
+    # tunnel's axis is y (its section, width by height, lies in the x-z plane)
+    box = {"block": g.get("size"), "tunnel": [g.get("width"), g["length"], g.get("height")]
+           if "length" in g else [g.get("width"), g.get("height")]}.get(kind)
     for i, s in enumerate(g.get("joint_sets", [])):
         if len(s["point"]) != g["dimension"]:
             c.fail(path + ("joint_sets", i, "point"), f"{len(s['point'])} coordinates in a "
                    f"{g['dimension']}D scene")
         if box is not None and not all(0.0 < x < b for x, b in zip(s["point"], box)):
             c.fail(path + ("joint_sets", i, "point"), "the point is not inside the geometry")
-        if g["dimension"] == 2 and not any(abs(s["dip_direction"] - math.radians(a)) < 1e-9
-                                           for a in (90.0, 270.0)):
+        along_x = s["dip"] == 0.0 or any(abs(s["dip_direction"] - math.radians(a)) < 1e-9
+                                         for a in (90.0, 270.0))
+        if g["dimension"] == 2 and not along_x:
             c.fail(path + ("joint_sets", i, "dip_direction"), "in 2D a joint dips toward +x "
                    "(90 deg) or -x (270 deg)")
+        elif kind == "tunnel" and g["dimension"] == 3 and not along_x:
+            c.fail(path + ("joint_sets", i, "dip_direction"), "in a 3D tunnel a joint set runs along "
+                   "the tunnel axis y (the section is extruded along y): dip 0, or dip_direction "
+                   "90 deg (dipping toward +x) or 270 deg (toward -x)")
 
 
 JOINT_SET = Mapping({
