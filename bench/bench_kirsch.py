@@ -184,6 +184,14 @@ def _short(row):
 KEYS = ("stress_max", "stress_rms", "displacement_max", "displacement_rms")
 
 
+def _stack() -> str:
+    """The versions that decide these numbers: DOLFINx and gmsh (the meshes differ between gmsh
+    releases, so the errors change in their third digit)."""
+    import dolfinx
+    import gmsh
+    return f"DOLFINx {dolfinx.__version__}, gmsh {gmsh.__version__}"
+
+
 def write_report(families, domain, n_domain, output):
     os.makedirs(output, exist_ok=True)
     lines = ["# Intact tunnel against Kirsch (plane strain, biaxial far field)", "",
@@ -191,7 +199,7 @@ def write_report(families, domain, n_domain, output):
              "to p (stresses, all three components) and to p a/(2G) (displacements, both components), at the "
              "circle r = 1.1 a and along the radial lines θ = 0 (sidewall) and θ = 90° (crown) from 1.1 a to 5 a: "
              "max = max norm over those points, rms = their root mean square (an L2-type norm). "
-             "Produced by `bench/bench_kirsch.py`.", "",
+             f"Produced by `bash scripts/run.sh python3 bench/bench_kirsch.py` ({_stack()}).", "",
              "## Error against mesh size", "",
              "Quarter model (rollers on the symmetry planes), in-situ stress then excavation, the outer sides "
              "(10 a from the centre) loaded by Kirsch's own traction: the exact solution of the discrete "
