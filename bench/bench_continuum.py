@@ -45,7 +45,9 @@ import numpy as np
 from mpi4py import MPI
 
 import rockjoint
-from rockjoint import _rockjoint, meshes
+from rockjoint import meshes
+from rockjoint.continuum import EquivalentContinuum, JointSet
+from rockjoint.joint import JointBehaviour, JointStrength, StrengthModel
 from rockjoint.fem_coupling import InSituStress, JointedRockModel, NewtonOptions, distribute
 from rockjoint.fem_coupling.probe import probe
 
@@ -83,9 +85,8 @@ MODELS = {"intact": ((), ()), "smeared": ((), ("bedding", "cross")),
 
 
 def behaviour():
-    j = _rockjoint.joint
-    return j.JointBehaviour(rockjoint.BartonBandis(KNI, VM), shear_stiffness=KS, residual_stiffness=KR,
-                            strength=j.JointStrength(j.StrengthModel.coulomb, friction_angle=FRICTION))
+    return JointBehaviour(rockjoint.BartonBandis(KNI, VM), shear_stiffness=KS, residual_stiffness=KR,
+                          strength=JointStrength(StrengthModel.coulomb, friction_angle=FRICTION))
 
 
 def set_normal(dip):
@@ -113,12 +114,11 @@ def discrete_sets(spacing, which):
 
 def smeared_sets(which, bedding_spacing, cross_dip, cross_spacing):
     """continuum.JointSet list of the sets in `which`: horizontal bedding and the dipping cross set."""
-    c = _rockjoint.continuum
     sets = []
     if "bedding" in which:
-        sets.append(c.JointSet([0.0, 1.0], bedding_spacing, behaviour(), "bedding"))
+        sets.append(JointSet([0.0, 1.0], bedding_spacing, behaviour(), "bedding"))
     if "cross" in which:
-        sets.append(c.JointSet(set_normal(cross_dip), cross_spacing, behaviour(), "cross"))
+        sets.append(JointSet(set_normal(cross_dip), cross_spacing, behaviour(), "cross"))
     return sets
 
 
@@ -191,7 +191,7 @@ def jointed_model(dmesh, smeared_sets):
     carrying `smeared_sets` (continuum.JointSet list) as an equivalent continuum."""
     names = list(dmesh.names["joints"].values())
     law = rockjoint.BartonBandis(KNI, VM)
-    continuum = ({name: _rockjoint.continuum.EquivalentContinuum(2, YOUNG, POISSON, smeared_sets)
+    continuum = ({name: EquivalentContinuum(2, YOUNG, POISSON, smeared_sets)
                   for name in dmesh.names["blocks"].values()} if smeared_sets else None)
     return JointedRockModel(dmesh, rock=(YOUNG, POISSON), joints={n: law for n in names},
                             shear_stiffness=KS, residual_stiffness=KR if names else 0.0, plane="strain",

@@ -59,9 +59,9 @@ BLOCKY_SIZE_FACTOR = 1.0
 
 def _stack_versions() -> str:
     """'0.11.0.post0, PETSc 3.25.5' of the DOLFINx and PETSc the workers import."""
-    import dolfinx
     from petsc4py import PETSc
-    return f"{dolfinx.__version__}, PETSc {'.'.join(map(str, PETSc.Sys.getVersion()))}"
+    from rockjoint.fem_coupling.compat import DOLFINX_RELEASE
+    return f"{DOLFINX_RELEASE}, PETSc {'.'.join(map(str, PETSc.Sys.getVersion()))}"
 
 
 # ---------------------------------------------------------------------------------------------
@@ -116,7 +116,7 @@ def build_model(case, dmesh, corner, variant, law=None, **model_options):
             t = np.zeros(3)
             t[axis] = -BLOCKY_STRESS[axis] * outward   # σ m with σ = -diag(stress)
             model.add_traction(name, t)
-    model._prepare()   # function space, K, f, linear solver (fresh KSP)
+    model.prepare()   # function space, K, f, linear solver (fresh KSP)
     if variant == "no_reuse":
         model.linear_solver.reuse_preconditioner = False
     return model, law

@@ -44,7 +44,7 @@ def main():
         t_syn, (u, l) = best_of(1, lambda: topo.mated_pair(spec, (n, n), h, 4e-3, seed=1))
         t_comp, joint = best_of(args.repeat, lambda: topo.composite_topography(u, l))
         s = joint.composite
-        t_sum, (st, _) = best_of(args.repeat, lambda: topo._cpp.analyse_summits(s))
+        t_sum, (st, _) = best_of(args.repeat, lambda: topo.analyse_summits(s))
         t_curv, _ = best_of(args.repeat, lambda: topo.curvature_field(s))
         t_fd, _ = best_of(args.repeat, lambda: topo.nayak_estimates(
             topo.finite_difference_moments(s), h))

@@ -40,7 +40,6 @@ import os
 import time
 
 import numpy as np
-from dolfinx.io import XDMFFile
 from mpi4py import MPI
 
 import rockjoint
@@ -48,7 +47,7 @@ from rockjoint.console import quiet_compiler_logging
 from rockjoint import meshes
 from rockjoint import topography as topo
 from rockjoint.fem_coupling import InSituStress, JointedRockModel, NewtonOptions, ShearState, distribute
-from rockjoint.fem_coupling.output import gather_triangles
+from rockjoint.fem_coupling.output import gather_triangles, write_functions
 from rockjoint.fem_coupling.probe import probe
 from rockjoint.reference import KirschSolution
 from rockjoint.scenes import geometry as scene_geometry, load_scene
@@ -263,9 +262,7 @@ def main():
             wall[label] = (u, np.einsum("ni,ni->n", u, np.stack([np.cos(th), np.sin(th)], 1)))
             stress = model.total_stress()  # σ0 + σ(u), tension positive [Pa]
             stress.name = "total_stress_Pa"
-            with XDMFFile(COMM, out(f"tunnel_{label}_stress.xdmf"), "w") as f:
-                f.write_mesh(model.mesh)
-                f.write_function(stress)
+            write_functions(out(f"tunnel_{label}_stress.xdmf"), stress)
             stress_at[label] = (stress, radial_hoop(probe(stress, pts_stress).reshape(-1, 2, 2), th[:4])[1])
         return after_excavation
 

@@ -113,7 +113,7 @@ _OPTIONS = ("General.Terminal", "Mesh.MeshSizeExtendFromBoundary", "Mesh.MeshSiz
 def _gmsh_model(name: str):
     """gmsh (initialised) with a new model `name`, quiet; afterwards the model is removed and the
     global options a builder sets (_OPTIONS) are restored, whatever happened."""
-    import gmsh
+    import gmsh  # heavy, and only rank 0 meshes: imported when a mesh is built
     _ensure_gmsh(gmsh)
     saved = {o: gmsh.option.getNumber(o) for o in _OPTIONS}  # gmsh options are global: restore them
     gmsh.option.setNumber("General.Terminal", 0)

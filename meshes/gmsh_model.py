@@ -25,6 +25,7 @@ from typing import Sequence
 
 import numpy as np
 
+from .builders import _ensure_gmsh
 from .jointed_mesh import JointedMesh
 from .node_splitting import build_jointed_mesh
 
@@ -47,7 +48,7 @@ def from_gmsh_model(joints: Sequence[str], blocks: Sequence[str] | None = None,
     """
     if comm is not None and comm.rank != 0:
         return None
-    import gmsh
+    import gmsh  # heavy, and only rank 0 reads the model: imported when used
     return _read(gmsh, joints, blocks, boundaries)
 
 
@@ -60,8 +61,7 @@ def from_msh_file(path: str | os.PathLike, joints: Sequence[str], blocks: Sequen
     path = os.fspath(path)
     if not os.path.isfile(path):
         raise ValueError(f"from_msh_file: no file {path!r}")
-    import gmsh
-    from .builders import _ensure_gmsh
+    import gmsh  # heavy, and only rank 0 reads the file: imported when used
     _ensure_gmsh(gmsh)
     previous = gmsh.model.getCurrent() if gmsh.model.list() else None
     gmsh.model.add("rockjoint_msh_file")

@@ -35,6 +35,7 @@ import numpy as np
 from ._rockjoint import calibration as _cpp_calibration
 from ._rockjoint.constitutive import ClosureLaw
 from .law_registry import Quantity, calibratable, get
+from .tabulation import tabulate
 
 __all__ = ["ClosureCurve", "FittedParameter", "Calibration", "read_closure_curve",
            "calibrate", "calibratable_laws"]
@@ -270,7 +271,7 @@ class Calibration:
 
     def predicted_closure(self, normal_stress) -> np.ndarray:
         """Closure [m] the fitted law predicts on the curve's datum at stress [Pa]."""
-        return _closure_of(self.law, np.asarray(normal_stress, float)) - self.closure_offset
+        return closure_of(self.law, np.asarray(normal_stress, float)) - self.closure_offset
 
     def parameter(self, name: str) -> FittedParameter:
         for p in self.parameters:
@@ -301,13 +302,12 @@ class Calibration:
 
     def table(self, max_stress: Optional[float] = None, tolerance: float = 1e-6):
         """The fitted law tabulated up to ``max_stress`` [Pa] (default: the curve's maximum)."""
-        from .tabulation import tabulate
         top = float(max_stress if max_stress is not None else self.curve.normal_stress[-1])
         return tabulate(self.law, max_stress=top, tolerance=tolerance)
 
     def plot(self, path) -> None:
         """PNG: data and fitted curve (stress against closure), and closure residuals."""
-        import matplotlib
+        import matplotlib  # optional and slow to import: only when a picture is drawn
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
         c = self.curve
@@ -333,7 +333,7 @@ class Calibration:
         plt.close(fig)
 
 
-def _closure_of(law: ClosureLaw, stress: np.ndarray) -> np.ndarray:
+def closure_of(law: ClosureLaw, stress: np.ndarray) -> np.ndarray:
     """Δ(σ) [m]; beyond a law's validity limit (Tang & Jiao) the closure there (a flat,
     continuous continuation, so the fit is steered back instead of stopped)."""
     top = law.maximum_closure
@@ -390,7 +390,7 @@ def calibrate(curve: ClosureCurve, law: str, *, composite_modulus: Optional[floa
                          f"{len(unknowns)} parameters with an uncertainty (need at least "
                          f"{len(unknowns) + 2})")
     start = (list(initial) if initial is not None else
-             spec.initial_guess(curve.normal_stress, curve.closure, given, spec.build, offset, _closure_of))
+             spec.initial_guess(curve.normal_stress, curve.closure, given, spec.build, offset, closure_of))
     if len(start) != len(unknowns):
         raise ValueError(f"calibrate: {len(start)} initial values for {len(unknowns)} "
                          f"parameters ({', '.join(u.name for u in unknowns)})")
@@ -409,7 +409,7 @@ def calibrate(curve: ClosureCurve, law: str, *, composite_modulus: Optional[floa
     def model(q):
         values, c = unpack(q)
         fitted = spec.build(values, given)
-        return (_closure_of(fitted, curve.normal_stress) - c) / scale
+        return (closure_of(fitted, curve.normal_stress) - c) / scale
 
     q0 = [math.log(v) for v in start[:npos]] + ([start[npos] / scale] if offset else [])
     weights = None if curve.closure_std is None else (scale / curve.closure_std) ** 2

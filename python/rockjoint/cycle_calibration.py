@@ -29,7 +29,7 @@ import numpy as np
 
 from ._rockjoint import calibration as _cpp_calibration
 from ._rockjoint.constitutive import NormalHysteresis
-from .calibration import FittedParameter, calibration_spec, check_points, read_columns
+from .calibration import FittedParameter, calibration_spec, check_points, closure_of, read_columns
 
 __all__ = ["LoadCycles", "read_load_cycles", "calibrate_cycles", "CycleCalibration", "BRANCHES",
            "UnloadingEnd", "identifiable"]
@@ -211,9 +211,8 @@ def calibrate_cycles(cycles: LoadCycles, law: str, *, composite_modulus: Optiona
     labels = cycles.branches()
     virgin = labels == "loading"
     if initial is None:
-        from .calibration import _closure_of
         s_v, d_v = cycles.normal_stress[virgin], cycles.closure[virgin]
-        start = list(spec.initial_guess(s_v, d_v, given, spec.build, False, _closure_of))[:npos]
+        start = list(spec.initial_guess(s_v, d_v, given, spec.build, False, closure_of))[:npos]
         lowest = float(np.min(cycles.closure[labels == "unloading"]))
         r0 = min(max(lowest / max(float(np.max(cycles.closure)), 1e-300), 0.05), 0.9)
         start += [r0, 2.0]

@@ -62,7 +62,7 @@ def plot_table(table: TabulatedLaw, source: Optional[ClosureLaw] = None,
     """Figure of a table (and its source if given): σ(Δ) and k(σ) on log axes, the relative
     error between knots, and the extension rules around [0, Δ_max]. Saved to ``path`` (PNG)
     if given. Uses the Agg canvas (no display needed). Returns the matplotlib Figure."""
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.backends.backend_agg import FigureCanvasAgg  # optional, slow: only when plotting
     from matplotlib.figure import Figure
 
     fig = Figure(figsize=(11, 8.5), constrained_layout=True)

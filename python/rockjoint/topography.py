@@ -23,7 +23,9 @@ from typing import Dict, Iterable, Optional, Sequence, Tuple, Union
 import numpy as np
 
 from ._rockjoint import topography as _cpp
-from ._rockjoint.constitutive import AsperityParameters
+from ._rockjoint.constitutive import AsperityParameters, composite_modulus
+from .scans.esri import is_esri_ascii, read_esri_ascii  # scans sit below: they read files into Surfaces
+from .scans.frame import plane_removal_mode
 
 Surface = _cpp.Surface
 CompositeTopography = _cpp.CompositeTopography
@@ -38,6 +40,9 @@ finite_difference_moments = _cpp.finite_difference_moments
 psd_moments = _cpp.psd_moments
 nayak_estimates = _cpp.nayak_estimates
 metres_per_unit = _cpp.metres_per_unit
+#: (SummitStatistics, summits) of a surface: 8-neighbour summits, their 5-point curvature and
+#: the counted η, β, σ_s (the first step of analyse)
+analyse_summits = _cpp.analyse_summits
 
 PathLike = Union[str, "os.PathLike[str]"]
 
@@ -83,7 +88,6 @@ def read_surface(path: PathLike, *, spacing: Optional[float] = None,
         if spacing is not None or spacing_y is not None:
             raise ValueError(f"{path}: an ESRI ASCII grid states its cell size; do not pass "
                              "spacing")
-        from .scans import read_esri_ascii
         return read_esri_ascii(path, unit=lateral_unit or "mm",
                                height_unit=height_unit).surface()
     if suffix in _GRID_SUFFIXES:
@@ -94,7 +98,6 @@ def read_surface(path: PathLike, *, spacing: Optional[float] = None,
 
 
 def _is_esri_ascii(path: str) -> bool:
-    from .scans.esri import is_esri_ascii
     return is_esri_ascii(path)
 
 
@@ -154,14 +157,8 @@ def composite_topography(upper: Surface, lower: Surface, offset: Tuple[int, int]
     """Register the walls (offset = (dx, dy) grid steps: upper (i, j) faces lower
     (i + dy, j + dx)), remove a least-squares plane ("common", "separate" or "none"), form the
     aperture e = z_u - z_l shifted to first contact (min e = 0) and s = mean(e) - e."""
-    if isinstance(plane_removal, str):
-        try:
-            plane_removal = getattr(PlaneRemoval, plane_removal)
-        except AttributeError:
-            raise ValueError(f"plane_removal '{plane_removal}' is not one of common, separate, "
-                             "none") from None
     return _cpp.composite_topography(upper, lower, int(offset[0]), int(offset[1]),
-                                     plane_removal)
+                                     plane_removal_mode(plane_removal))
 
 
 def overlap_ratio(aperture: Surface, closure) -> Union[float, np.ndarray]:
@@ -213,7 +210,7 @@ def analyse(surface: Surface, *, window: Union[str, Window] = "hann") -> Topogra
     """Summits (8-neighbour), curvature (5-point), η, β, σ_s, and the Nayak/McCool estimates
     from finite-difference moments and, if the grid is complete, from the 2D PSD."""
     window = getattr(Window, window) if isinstance(window, str) else window
-    statistics, summits = _cpp.analyse_summits(surface)
+    statistics, summits = analyse_summits(surface)
     h = max(surface.spacing_x, surface.spacing_y)
     spectral = nayak_estimates(finite_difference_moments(surface), h)
     spectral_psd = None
@@ -276,7 +273,6 @@ def closure_parameters(analysis: TopographyAnalysis, *, young: float, poisson: f
     η, β, σ_s counted (``source="counted"``) or the Nayak/McCool estimates from FD moments
     (``"spectral"``), the sampling interval h they belong to, and E* from the walls' E [Pa] and
     ν (both walls alike unless the lower wall's are given). Laws from them: rockjoint.laws."""
-    from . import composite_modulus
     if young_lower is None and poisson_lower is None:
         e_star = composite_modulus(young, poisson)
     else:
@@ -301,14 +297,15 @@ def empirical_summits(analysis: TopographyAnalysis) -> Tuple[np.ndarray, np.ndar
 
 
 # ---- pictures (matplotlib, Agg, PNG; lengths in mm) ------------------------------------------
-def _pyplot():
-    import matplotlib
+def pyplot():
+    """matplotlib.pyplot on the Agg backend (PNG files, no display)."""
+    import matplotlib  # optional and slow to import: only when a picture is drawn
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     return plt
 
 
-def _save(plt, fig, ax, path: PathLike, title: str, xlabel: str, ylabel: str,
+def save_figure(plt, fig, ax, path: PathLike, title: str, xlabel: str, ylabel: str,
           legend: bool = True) -> str:
     """Label (units in the labels), save as PNG and close a one-axes figure; returns the path."""
     ax.set_xlabel(xlabel)
@@ -328,14 +325,14 @@ def _extent_mm(surface: Surface):
 
 
 def _map(surface: Surface, path: PathLike, title: str, label: str, cmap: str) -> str:
-    plt = _pyplot()
+    plt = pyplot()
     fig, ax = plt.subplots(figsize=(6, 5))
     cm = plt.get_cmap(cmap).copy()
     cm.set_bad("0.8")  # missing points: grey, never interpolated
     im = ax.imshow(np.ma.masked_invalid(surface.heights * 1e3), origin="lower",
                    extent=_extent_mm(surface), cmap=cm, interpolation="nearest")
     fig.colorbar(im, ax=ax, label=label)
-    return _save(plt, fig, ax, path, title, "x [mm]", "y [mm]", legend=False)
+    return save_figure(plt, fig, ax, path, title, "x [mm]", "y [mm]", legend=False)
 
 
 def plot_height_map(surface: Surface, path: PathLike, title: str = "height map") -> str:
@@ -354,7 +351,7 @@ def plot_summit_histogram(analysis: TopographyAnalysis, path: PathLike,
     """Histogram of summit heights (mm) with the fitted Gaussian (mean, σ_s) and an
     exponential fitted to the upper tail, the summits that make contact first (z above the
     mean μ: density p_tail e^{-(z-μ)/λ}/λ, maximum likelihood λ = mean(z - μ | z > μ))."""
-    plt = _pyplot()
+    plt = pyplot()
     z = analysis.summits["heights"] * 1e3
     if z.size < 2:
         raise ValueError(f"{z.size} summit(s): nothing to histogram")
@@ -373,14 +370,14 @@ def plot_summit_histogram(analysis: TopographyAnalysis, path: PathLike,
         te = t[t >= mean]
         ax.plot(te, p_tail * np.exp(-(te - mean) / scale) / scale,
                 label=f"exponential upper tail: scale {scale:.3g} mm")
-    return _save(plt, fig, ax, path, title, "summit height above the mean plane [mm]",
+    return save_figure(plt, fig, ax, path, title, "summit height above the mean plane [mm]",
                  "probability density [1/mm]")
 
 
 def plot_power_spectrum(surface: Surface, path: PathLike, title: str = "power spectrum",
                         estimate: Optional[HurstEstimate] = None, **fit_options) -> str:
     """Radially averaged PSD (q in rad/mm, C in mm⁴) with the fitted power law and its H."""
-    plt = _pyplot()
+    plt = pyplot()
     est = estimate or hurst_estimate(surface, **fit_options)
     fig, ax = plt.subplots(figsize=(6, 4))
     ax.loglog(est.q * 1e-3, est.psd * 1e12, ".", ms=3, color="0.4", label="radial average")
@@ -388,7 +385,7 @@ def plot_power_spectrum(surface: Surface, path: PathLike, title: str = "power sp
     ax.loglog(qf * 1e-3, np.exp(est.log_prefactor) * qf ** est.slope * 1e12, "r-",
               label=f"fit: slope {est.slope:.3f}, H = {est.hurst_exponent:.3f}"
                     f" ± {est.slope_std_error / 2:.3f}")
-    return _save(plt, fig, ax, path, title, "wavenumber q [rad/mm]", "PSD C(q) [mm⁴]")
+    return save_figure(plt, fig, ax, path, title, "wavenumber q [rad/mm]", "PSD C(q) [mm⁴]")
 
 
 def overlap_curve(aperture: Surface, maximum_closure: Optional[float] = None,

@@ -3,7 +3,7 @@ sets smeared in a column or a block, the matching discrete columns, and the clos
 from mpi4py import MPI
 
 import rockjoint
-from rockjoint import _rockjoint, meshes
+from rockjoint import continuum as rj_continuum, joint as rj_joint, meshes
 from rockjoint.fem_coupling import JointedRockModel, NewtonOptions, distribute
 
 E, NU = 20e9, 0.25
@@ -20,13 +20,13 @@ def bb_closure(stress):
 
 
 def behaviour(strength=None):
-    return _rockjoint.joint.JointBehaviour(rockjoint.BartonBandis(KNI, VM), shear_stiffness=KS,
+    return rj_joint.JointBehaviour(rockjoint.BartonBandis(KNI, VM), shear_stiffness=KS,
                                            strength=strength)
 
 
 def material(dim, sets):
     """sets: [(normal, spacing)] of Barton-Bandis sets in the rock (E, ν)."""
-    c = _rockjoint.continuum
+    c = rj_continuum
     return c.EquivalentContinuum(dim, E, NU, [c.JointSet(list(n), s, behaviour(), label=f"set_{i}")
                                               for i, (n, s) in enumerate(sets)])
 
@@ -69,9 +69,9 @@ def sliding_column(comm=MPI.COMM_WORLD, **newton):
     import dataclasses
     import numpy as np
     th = np.radians(35.0)
-    strength = _rockjoint.joint.JointStrength(_rockjoint.joint.StrengthModel.coulomb,
+    strength = rj_joint.JointStrength(rj_joint.StrengthModel.coulomb,
                                               friction_angle=np.radians(20.0))
-    c = _rockjoint.continuum
+    c = rj_continuum
     mat = c.EquivalentContinuum(2, E, NU, [c.JointSet([-np.sin(th), np.cos(th)], 0.5, behaviour(strength))])
     model = column(2, smeared={"block_1": mat}, comm=comm, newton=dataclasses.replace(QUIET, **newton))
     top_load(model, 2, 2e6)

@@ -31,11 +31,12 @@ def assert_jacobian_matches_fd(model, u0, relative_step, seed=0, draws=3, tol=1e
     """|FD(v) - J v| < tol |J v| for `draws` random directions v (zero on supported dofs), central
     differences with the step relative_step × max|u0| (the same on every rank). Restores u0."""
     comm = model.comm
+    problem = model.problem()  # the object the model's Newton drives
     model.u.x.array[:] = u0
-    model.residual()
-    model.jacobian()
-    J = model.J
-    free = model._constrained == 0
+    problem.residual()
+    problem.jacobian()
+    J = problem.J
+    free = problem.constrained == 0
     rng = np.random.default_rng(seed)
     u_max = comm.allreduce(np.abs(u0).max(), op=MPI.MAX)
     for _ in range(draws):
@@ -50,8 +51,8 @@ def assert_jacobian_matches_fd(model, u0, relative_step, seed=0, draws=3, tol=1e
         for sign in (1.0, -1.0):
             with v.localForm() as vl:
                 model.u.x.array[:] = u0 + sign * h * vl.array
-            model.residual()
-            res.append(model.r.copy())
+            problem.residual()
+            res.append(problem.r.copy())
         fd = res[0] - res[1]
         fd.scale(1.0 / (2 * h))
         fd.axpy(-1.0, Jv)

@@ -141,15 +141,15 @@ def test_bad_continuum_input():
 
 
 def _inclined_set_column(dim, friction_deg, residual_stiffness=0.0):
-    from rockjoint import _rockjoint
+    from rockjoint import continuum as rj_continuum, joint as rj_joint
     from continuum_cases import KNI, KS, VM
     import rockjoint
     th = np.radians(35.0)
     n = [-np.sin(th), np.cos(th)] if dim == 2 else [0.0, -np.sin(th), np.cos(th)]
-    j = _rockjoint.joint
+    j = rj_joint
     b = j.JointBehaviour(rockjoint.BartonBandis(KNI, VM), shear_stiffness=KS, residual_stiffness=residual_stiffness,
                          strength=j.JointStrength(j.StrengthModel.coulomb, friction_angle=np.radians(friction_deg)))
-    c = _rockjoint.continuum
+    c = rj_continuum
     return column(dim, smeared={"block_1": c.EquivalentContinuum(dim, E, NU, [c.JointSet(n, 0.5, b)])}, mesh_size=1.0)
 
 
@@ -169,7 +169,7 @@ def test_assembled_jacobian_matches_finite_differences(dim, state):
     if state == "stick":
         u0 += 1e-7 * np.sin(np.arange(u0.size))  # off the converged point, still inside the strength
     model.u.x.array[:] = u0
-    model.residual()
+    model.problem().residual()
     counts = _shear_states(model, dim)
     assert counts[state] > 0, counts
     assert_jacobian_matches_fd(model, u0, 1e-6, tol=1e-5, label=f"{state} {dim}D: ")
@@ -178,16 +178,16 @@ def test_assembled_jacobian_matches_finite_differences(dim, state):
 def _shear_states(model, dim):
     """{stick, slip, open: number of points} of the smeared set's trial state (joint_response at the
     trial jump from the converged state)."""
-    from rockjoint import _rockjoint
+    from rockjoint import continuum as rj_continuum, joint as rj_joint
     pts = model.smeared.points[1]
     b = pts.material.sets[0].behaviour
     trial, conv = pts.set_state(0, converged=False), pts.set_state(0, converged=True)
-    names = {int(_rockjoint.joint.ShearState.stick): "stick", int(_rockjoint.joint.ShearState.slip): "slip",
-             int(_rockjoint.joint.ShearState.open): "open"}
+    names = {int(rj_joint.ShearState.stick): "stick", int(rj_joint.ShearState.slip): "slip",
+             int(rj_joint.ShearState.open): "open"}
     out = {"stick": 0, "slip": 0, "open": 0}
     for jump, slip in zip(trial["jump"], conv["slip"]):
-        state = _rockjoint.joint.JointPointState(slip=list(slip))
-        r = _rockjoint.joint.joint_response(b, np.array(jump[:dim]), state)
+        state = rj_joint.JointPointState(slip=list(slip))
+        r = rj_joint.joint_response(b, np.array(jump[:dim]), state)
         out[names[int(r["shear_state"])]] += 1
     return out
 

@@ -36,7 +36,8 @@ def test_continuation_ends_at_a_rate_independent_equilibrium(first_newton_fails)
     assert result.reports[-1].iterations > reference.stages[-1].newton_iterations  # viscous path taken
     assert model.smeared.relaxation is None  # rate-independent again afterwards
     options = model.newton_options
-    assert model.residual() <= options.rtol * model.load_norm(1.0)
+    problem = model.problem()
+    assert problem.residual() <= options.rtol * problem.load_norm(1.0)
 
     sigma = model.smeared.stress.x.array.reshape(-1, 3)  # (xx, yy, xy) [Pa], tension +
     th = np.radians(35.0)

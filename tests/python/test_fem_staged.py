@@ -213,13 +213,13 @@ def test_snes_and_the_problem_object_agree_with_newton():
     problem = newton.problem()
     x = newton.u.x.petsc_vec.copy()
     b, A = problem.vector(), problem.matrix()
-    newton.load_factor = 1.0
+    problem.load_factor = 1.0
     problem.residual(x, b)
     assert b.norm() < 1e-9 * 5e6
     problem.jacobian(x, A)
-    newton.jacobian()
-    A.axpy(-1.0, newton.J)
-    assert A.norm() < 1e-12 * newton.J.norm()
+    problem.jacobian()  # the project's Newton: at u into the problem's own J
+    A.axpy(-1.0, problem.J)
+    assert A.norm() < 1e-12 * problem.J.norm()
 
 
 def test_progress_of_a_run_is_logged(caplog):

@@ -22,6 +22,9 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+from .. import composite_modulus
+from ..calibration import calibrate, read_closure_curve
+from ..cycle_calibration import calibrate_cycles, read_load_cycles
 from ..law_registry import GPA, MM, MPA, TANG_JIAO_BASES, calibratable
 
 
@@ -69,8 +72,6 @@ def add_parser(subparsers) -> None:
 
 
 def run(args) -> int:
-    import rockjoint
-    from rockjoint.calibration import calibrate, read_closure_curve
 
     if args.cycles:
         return run_cycles(args)
@@ -83,7 +84,7 @@ def run(args) -> int:
     if args.composite_modulus is not None:
         e_star = args.composite_modulus * GPA
     elif young is not None and args.poisson is not None:
-        e_star = rockjoint.composite_modulus(young, args.poisson)
+        e_star = composite_modulus(young, args.poisson)
     result = calibrate(
         curve, args.law, composite_modulus=e_star,
         summit_radius=None if args.summit_radius is None else args.summit_radius * MM,
@@ -103,7 +104,6 @@ def run(args) -> int:
 
 
 def run_cycles(args) -> int:
-    from rockjoint.cycle_calibration import calibrate_cycles, read_load_cycles
 
     if args.intact_length is not None:
         raise ValueError("--cycles reads a 'closure' column; remove the intact deformation first")

@@ -5,6 +5,7 @@ import logging
 import os
 import sys
 
+from ..console import quiet_compiler_logging, say
 from ..scenes import SceneError
 from .plan import checked_plan
 
@@ -24,10 +25,10 @@ def main(args) -> int:
     if checked is None:
         return 2
     scene, plan = checked
+    # the FE stack (mpi4py, DOLFINx) is optional: `rockjoint plan` and --help work without it
     from mpi4py import MPI
-    from ..console import quiet_compiler_logging, say
-    from ..fem_coupling import ConvergenceError, LinearSolveError
-    from ..scenes.runner import NoEquilibrium, run_scene, summary_table
+    from ..fem_coupling import ConvergenceError, LinearSolveError  # FE stack, as above
+    from ..scenes.runner import NoEquilibrium, run_scene, summary_table  # FE stack, as above
     quiet_compiler_logging()
     log = logging.getLogger("rockjoint.scenes")
     log.propagate = False

@@ -20,6 +20,7 @@ Models and their [law] keys are listed by ``--list-models``.
 from __future__ import annotations
 
 from ..laws import describe_models, read_law_file
+from ..tabulation import plot_table, tabulate
 
 
 def add_parser(subparsers) -> None:
@@ -41,7 +42,6 @@ def run(args) -> int:
         return 0
     if not args.parameters or not args.output:
         raise ValueError("give a parameter file and -o/--output (or --list-models)")
-    from ..tabulation import plot_table, tabulate
 
     named, options = read_law_file(args.parameters)
     law = named.law

@@ -6,6 +6,11 @@ import os
 
 import numpy as np
 
+from .. import contact, scans
+from .. import topography as topo
+from ..laws import RECOMMENDATION, RECOMMENDED, laws_from_topography
+from ..topography import pyplot, save_figure
+
 
 def add_parser(subparsers) -> None:
     p = subparsers.add_parser(
@@ -83,7 +88,6 @@ def run(args) -> int:
 
 
 def _synth(args) -> int:
-    from rockjoint import topography as topo
     spec = topo.SelfAffineSpec(args.hurst, args.rms * 1e-3, args.rolloff * 1e-3,
                                args.cutoff * 1e-3)
     h = args.spacing * 1e-3
@@ -108,7 +112,6 @@ def _synth(args) -> int:
 
 def _input_kind(path: str, format: str) -> str:
     """'grid' (rockjoint.topography.read_surface) or a scan format of rockjoint.scans."""
-    from rockjoint import scans
     if format != "auto":
         return format
     suffix = os.path.splitext(path)[1].lower()
@@ -122,7 +125,6 @@ def _input_kind(path: str, format: str) -> str:
 
 
 def _read_grid(path, args):
-    from rockjoint import topography as topo
     try:
         return topo.read_surface(path, spacing=args.spacing, height_unit=args.height_unit)
     except ValueError as err:
@@ -133,7 +135,6 @@ def _read_grid(path, args):
 
 
 def _read_scan(path, kind, args):
-    from rockjoint import scans
     if kind == "grid":   # a lattice wall among scans: its nodes are its samples
         s = _read_grid(path, args)
         return scans.ScanPoints(scans.ScanGrid(s.heights, s.spacing_x, s.spacing_y).points(),
@@ -143,8 +144,6 @@ def _read_scan(path, kind, args):
 
 def _scan_walls(args, kinds, report):
     """Scans: flip, level, register, resample (rockjoint.scans); returns (upper, joint)."""
-    from rockjoint import scans
-    from rockjoint import topography as topo
     if tuple(args.offset) != (0, 0):
         raise ValueError("scans are registered automatically; --offset is for grids that "
                          "share one lattice")
@@ -173,8 +172,6 @@ def _scan_walls(args, kinds, report):
 
 
 def _analyse(args) -> int:
-    from rockjoint import topography as topo
-    from rockjoint.laws import RECOMMENDATION, laws_from_topography
     report = {}
     kinds = [_input_kind(p, args.format) for p in (args.upper, args.lower) if p]
     joint = None
@@ -234,7 +231,6 @@ def _analyse(args) -> int:
         curves = {key: _closures(named.law, stresses) for key, named in laws.items()}
         bem = None
         if args.reference == "bem":
-            from rockjoint import contact
             bem = contact.closure_curve(joint.aperture, params.composite_modulus, stresses,
                                         periodic=args.bem_kernel == "periodic").closure
             report["bem_closure_mm"] = dict(zip(map(str, sorted(args.stresses)), bem * 1e3))
@@ -274,9 +270,7 @@ def _closures(law, stresses) -> np.ndarray:
 
 def _plot_closure(path, laws, curves, stresses, bem) -> str:
     """Closure curves of the laws (and the BEM reference) in mm against MPa."""
-    from rockjoint.laws import RECOMMENDED
-    from rockjoint.topography import _pyplot, _save
-    plt = _pyplot()
+    plt = pyplot()
     fig, ax = plt.subplots(figsize=(7, 5))
     for key, named in laws.items():
         ax.plot(np.r_[0, curves[key]] * 1e3, np.r_[0, stresses] * 1e-6,
@@ -284,5 +278,5 @@ def _plot_closure(path, laws, curves, stresses, bem) -> str:
                 label=named.label)
     if bem is not None:
         ax.plot(np.r_[0, bem] * 1e3, np.r_[0, stresses] * 1e-6, "ko-", label="exact elastic (BEM)")
-    return _save(plt, fig, ax, path, "closure: laws against the exact elastic contact",
+    return save_figure(plt, fig, ax, path, "closure: laws against the exact elastic contact",
                  "closure Δ [mm]", "normal stress σ [MPa]")

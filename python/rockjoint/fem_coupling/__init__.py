@@ -8,6 +8,7 @@ from .._fe_required import fe_required
 from .distributed_mesh import (DistributedJointMesh, JointPairs, distribute,  # noqa: F401
                                pair_vertex_positions)
 from .split_joints import split_joints  # noqa: F401
+from ..joint import joint_behaviours  # noqa: F401  (no FE stack; here for FE users too)
 
 # The joint elements need the compiled _rockjoint_fem_coupling (built with -DROCKJOINT_FEM=ON).
 # Only a build without that file leaves them out, and only outside CI / ROCKJOINT_REQUIRE_FE=1:
@@ -15,21 +16,21 @@ from .split_joints import split_joints  # noqa: F401
 # ImportError here instead of silently removing JointedRockModel and friends.
 _HAS_FE = find_spec("rockjoint._rockjoint_fem_coupling") is not None
 if _HAS_FE or fe_required():
-    from .behaviours import joint_behaviours  # noqa: F401
     from .coupling import JointCoupling, JointedNonlinearProblem, supported_dofs  # noqa: F401
     from .interface import JointInterface, QuadratureRule  # noqa: F401
     from .linear_solver import LinearSolveError  # noqa: F401
     from .in_situ import InSituStress  # noqa: F401
     from .loads import Load, Support  # noqa: F401
     from .model import JointedRockModel  # noqa: F401
-    from .stages import JointedProblem, Stage, StageResult  # noqa: F401
+    from .problem import JointedProblem  # noqa: F401
+    from .stages import Stage, StageResult  # noqa: F401
     from .newton import ConvergenceError, NewtonOptions  # noqa: F401
     # The per-point joint behaviour lives in rockjoint.joint (no FE stack); here for FE users too.
     from ..joint import (JointBehaviour, JointPointState, JointStrength, ShearModel,  # noqa: F401
                          ShearState, StrengthModel, barton_bandis_shear_stiffness,
                          closure_at_normal_stress, joint_response, make_strength)
 else:
-    _FE_NAMES = {"joint_behaviours", "JointCoupling", "JointedNonlinearProblem", "supported_dofs",
+    _FE_NAMES = {"JointCoupling", "JointedNonlinearProblem", "supported_dofs",
                  "JointInterface", "QuadratureRule", "LinearSolveError", "InSituStress", "Load",
                  "Support", "JointedRockModel", "JointedProblem", "Stage", "StageResult",
                  "ConvergenceError", "NewtonOptions"}

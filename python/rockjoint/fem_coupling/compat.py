@@ -39,11 +39,13 @@ import dolfinx.la
 import dolfinx.mesh
 from dolfinx.fem import petsc as _fem_petsc
 
-__all__ = ["DOLFINX_VERSION", "MeshData", "cpp_adjacency_list", "create_cell_partitioner",
+__all__ = ["DOLFINX_RELEASE", "DOLFINX_VERSION", "MeshData", "cpp_adjacency_list", "create_cell_partitioner",
            "create_vector", "io_gmsh", "la_petsc"]
 
 #: (major, minor) of the DOLFINx in use
 DOLFINX_VERSION: tuple[int, int] = tuple(int(p) for p in dolfinx.__version__.split(".")[:2])
+#: the full release string (e.g. "0.11.0.post0"), for reports
+DOLFINX_RELEASE: str = dolfinx.__version__
 _LEGACY = DOLFINX_VERSION < (0, 10)
 
 if _LEGACY:

@@ -35,7 +35,7 @@ from dolfinx.fem import petsc as fem_petsc
 from mpi4py import MPI
 from petsc4py import PETSc
 
-from .behaviours import joint_behaviours, symmetric_tangent
+from ..joint import joint_behaviours, symmetric_tangent
 from .compat import create_vector, la_petsc
 from .distributed_mesh import DistributedJointMesh, JointPairs, names_of
 from .interface import JointInterface
@@ -78,7 +78,7 @@ class JointCoupling:
     V: vector Lagrange space of degree 1 or 2 on the split mesh (block size = gdim).
     joints: the DistributedJointMesh (pairs and joint names from it), or its JointPairs with
         `joint_tags` = {joint name: tag}.
-    laws: {joint name: law} for every joint (see behaviours.joint_behaviours); shear_stiffness,
+    laws: {joint name: law} for every joint (see rockjoint.joint.joint_behaviours); shear_stiffness,
         shear_stiffness_ratio, residual_stiffness, strength: as in joint_behaviours.
     quadrature: "nodal" (default; smooth tractions for stiff joints) or "gauss" (P1 only).
     bcs: the Dirichlet conditions of the problem; their dofs' rows and columns are left out of the

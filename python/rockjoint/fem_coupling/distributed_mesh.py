@@ -21,6 +21,8 @@ import time
 from dataclasses import dataclass
 
 import numpy as np
+import scipy.sparse as sp
+from scipy.sparse.csgraph import connected_components
 
 import dolfinx
 import dolfinx.cpp as _cpp
@@ -31,7 +33,7 @@ from dolfinx.mesh import GhostMode, create_mesh, meshtags, meshtags_from_entitie
 from .compat import cpp_adjacency_list, create_cell_partitioner, io_gmsh
 
 from ..meshes.jointed_mesh import JointedMesh
-from ..meshes.node_splitting import facet_keys
+from ..meshes.node_splitting import cell_facets, facet_keys
 
 _GMSH_CELL_ID = {"triangle": 2, "tetrahedron": 4}
 _ROOT = 0
@@ -332,9 +334,6 @@ def _owners_error(owners, jm: JointedMesh, size: int) -> str | None:
 
 
 def _joint_destinations(jm: JointedMesh, owners: np.ndarray, nparts: int):
-    import scipy.sparse as sp
-    from scipy.sparse.csgraph import connected_components
-
     nc, nv = jm.cells.shape
     pairs = jm.joint_facet_cells
     graph = sp.coo_matrix((np.ones(pairs.shape[0]), (pairs[:, 0], pairs[:, 1])), shape=(nc, nc))
@@ -344,7 +343,6 @@ def _joint_destinations(jm: JointedMesh, owners: np.ndarray, nparts: int):
     owners = owners[first[label]]  # every chain of paired cells goes with its lowest-numbered cell
 
     # Ghosts: facet neighbours in the split mesh owned elsewhere.
-    from ..meshes.node_splitting import cell_facets
     f = np.sort(cell_facets(jm.cells).reshape(-1, nv - 1), axis=1)
     keys = facet_keys(f, jm.points.shape[0])
     fcell = np.repeat(np.arange(nc, dtype=np.int64), nv)

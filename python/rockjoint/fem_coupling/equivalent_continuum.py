@@ -1,6 +1,6 @@
 """The equivalent-continuum material in some blocks of a DOLFINx model (docs/equivalent-continuum.md).
 
-A block given a `rockjoint._rockjoint.continuum.EquivalentContinuum` carries its joint sets
+A block given a `rockjoint.continuum.EquivalentContinuum` carries its joint sets
 smeared: the stress at every quadrature point of its cells comes from the C++ material (rock
 elasticity + the sets, each through the joint behaviour of the discrete joint elements), with its
 consistent tangent. The other blocks stay linear elastic and may hold discrete joints, so one mesh
@@ -32,8 +32,10 @@ import ufl
 from dolfinx import cpp as _cpp
 from dolfinx import fem
 from dolfinx.fem import petsc as fem_petsc
+from mpi4py import MPI
 from petsc4py import PETSc
 
+from ..continuum import ContinuumPoints, EquivalentContinuum
 from .compat import create_vector
 
 log = logging.getLogger(__name__)
@@ -62,7 +64,6 @@ class SmearedBlocks:
     σ [Pa] and C [Pa], row major), residual_form, jacobian_form, points ({tag: ContinuumPoints})."""
 
     def __init__(self, blocks, dmesh, materials: dict, rock: dict, quadrature_degree: int | None = None):
-        from .. import _rockjoint
         mesh = blocks.mesh
         gdim, tdim = blocks.gdim, mesh.topology.dim
         if gdim == 2 and blocks.plane != "strain":
@@ -90,7 +91,7 @@ class SmearedBlocks:
         owned = tags.indices < n_owned
         self.cells, self.points, self.eps0 = {}, {}, {}
         for tag, material in materials.items():
-            if not isinstance(material, _rockjoint.continuum.EquivalentContinuum):
+            if not isinstance(material, EquivalentContinuum):
                 raise ValueError(f"block {tag}: expected an EquivalentContinuum, got {type(material).__name__}")
             if material.gdim != gdim:
                 raise ValueError(f"block {tag}: the material is {material.gdim}D, the mesh {gdim}D")
@@ -100,7 +101,7 @@ class SmearedBlocks:
                                  f"{material.poisson:g}) differs from the block's rock (E = {E:g} Pa, ν = {nu:g})")
             cells = np.sort(tags.indices[owned & (tags.values == tag)]).astype(np.int32)
             self.cells[tag] = cells
-            self.points[tag] = _rockjoint.continuum.ContinuumPoints(material, cells.size * self.num_qp)
+            self.points[tag] = ContinuumPoints(material, cells.size * self.num_qp)
             self.eps0[tag] = np.zeros((cells.size * self.num_qp, nv))
         #: r = Δt/τ of viscous sets (module docstring); None: rate-independent
         self.relaxation = None
@@ -196,6 +197,11 @@ class SmearedBlocks:
                                        _cpp.fem.pack_coefficients(form._cpp_object),
                                        [bc._cpp_object for bc in bcs])
 
+    def committed_stress(self, tag) -> np.ndarray:
+        """The converged stress (Voigt, tension positive) [Pa] at the quadrature points of the
+        smeared block `tag` on this rank, (points, strain size)."""
+        return np.asarray(self._committed[tag][0]).reshape(-1, self.nv)
+
     def reset_state(self) -> None:
         """Back to the virgin state (no in-situ stress, no slip, sets unloaded): a restarted model."""
         nv = self.nv
@@ -220,5 +226,4 @@ class SmearedBlocks:
 
 
 def _and():
-    from mpi4py import MPI
     return MPI.LAND

@@ -32,10 +32,9 @@ class LoadPath:
     """Loads, supports, in-situ stress and the stage interpolation f(λ) on `blocks`.
 
     dmesh: the DistributedJointMesh (named boundaries and blocks); blocks: ElasticBlocks;
-    densities: {block name: ρ} (gravity acts only with densities). Attributes read by the model:
-    supports_dirty / forms_dirty (what changed since the last set-up), f_lambda, lift (K_fc u_c of
-    the prescribed displacements), r_sigma0 (∫ε(v):σ0 dx), any_prescribed, gravity (the gravity
-    load handle or None), in_situ.
+    densities: {block name: ρ} (gravity acts only with densities). The model asks it for what
+    changed (refresh), the external part of the residual (apply, add_external), the internal force
+    and the reactions; it reads gravity (the gravity load handle or None), in_situ and sigma0.
     """
 
     def __init__(self, dmesh, blocks, densities: dict, gravity):
@@ -49,8 +48,8 @@ class LoadPath:
         self.in_situ: InSituStress | None = None
         self.equilibrium_tolerance = 1e-8
         self._in_situ_compiled = None  # the InSituStress the in-situ forms were compiled for
-        self.supports_dirty = True
-        self.forms_dirty = True
+        self._supports_changed = True  # since the last refresh()
+        self._forms_changed = True
         self.gravity: Load | None = None
         if densities:
             self.gravity = self.add_load("gravity", None, self.gravity_vector(gravity))
@@ -58,13 +57,20 @@ class LoadPath:
         self._template = la_petsc.create_vector([(imap, bs)])
         self.f_lambda = self._template.duplicate()
         self.lift = self._template.duplicate()
-        self.r_sigma0 = None
-        self.sigma0 = None
+        self.r_sigma0 = None  # ∫ε(v):σ0 dx (with an in-situ stress)
+        self.sigma0 = None    #: the in-situ stress σ0 as a UFL expression (None without one)
         self.support_dofs: dict = {}
         self.constrained_local = np.zeros(0, dtype=np.int32)
         self.any_prescribed = False
         self.applied = None   # the load factor whose loads are in f_lambda and u
         self.state = None     # external loads the next stage starts from
+        self._prescribed = np.zeros(blocks.num_local_dofs)  # per local dof (collect_prescribed)
+        self._L_user = self._L_in_situ = None  # compiled load forms (compile_forms)
+        self._applied_components: dict = {}    # {boundary: Constant mask of the σ0·n components}
+        # the stage being solved (begin_stage): f_prev, f_next, their difference, and the
+        # prescribed displacements at its start and their change over it
+        self._f_prev = self._next = self._df = None
+        self._g_prev = self._g_delta = np.zeros(0)
 
     # ---- checks ------------------------------------------------------------------------------
     def vector(self, value, what: str) -> np.ndarray:
@@ -118,7 +124,7 @@ class LoadPath:
         as_function = isinstance(load.coefficient, fem.Function)
         if load.kind == "traction" and callable(load.value) != as_function:
             load.coefficient = None  # a constant became a field or back: recompile the load form
-            self.forms_dirty = True
+            self._forms_changed = True
         else:
             set_coefficient(load)
 
@@ -128,11 +134,11 @@ class LoadPath:
             del self.release[load.boundary]
             return
         self.loads.remove(load)
-        self.forms_dirty = True
+        self._forms_changed = True
 
     def _remove_support(self, support: Support) -> None:
         self.supports.remove(support)
-        self.supports_dirty = True
+        self._supports_changed = True
 
     # ---- loads and supports (handles; changes take effect at the next stage) --------------
     def fix(self, boundary: str, components="all", block: str | None = None, value=0.0) -> Support:
@@ -141,7 +147,7 @@ class LoadPath:
         block_tag = None if block is None else lookup(self.dmesh, "blocks", block)
         support = Support(self, boundary, self.component_indices(components), block_tag, value)
         self.supports.append(support)
-        self.supports_dirty = True
+        self._supports_changed = True
         return support
 
     def add_load(self, kind: str, boundary: str | None, value) -> Load:
@@ -149,7 +155,7 @@ class LoadPath:
             lookup(self.dmesh, "boundaries", boundary)
         load = Load(self, kind, boundary, value)
         self.loads.append(load)
-        self.forms_dirty = True
+        self._forms_changed = True
         return load
 
     def excavate(self, boundary: str, fraction_left: float = 0.0) -> Load:
@@ -178,13 +184,24 @@ class LoadPath:
         in_situ.check_gravity(self.densities if gravity is not None else {}, gravity)
         self.in_situ = in_situ
         self.equilibrium_tolerance = float(equilibrium_tolerance)
-        self.forms_dirty = True
+        self._forms_changed = True
 
     def _multiplier(self, boundary: str):
         """The fraction of σ0·n carried by `boundary` (a Constant, 1 until excavated)."""
         if boundary not in self.multipliers:
             self.multipliers[boundary] = fem.Constant(self.blocks.mesh, 1.0)
         return self.multipliers[boundary]
+
+    def refresh(self, u: np.ndarray) -> tuple | None:
+        """Bring the load path up to date with the handles changed since the last refresh: the
+        supports' Dirichlet conditions, the load forms, the prescribed values (u: the current
+        displacement, held by supports without a value). Returns dirichlet()'s (bcs, mask) when
+        the supports changed (the bulk matrix must be assembled again with them), else None."""
+        supports = self.dirichlet() if self._supports_changed else None
+        if self._forms_changed:
+            self.compile_forms()
+        self.collect_prescribed(u)
+        return supports
 
     # ---- supports → Dirichlet conditions -------------------------------------------------
     def dirichlet(self) -> tuple[list, np.ndarray]:
@@ -208,7 +225,7 @@ class LoadPath:
                 entries.append((k, c, np.asarray(idx), np.asarray(idx[:first_ghost])))
             self.support_dofs[id(s)] = entries
         self.constrained_local = np.flatnonzero(constrained).astype(np.int32)
-        self.supports_dirty = False
+        self._supports_changed = False
         return bcs, constrained
 
     def collect_prescribed(self, u: np.ndarray) -> None:
@@ -251,7 +268,7 @@ class LoadPath:
                 Lb += self._multiplier(name) * ufl.inner(t0, v) * ds(tag)
             self._L_in_situ = fem.form(Lb)
             self._in_situ_compiled = self.in_situ
-        self.forms_dirty = False
+        self._forms_changed = False
 
     @staticmethod
     def assemble(form) -> PETSc.Vec:
@@ -299,10 +316,11 @@ class LoadPath:
         self.state = self.external(initial=True)
 
     # ---- stages ------------------------------------------------------------------------------
-    def begin_stage(self, u: np.ndarray, next_loads: PETSc.Vec | None = None) -> None:
-        """Load factor 0 of a stage: loads f_prev (the last stage's) → f_next (set now), prescribed
-        displacements from the constrained dofs' current values in u to the supports' values."""
-        self._next = self.external() if next_loads is None else next_loads
+    def begin_stage(self, u: np.ndarray, hold: bool = False) -> None:
+        """Load factor 0 of a stage: loads f_prev (the last stage's) → f_next (set now; hold: the
+        last stage's, as for the initial state's equilibrium check), prescribed displacements from
+        the constrained dofs' current values in u to the supports' values."""
+        self._next = self.state if hold else self.external()
         self._f_prev = self.state.copy()
         self._df = self._next.copy()
         self._df.axpy(-1.0, self._f_prev)
@@ -316,7 +334,7 @@ class LoadPath:
     @property
     def stage_open(self) -> bool:
         """A stage has begun (begin_stage) since the model was set up."""
-        return getattr(self, "_f_prev", None) is not None
+        return self._f_prev is not None
 
     def end_stage(self, reached: float) -> None:
         """The external loads of load factor `reached` become the state the next stage starts from."""
@@ -344,6 +362,40 @@ class LoadPath:
             fem_petsc.assemble_vector(self.lift, self.blocks.internal_form)
             self.lift.ghostUpdate(addv=PETSc.InsertMode.ADD, mode=PETSc.ScatterMode.REVERSE)
         self.applied = load_factor
+
+    def forget_applied(self) -> None:
+        """u was set from outside (a step undone): apply() sets the prescribed values again."""
+        self.applied = None
+
+    def add_external(self, r: PETSc.Vec) -> None:
+        """r += K_fc u_c (the prescribed displacements' lift) + ∫ε(v):σ0 dx - f(λ), at the load
+        factor of the last apply()."""
+        if self.any_prescribed:
+            r.axpy(1.0, self.lift)
+        if self.r_sigma0 is not None:
+            r.axpy(1.0, self.r_sigma0)
+        r.axpy(-1.0, self.f_lambda)
+
+    def internal_force(self, u) -> PETSc.Vec:
+        """The bulk internal force at u (+ ∫ε(v):σ0 dx), a new vector."""
+        self.blocks.w.x.array[:] = u.x.array
+        force = self.assemble(self.blocks.internal_form)
+        if self.r_sigma0 is not None:
+            force.axpy(1.0, self.r_sigma0)
+        return force
+
+    def check_initial_equilibrium(self, rnorm: float) -> None:
+        """ValueError unless the residual norm of the initial state (u = 0, λ = 0) is within
+        equilibrium_tolerance × the in-situ forces."""
+        scale = self.load_norm(0.0)
+        tolerance = self.equilibrium_tolerance
+        if not rnorm <= tolerance * scale:
+            raise ValueError(
+                f"the in-situ stress is not in equilibrium with the model's loads: the initial residual is "
+                f"{rnorm:.3e} N, {rnorm / max(scale, 1e-300):.2e} of the in-situ forces (allowed "
+                f"{tolerance:g}). A uniform σ0 needs no gravity (density=None); a depth-dependent one needs "
+                f"gravity with the same density; a field must satisfy div σ0 + ρ g = 0 (a discretisation "
+                f"imbalance of a non-linear field: raise set_in_situ_stress(..., equilibrium_tolerance=))")
 
     def load_norm(self, load_factor: float) -> float:
         """Scale of the forces at `load_factor`: ||f(λ)|| (+ ||∫ε(v):σ0||)."""

@@ -24,41 +24,26 @@ import logging
 import time
 
 import numpy as np
-import ufl
 from dolfinx import fem
-from dolfinx.fem import petsc as fem_petsc
-from petsc4py import PETSc
 
-from .behaviours import joint_behaviours, symmetric_tangent
-from .compat import la_petsc
+from ..joint import joint_behaviours, symmetric_tangent
+from . import monitors, output
+from .coupling import JointCoupling
 from .distributed_mesh import lookup, names_of
 from .elastic_blocks import ElasticBlocks
 from .equivalent_continuum import SmearedBlocks
 from .in_situ import STANDARD_GRAVITY, InSituStress
-from .joint_initial_state import initial_jump
-from .coupling import JointCoupling
-from .linear_solver import LinearSolver, resolve_kind, rigid_body_modes
+from .linear_solver import LinearSolver
 from .load_path import LoadPath
 from .loads import Load, Support
+from .model_inputs import check_density, check_element, check_plane, check_rock
 from .newton import NewtonOptions, solve_load_path
 from .petsc_options import check_options_prefix, check_petsc_options
+from .problem import JointedProblem, make_linear_solver
 from .pseudo_transient import solve_step_with_relaxation
-from .stages import JointedProblem, Stage, StageClock, StageResult, snes_load_path
-from ..validation import positive_number
+from .stages import Stage, StageClock, StageResult, snes_load_path, stage_result
 
 log = logging.getLogger(__name__)
-
-def _per_block(blocks: dict, value, what: str, missing_message: str) -> dict:
-    """{block name: value} from one value for every block or a dict that names them all."""
-    if not isinstance(value, dict):
-        return {b: value for b in blocks}
-    unknown = set(value) - set(blocks)
-    if unknown:
-        raise ValueError(f"{what}: unknown block(s) {sorted(unknown)}; available blocks: {sorted(blocks)}")
-    missing = set(blocks) - set(value)
-    if missing:
-        raise ValueError(f"{what}: " + missing_message.format(sorted(missing)))
-    return value
 
 
 class JointedRockModel:
@@ -94,9 +79,13 @@ class JointedRockModel:
     density: rock density ρ [kg/m³], one value or {block name: ρ}; gives gravity ρ g on the blocks
         (the load handle `model.gravity`). None: no gravity.
     gravity: g [m/s²] acting along -y (2D) / -z (3D), or a gravity vector.
-    continuum: {block name: rockjoint._rockjoint.continuum.EquivalentContinuum} (its E, ν those of
+    continuum: {block name: rockjoint.continuum.EquivalentContinuum} (its E, ν those of
         the block): joint sets smeared in these blocks (docs/equivalent-continuum.md); the other
         blocks stay elastic and may hold discrete joints. Plane strain in 2D.
+
+    Composed of: blocks (ElasticBlocks), load_path (LoadPath), smeared (SmearedBlocks or None)
+    and the problem (problem.JointedProblem: F, J, joints, linear solver) that the project's
+    Newton and PETSc SNES both drive; the model owns the inputs, the stages and their results.
     """
 
     def __init__(self, dmesh, element_degree: int = 1, rock=None, joints=None, shear_stiffness=0.0,
@@ -106,105 +95,64 @@ class JointedRockModel:
                  newton: NewtonOptions | None = None, petsc_options: dict | None = None,
                  options_prefix: str | None = None, density=None, gravity=STANDARD_GRAVITY,
                  continuum: dict | None = None):
+        t0 = time.perf_counter()
         self.dmesh = dmesh
         self.mesh = dmesh.mesh
         self.comm = self.mesh.comm
         self.gdim = self.mesh.geometry.dim
-        if element_degree not in (1, 2):
-            raise ValueError(f"element_degree must be 1 or 2, got {element_degree!r}")
-        if element_degree == 2 and quadrature != "nodal":
-            raise ValueError("element_degree=2 supports the 'nodal' joint quadrature only")
-        self.degree = element_degree
-        if self.gdim == 2:
-            plane = "strain" if plane is None else plane
-            if plane not in ("strain", "stress"):
-                raise ValueError(f"plane must be 'strain' or 'stress' in 2D, got {plane!r}")
-        elif plane not in (None, "3D", "3d"):
-            raise ValueError(f"plane={plane!r} is meaningless in 3D; pass plane=None")
-        self.plane = plane if self.gdim == 2 else None
+        self.degree = check_element(element_degree, quadrature)
+        self.plane = check_plane(self.gdim, plane)
         self.quadrature = quadrature
-        self.linear_solver_kind = linear_solver
-        self.petsc_options = check_petsc_options(petsc_options)
-        self.options_prefix = check_options_prefix(options_prefix)
         self.newton_options = newton or NewtonOptions()
-        self.rock = self._check_rock(rock)
-        self.behaviours = self._check_joints(joints, shear_stiffness, shear_stiffness_ratio, residual_stiffness,
-                                             strength)
-        self.densities = self._check_density(density)  #: {block name: ρ [kg/m³]} ({} without gravity)
+        self._solver_settings = (linear_solver, check_petsc_options(petsc_options),
+                                 check_options_prefix(options_prefix))
+        self.rock = check_rock(dmesh, rock)  #: {block tag: (E [Pa], ν)}
+        #: {joint tag: JointBehaviour} (rockjoint.joint)
+        self.behaviours = joint_behaviours(names_of(dmesh, "joints"), joints or {}, shear_stiffness=shear_stiffness,
+                                           shear_stiffness_ratio=shear_stiffness_ratio,
+                                           residual_stiffness=residual_stiffness, strength=strength,
+                                           argument="joints", closure_laws_only=True)
+        self.densities = check_density(dmesh, density)  #: {block name: ρ [kg/m³]} ({} without gravity)
         self.stages: list[StageResult] = []  #: the result of every stage, in order
-        # The parts, each with explicit inputs: the blocks' space and forms, the load path on
-        # them; the joints (JointCoupling) and the linear solver come with the first solve.
-        t0 = time.perf_counter()
+        self.solution: StageResult | None = None  #: the last stage's result
         self.blocks = ElasticBlocks(dmesh, self.rock, self.densities, self.degree, self.plane)
         self.load_path = LoadPath(dmesh, self.blocks, self.densities, gravity)
-        self.V, self.u, self.du = self.blocks.V, self.blocks.u, self.blocks.du
+        self.V, self.u = self.blocks.V, self.blocks.u
         #: smeared joint sets (equivalent continuum) in the blocks named in `continuum`, or None
         self.smeared = None
         if continuum:
             self.smeared = SmearedBlocks(self.blocks, dmesh, {lookup(dmesh, "blocks", name): m
                                                               for name, m in continuum.items()}, self.rock)
-        self.sigma, self.eps = self.blocks.sigma, self.blocks.eps
-        self.coupling: JointCoupling | None = None
-        self.linear_solver: LinearSolver | None = None
-        #: wall-clock seconds on this rank: bulk_assembly (K and f, once), interface_residual and
-        #: interface_jacobian (all calls), linear_solve (all solves), newton (solve() total), setup
-        self.timings = {"bulk_assembly": 0.0, "interface_residual": 0.0, "interface_jacobian": 0.0,
-                        "matrix_copy": 0.0, "linear_solve": 0.0, "newton": 0.0,
-                        "setup": time.perf_counter() - t0}
-        #: number of calls behind the timings
-        self.counts = {"interface_residual": 0, "interface_jacobian": 0, "linear_solve": 0,
-                       "nonfinite_residuals": 0}
+        self._problem = JointedProblem(self.blocks, self.load_path, self.smeared, self.newton_options.closure_limit)
         self._initialised = False    # initial state (in-situ loads, joint pre-closure) set
         self._advancing = False      # a stage opened by advance() is in progress
-        self._clock = None           # progress clock of the stage being solved
         self._stage_label = None     # "k/n" while run() drives the stages
-        self._step_iterations = 0    # Newton iterations of the load step being solved
-        self._saved = None           # (u, load factor) of the last converged load step
-        self.load_factor = 0.0
-        self.K = self.J = None       # bulk matrix with the supports, Jacobian
-        self.r = la_petsc.create_vector([(self.V.dofmap.index_map, self.V.dofmap.index_map_bs)])
-        self._r_joint = self.r.duplicate()
-        self.solution = None
+        self._problem.timings["setup"] = time.perf_counter() - t0
 
-    # ---- input checks --------------------------------------------------------------------
-    def _check_rock(self, rock) -> dict:
-        blocks = names_of(self.dmesh, "blocks")
-        if rock is None:
-            raise ValueError(f"rock properties are missing; give rock={{block: (E, nu)}} for blocks {sorted(blocks)}")
-        rock = _per_block(blocks, rock, "rock", "no (E, nu) for block(s) {}")
-        out = {}
-        for name, value in rock.items():
-            try:
-                E, nu = (float(v) for v in value)
-            except (TypeError, ValueError):
-                raise ValueError(f"rock[{name!r}] must be (E [Pa], nu), got {value!r}") from None
-            if not (np.isfinite(E) and E > 0):
-                raise ValueError(f"rock[{name!r}]: Young's modulus E = {E} Pa is invalid; it must be finite and > 0")
-            if not (-1.0 < nu < 0.5):
-                raise ValueError(f"rock[{name!r}]: Poisson's ratio nu = {nu} is invalid; it must be in (-1, 0.5)")
-            out[blocks[name]] = (E, nu)
-        return out
-
-    def _check_joints(self, joints, ks, ratio, kr, strength=None) -> dict:
-        return joint_behaviours(names_of(self.dmesh, "joints"), joints or {}, shear_stiffness=ks,
-                                shear_stiffness_ratio=ratio, residual_stiffness=kr, strength=strength,
-                                argument="joints", closure_laws_only=True)
-
-    def _check_density(self, density) -> dict:
-        if density is None:
-            return {}
-        density = _per_block(names_of(self.dmesh, "blocks"), density, "density",
-                             "no value for block(s) {} (give one for every block)")
-        return {name: positive_number(f"density[{name!r}]", rho, unit="kg/m³") for name, rho in density.items()}
-
+    # ---- what the parts hold -----------------------------------------------------------------
     @property
     def gravity(self) -> Load | None:
         """The gravity load handle (None without a density)."""
         return self.load_path.gravity
 
     @property
-    def in_situ(self) -> InSituStress | None:
-        return self.load_path.in_situ
+    def interface(self):
+        """The joints' JointInterface (point state and geometry, for inspection)."""
+        return self._problem.coupling.interface
+
+    @property
+    def linear_solver(self) -> LinearSolver | None:
+        """The linear solver (after the first solve)."""
+        return self._problem.linear_solver
+
+    @property
+    def num_dofs(self) -> int:
+        """Global number of displacement dofs."""
+        return self.V.dofmap.index_map.size_global * self.V.dofmap.index_map_bs
+
+    timings = property(lambda self: self._problem.timings, doc="seconds per part (JointedProblem.timings)")
+    counts = property(lambda self: self._problem.counts, doc="calls behind the timings (JointedProblem.counts)")
+    load_factor = property(lambda self: self._problem.load_factor, doc="λ of the current stage")
 
     # ---- loads and supports (handles; changes take effect at the next stage) --------------
     def fix(self, boundary: str, components="all", block: str | None = None, value=0.0) -> Support:
@@ -251,234 +199,35 @@ class JointedRockModel:
         self._initialised = False
 
     # ---- setup -----------------------------------------------------------------------------
-    def _prepare(self) -> None:
-        if self.coupling is None:
-            self._setup_joints_and_solver()
-        lp = self.load_path
-        if lp.supports_dirty:
-            self._setup_supports()
-        if lp.forms_dirty:
-            lp.compile_forms()
-        lp.collect_prescribed(self.u.x.array)
+    def prepare(self) -> JointedProblem:
+        """Set up what the next solve needs (joints and linear solver once; the bulk matrix when
+        the supports changed; the load forms; the initial state) and return the problem."""
+        p = self._problem
+        if p.coupling is None:
+            t0 = time.perf_counter()
+            p.connect(JointCoupling(self.V, self.dmesh, {n: self.behaviours[t] for n, t in
+                                                         names_of(self.dmesh, "joints").items()},
+                                    quadrature=self.quadrature),
+                      make_linear_solver(self.V, *self._solver_settings,
+                                         symmetric=symmetric_tangent(self.behaviours) and self.smeared is None),
+                      bool(self.behaviours))
+            p.timings["setup"] += time.perf_counter() - t0
+        supports = self.load_path.refresh(self.u.x.array)
+        if supports is not None:
+            p.set_supports(supports)
         if not self._initialised:
-            self._initial_state()
-
-    def _setup_joints_and_solver(self) -> None:
-        """The joints, through the public API a user's own model uses (docs/user-model.md): the
-        model is a client of JointCoupling like any DOLFINx model; and the linear solver."""
-        t0 = time.perf_counter()
-        names = names_of(self.dmesh, "joints")
-        self.coupling = JointCoupling(self.V, self.dmesh, {n: self.behaviours[t] for n, t in names.items()},
-                                      quadrature=self.quadrature)
-        imap, bs = self.V.dofmap.index_map, self.V.dofmap.index_map_bs
-        num_dofs = imap.size_global * bs
-        kind = resolve_kind(self.linear_solver_kind, num_dofs, self.gdim)
-        nullspace = rigid_body_modes(self.V) if kind == "iterative" else None
-        self.linear_solver = LinearSolver(self.comm, kind, num_dofs=num_dofs, near_nullspace=nullspace,
-                                          symmetric=symmetric_tangent(self.behaviours) and self.smeared is None,
-                                          options=self.petsc_options, prefix=self.options_prefix)
-        self.num_dofs = num_dofs
-        self.timings["setup"] += time.perf_counter() - t0
-
-    def _setup_supports(self) -> None:
-        """Dirichlet dofs of every support and the bulk matrix K with them (identity rows)."""
-        t0 = time.perf_counter()
-        bcs, constrained = self.load_path.dirichlet()
-        self.bcs = bcs
-        self._constrained = constrained
-        n_owned = self.V.dofmap.index_map.size_local * self.V.dofmap.index_map_bs
-        self._constrained_owned = np.flatnonzero(constrained[:n_owned]).astype(np.int32)
-        for A in (self.K, self.J):
-            if A is not None:
-                A.destroy()
-        self.coupling.set_supports(bcs)
-        K = self.coupling.create_matrix(self.blocks.a_form)  # joint couplings reserved (pitfall 4)
-        fem_petsc.assemble_matrix(K, self.blocks.a_form, bcs)
-        K.assemble()
-        self.K, self.J = K, K.duplicate(copy=True)
-        self.timings["bulk_assembly"] += time.perf_counter() - t0
-
-    def _initial_state(self) -> None:
-        """u = 0 and the loads of the initial state; with an in-situ stress, joints pre-closed
-        (initial jump j0 = (-Δ0, τ0/k_s), Δ0 the closure at σ_n0 = -n·σ0·n) and the equilibrium
-        checked."""
-        lp = self.load_path
-        self.u.x.array[:] = 0.0
-        lp.start()
-        self._initialised = True
-        if lp.in_situ is None:
-            return
-        vertex_rule = self.quadrature == "nodal" and self.degree == 1
-        self.coupling.set_initial_jump(initial_jump(self.coupling.interface, lp.in_situ, self.behaviours,
-                                                    self.gdim, names_of(self.dmesh, "joints"), vertex_rule))
-        if self.smeared is not None:
-            self.smeared.set_in_situ(lp.in_situ)
-        self._begin_stage(next_loads=lp.state)
-        rnorm = self.residual()
-        scale = self.load_norm(0.0)
-        tolerance = lp.equilibrium_tolerance
-        if not rnorm <= tolerance * scale:
-            raise ValueError(
-                f"the in-situ stress is not in equilibrium with the model's loads: the initial residual is "
-                f"{rnorm:.3e} N, {rnorm / max(scale, 1e-300):.2e} of the in-situ forces (allowed "
-                f"{tolerance:g}). A uniform σ0 needs no gravity (density=None); a depth-dependent one needs "
-                f"gravity with the same density; a field must satisfy div σ0 + ρ g = 0 (a discretisation "
-                f"imbalance of a non-linear field: raise set_in_situ_stress(..., equilibrium_tolerance=))")
-
-    def _begin_stage(self, next_loads=None) -> None:
-        self.load_path.begin_stage(self.u.x.array, next_loads)
-        self.load_factor = 0.0
-        self._step_iterations = 0
-
-    def _end_stage(self, reached: float) -> None:
-        self.load_path.end_stage(reached)
-
-    def _reactions(self) -> dict:
-        """{(boundary, component): force the support exerts on the rock} at the current state."""
-        lp = self.load_path
-        lp.apply(self.load_factor, self.u)
-        self.blocks.w.x.array[:] = self.u.x.array
-        force = lp.assemble(self.blocks.internal_form)
-        if lp.r_sigma0 is not None:
-            force.axpy(1.0, lp.r_sigma0)
-        self._joint_forces()
-        force.axpy(1.0, self._r_joint)
-        if self.smeared is not None:
-            self.smeared.add_residual(force)
-        out = lp.reactions(force)
-        force.destroy()
-        return out
-
-    @property
-    def interface(self):
-        """The joints' JointInterface (owned by the model's JointCoupling): point state and
-        geometry for inspection."""
-        return self.coupling.interface
-
-    # ---- the problem interface used by newton.py ------------------------------------------
-    def load_norm(self, load_factor: float) -> float:
-        """Scale of the forces at `load_factor`: ||f(λ)|| (+ ||∫ε(v):σ0||)."""
-        return self.load_path.load_norm(load_factor)
-
-    def _joint_forces(self) -> bool:
-        """r_joint(u) into self._r_joint (owned entries complete); False if not finite."""
-        t0 = time.perf_counter()
-        rj = self._r_joint
-        with rj.localForm() as loc:
-            loc.set(0.0)
-            finite = self.coupling.add_residual(self.u, loc.array)  # collective
-        # Ghost contributions go to their owners (docs/fem.md, pitfall 5).
-        rj.ghostUpdate(addv=PETSc.InsertMode.ADD, mode=PETSc.ScatterMode.REVERSE)
-        self.timings["interface_residual"] += time.perf_counter() - t0
-        self.counts["interface_residual"] += 1
-        return finite
-
-    def residual(self) -> float:
-        lp = self.load_path
-        lp.apply(self.load_factor, self.u)
-        r = self.r
-        if not self._joint_forces():
-            # Never hand on a stale residual: SNES (through JointedProblem) and our Newton both
-            # see an infinite one and cut the step.
-            r.set(np.inf)
-            self.counts["nonfinite_residuals"] += 1
-            return np.inf
-        self.K.mult(self.u.x.petsc_vec, r)
-        if lp.any_prescribed:
-            r.axpy(1.0, lp.lift)
-        if lp.r_sigma0 is not None:
-            r.axpy(1.0, lp.r_sigma0)
-        r.axpy(-1.0, lp.f_lambda)
-        r.axpy(1.0, self._r_joint)
-        if self.smeared is not None and not self.smeared.add_residual(r):
-            r.set(np.inf)  # a local solve of the smeared sets failed: cut the step
-            self.counts["nonfinite_residuals"] += 1
-            return np.inf
-        with r.localForm() as loc:  # owned entries come first in the local form
-            loc.array[self._constrained_owned] = 0.0
-        nrm = r.norm()
-        return nrm if np.isfinite(nrm) else np.inf
-
-    def jacobian(self) -> None:
-        self.jacobian_into(self.J)
-
-    def jacobian_into(self, A) -> None:
-        """A = K + joint tangent at u (A has K's nonzero pattern, e.g. JointedProblem.matrix())."""
-        t0 = time.perf_counter()
-        self.K.copy(A, structure=PETSc.Mat.Structure.SAME_NONZERO_PATTERN)  # bulk, constant
-        t1 = time.perf_counter()
-        self.timings["matrix_copy"] += t1 - t0
-        if self.smeared is not None:
-            self.smeared.add_jacobian(A, self.bcs)
-        self.coupling.add_jacobian(self.u, A)
-        A.assemble()
-        self.timings["interface_jacobian"] += time.perf_counter() - t1
-        self.counts["interface_jacobian"] += 1
-        self._step_iterations += 1
-
-    @property
-    def is_linear(self) -> bool:
-        """No joints: the model is linear (Newton then solves to the full linear tolerance)."""
-        return not self.behaviours and self.smeared is None
-
-    def solve_increment(self, rtol: float | None = None) -> int:
-        """du = -J⁻¹ r to the relative tolerance rtol (None: the linear solver's); returns the
-        Krylov iterations."""
-        t0 = time.perf_counter()
-        self.r.scale(-1.0)
-        try:
-            its = self.linear_solver.solve(self.J, self.r, self.du.x.petsc_vec, rtol=rtol)
-        finally:
-            self.r.scale(-1.0)
-            self.timings["linear_solve"] += time.perf_counter() - t0
-            self.counts["linear_solve"] += 1
-        # Supported rows are identity rows with a zero right-hand side, so du = 0 there only if
-        # the solve is exact; a loose (inexact Newton) solve leaves an error the zeroed residual
-        # would never see: the supports would drift.
-        with self.du.x.petsc_vec.localForm() as loc:
-            loc.array[self._constrained_owned] = 0.0
-        self.du.x.scatter_forward()
-        return its
-
-    def increment_norms(self) -> tuple:
-        """(||du||, ||u||) of the last Newton increment and the current displacement [m]."""
-        return self.du.x.petsc_vec.norm(), self.u.x.petsc_vec.norm()
-
-    def admissible_step(self, fraction: float) -> float:
-        return self.coupling.admissible_step(self.u, self.du, fraction)
-
-    def apply_increment(self, alpha: float) -> None:
-        self.u.x.petsc_vec.axpy(alpha, self.du.x.petsc_vec)
-        self.u.x.scatter_forward()
-
-    def save_state(self) -> None:
-        self._saved = (self.u.x.array.copy(), self.load_factor)
-
-    def restore_state(self) -> None:
-        """Back to the last saved (converged) step: u, load factor and the joints' trial state."""
-        arr, self.load_factor = self._saved
-        self.u.x.array[:] = arr
-        self.load_path.applied = None
-        self.coupling.revert_state()
-        if self.smeared is not None:
-            self.smeared.revert_state()
-
-    def commit_state(self) -> None:
-        """A load step converged: the joints' trial state becomes their converged state."""
-        self.coupling.commit_state()
-        if self.smeared is not None:
-            self.smeared.commit_state()
-        if self._clock is not None:
-            self._clock.step(self.load_factor, self._step_iterations)
-        self._step_iterations = 0
+            self._initialised = True
+            vertex_rule = self.quadrature == "nodal" and self.degree == 1  # joint_initial_state.py
+            p.set_initial_state(self.behaviours, names_of(self.dmesh, "joints"), vertex_rule)
+        return p
 
     def problem(self) -> JointedProblem:
-        """The model as a problem object (F, J) for PETSc SNES or a user's Newton, at the current
-        stage's load factor (`model.load_factor`)."""
-        self._prepare()
+        """The model's nonlinear problem (F, J) for PETSc SNES or a user's Newton, at the current
+        stage's load factor (`problem.load_factor`): the object the model's own solvers drive."""
+        p = self.prepare()
         if not self.load_path.stage_open:
-            self._begin_stage()
-        return JointedProblem(self)
+            p.begin_stage()
+        return p
 
     # ---- solve and output -----------------------------------------------------------------
     def solve(self, load_steps: int = 1, name: str | None = None, solver: str = "newton",
@@ -491,33 +240,29 @@ class JointedRockModel:
         last converged load step."""
         if solver not in ("newton", "snes"):
             raise ValueError(f"solver must be 'newton' or 'snes', got {solver!r}")
-        if restart and self.coupling is not None:
-            self.coupling.reset_state()  # path-dependent point state
-            if self.smeared is not None:
-                self.smeared.reset_state()
+        if restart and self._problem.coupling is not None:
+            self._problem.reset_state()  # path-dependent point state
             self._initialised = False
             self._advancing = False
-        self._prepare()
+        p = self.prepare()
         self._close_advanced_stage()
         k = len(self.stages) + 1
         name = name or f"stage_{k}"
-        label = self._stage_label or str(k)
-        self._clock = StageClock(self.comm, f"{label} ({name})")
-        self._begin_stage()
+        p.clock = StageClock(self.comm, f"{self._stage_label or str(k)} ({name})")
+        p.begin_stage()
         t0 = time.perf_counter()
         try:
             if solver == "newton":
-                reports = solve_load_path(self, load_steps, self.newton_options,
-                                          solve_step=self._step_solver())
+                reports = solve_load_path(p, load_steps, self.newton_options, solve_step=self._step_solver())
             else:
-                reports = snes_load_path(self, load_steps, self.newton_options)
+                reports = snes_load_path(p, load_steps, self.newton_options)
         except Exception:
-            self._end_stage(self.load_factor)
+            self.load_path.end_stage(p.load_factor)
             raise
         finally:
-            self.timings["newton"] += time.perf_counter() - t0
-            self._clock = None
-        self._end_stage(1.0)
+            p.timings["newton"] += time.perf_counter() - t0
+            p.clock = None
+        self.load_path.end_stage(1.0)
         return self._stage_result(name, reports, time.perf_counter() - t0)
 
     def advance(self, load_factor: float, load_steps: int = 1) -> StageResult:
@@ -532,11 +277,10 @@ class JointedRockModel:
         if not np.isfinite(target):
             raise ValueError(f"load_factor must be finite, got {load_factor!r}")
         if not self._advancing:
-            self._prepare()
-            self._begin_stage()
+            self.prepare().begin_stage()
             self._advancing = True
         t0 = time.perf_counter()
-        reports = solve_load_path(self, load_steps, self.newton_options, target=target, adaptive=False,
+        reports = solve_load_path(self._problem, load_steps, self.newton_options, target=target, adaptive=False,
                                   solve_step=self._step_solver())
         return self._stage_result(f"advance to {target:g}", reports, time.perf_counter() - t0)
 
@@ -545,16 +289,16 @@ class JointedRockModel:
         when Newton fails (pseudo_transient.py); None: solve_load_path's plain Newton."""
         if self.smeared is None:
             return None
-        smeared = self.smeared
+        smeared, options = self.smeared, self.newton_options
 
         def solve_step(problem, load_factor, step, start):
-            return solve_step_with_relaxation(problem, smeared, load_factor, self.newton_options, step, start)
+            return solve_step_with_relaxation(problem, smeared, load_factor, options, step, start)
         return solve_step
 
     def _close_advanced_stage(self) -> None:
         """After advance(): the loads of the factor reached become the next stage's start."""
         if self._advancing:
-            self._end_stage(self.load_factor)
+            self.load_path.end_stage(self._problem.load_factor)
             self._advancing = False
 
     def run(self, stages: list) -> list:
@@ -574,48 +318,30 @@ class JointedRockModel:
         return out
 
     def _stage_result(self, name: str, reports: list, elapsed: float) -> StageResult:
-        # Re-evaluated from the state just committed: a point that slid in the last step sits on
-        # its strength and reads "slip" (joint_slip.cpp labels by where τ is).
-        state = self.coupling.state(self.u)
-        disp = fem.Function(self.V, name="displacement")
-        disp.x.array[:] = self.u.x.array
-        result = StageResult(disp, state, reports, self, name, self._reactions(), elapsed)
+        result = stage_result(self, self._problem, name, reports, elapsed)
         self.stages.append(result)
         self.solution = result
-        beyond = result.beyond_law_range()
-        if beyond and self.comm.rank == 0:
-            # Never silent: the answer there is the table's linear continuation, not the law.
-            log.warning("joint law driven past its range (status validity_limit) at %s; the "
-                        "response there is the table's linear continuation: tabulate to a higher "
-                        "maximum stress", ", ".join(f"{n} ({c} points)" for n, c in beyond.items()))
         return result
 
     def total_stress(self, degree: int | None = None) -> fem.Function:
         """Total stress σ0 + σ(u) [Pa, tension positive] interpolated in a discontinuous tensor
         space of `degree` (default: element degree - 1, exact for σ(u))."""
-        self._prepare()
-        degree = self.degree - 1 if degree is None else degree
-        T = fem.functionspace(self.mesh, ("DG", degree, (self.mesh.geometry.dim, self.mesh.geometry.dim)))
-        stress = self.sigma(self.u)
-        if self.in_situ is not None:
-            stress = stress + self.load_path.sigma0
-        points = T.element.interpolation_points
-        out = fem.Function(T, name="total_stress")
-        out.interpolate(fem.Expression(stress, points))
-        return out
+        self.prepare()
+        sigma0 = self.load_path.sigma0 if self.load_path.in_situ is not None else None
+        return monitors.total_stress(self.u, self.blocks.sigma, sigma0,
+                                     self.degree - 1 if degree is None else degree)
 
     def boundary_mean_displacement(self, boundary: str) -> np.ndarray:
         """Mean displacement vector [m] over a named boundary (∫u ds / ∫ds, all ranks)."""
-        tag = lookup(self.dmesh, "boundaries", boundary)
-        ds = ufl.Measure("ds", domain=self.mesh, subdomain_data=self.dmesh.boundaries)(tag)
-        area = self.comm.allreduce(fem.assemble_scalar(fem.form(fem.Constant(self.mesh, 1.0) * ds)))
-        return np.array([self.comm.allreduce(fem.assemble_scalar(fem.form(self.u[i] * ds))) / area
-                         for i in range(self.gdim)])
+        return monitors.boundary_mean_displacement(self, boundary)
+
+    def mean_normal_displacement(self, boundary: str) -> float:
+        """∫ u·n ds / ∫ ds over a named boundary, n the rock's outward normal [m] (all ranks)."""
+        return monitors.mean_normal_displacement(self, boundary)
 
     def write_xdmf(self, path: str) -> list:
         """Write the displacement (XDMF/HDF5) and the joint point state (<stem>_joints.xdmf;
         not written for a model without joints). Returns the written paths."""
-        from .output import write_xdmf
         if self.solution is None:
             raise RuntimeError("write_xdmf: call solve() first")
-        return write_xdmf(self, path)
+        return output.write_xdmf(self, path)

@@ -12,8 +12,8 @@ room to the law's maximum closure (fraction to the boundary; with Δ = 0 at the 
 the "no closure past 0.95 V_m" rule, and it still lets converged closures approach V_m).
 A Newton step after which the residual is not finite (a local solve of a smeared joint set
 failed, docs/equivalent-continuum.md; a closure past a law's maximum without the limiter) is
-halved, at most `max_backtracks` times, before the load step is given up: on the tunnel bench
-this took the smeared model from 60 to 28 Newton iterations (bench/results/continuum.md).
+halved, at most `max_backtracks` times, before the load step is given up (the smeared tunnels of
+bench/results/continuum.md rely on it; docs/equivalent-continuum.md, "Robustness").
 A load step that fails (too many iterations, non-finite residual) is cut in half; a step that
 converges in at most `easy_iterations` lets the next one grow by `growth`. After a converged load
 step the problem's commit_state() (if it has one) makes the path-dependent joint state the new
@@ -77,7 +77,7 @@ class NewtonOptions:
     #: η of the first iteration of a load step, and the upper bound of η: tighter than the
     #: textbook 0.3 / 0.9, because while a stiffening law drives ||r|| up (the first steps from
     #: rest overshoot the closure), choice 2 would keep η at its bound and waste Newton iterations
-    #: (measured on the benchmark blocks: 6 instead of 7 iterations)
+    #: (docs/fem.md, "Inexact Newton"; runs with these values: bench/results/fem_dolfinx0.11.md)
     forcing_initial: float = 0.1
     forcing_max: float = 0.5
     forcing_gamma: float = 0.9       #: γ of choice 2
@@ -85,9 +85,9 @@ class NewtonOptions:
     #: smeared joint sets (equivalent continuum): a load step whose Newton fails is solved again
     #: by pseudo-transient continuation (pseudo_transient.py: viscous sets with r = Δt/τ from
     #: relaxation_initial, doubled after every converged pseudo-time step, to the rate-independent
-    #: equilibrium); None: off (the step is cut as for discrete joints). 1: on the tunnel bench
-    #: (s = 0.25 m, far field 1.0 / 0.75 m) r0 = 0.25, 1, 4 gave crowns within 0.01 % and sidewalls
-    #: within 0.3 % of each other, r0 = 1 the shortest run on 1.0 m (14 against 23 and 19 s)
+    #: equilibrium); None: off (the step is cut as for discrete joints). The default 1 is the value
+    #: the smeared tunnels of bench/results/continuum.md run with (docs/equivalent-continuum.md,
+    #: "Robustness", 3.)
     relaxation_initial: float | None = 1.0
     relaxation_max_steps: int = 200  #: pseudo-time steps of one such load step before giving up
     #: largest r: each pseudo-time step then still removes all but 1/(1 + r) of the viscous

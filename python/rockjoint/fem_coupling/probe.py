@@ -65,7 +65,7 @@ def stress_function(model, u=None, degree: int | None = None) -> fem.Function:
     degree = model.degree - 1 if degree is None else int(degree)
     T = fem.functionspace(mesh, ("DG", degree, (mesh.geometry.dim, mesh.geometry.dim)))
     s = fem.Function(T, name="stress")
-    s.interpolate(fem.Expression(model.sigma(u), T.element.interpolation_points))
+    s.interpolate(fem.Expression(model.blocks.sigma(u), T.element.interpolation_points))
     return s
 
 

@@ -1,10 +1,9 @@
-"""Stages of a load path, their results, and the model as a problem object for PETSc SNES.
+"""Stages of a load path, their results, and PETSc SNES driving a stage.
 
 A stage is one JointedRockModel.solve(): the loads go linearly from the previous stage's values
 (load factor λ = 0) to the values set now (λ = 1). `Stage` is the declarative form used by
-`JointedRockModel.run`. `JointedProblem` exposes the model's residual F and Jacobian J through the
-one SNES adapter of the package (snes_problem.JointedSNESProblem), which the user's problems use
-too.
+`JointedRockModel.run`. `snes_load_path` drives the model's problem (problem.JointedProblem, the
+object the project's Newton drives too) with PETSc SNES.
 """
 from __future__ import annotations
 
@@ -20,7 +19,6 @@ from petsc4py import PETSc
 from .. import _rockjoint
 from .distributed_mesh import names_of
 from .newton import StepReport, solve_load_path
-from .snes_problem import JointedSNESProblem
 
 log = logging.getLogger(__name__)
 
@@ -72,59 +70,45 @@ class Stage:
     solver: str = "newton"
 
 
-class JointedProblem(JointedSNESProblem):
-    """The model's nonlinear problem F(u) = 0 for PETSc SNES or a user's Newton, through the one adapter the user's problems use too (snes_problem.JointedSNESProblem).
-
-    F = bulk internal force + joint forces - external loads at the model's current load factor,
-    zero at supported dofs (whose values the model sets to the prescribed displacement); J the
-    consistent Jacobian with identity rows and columns at supported dofs. A non-finite joint
-    traction gives an infinite residual and a SNES function-domain error."""
-
-    def __init__(self, model):
-        self.model = model
-        self.u = model.u
-        self.coupling = model.coupling
-        limit = model.newton_options.closure_limit
-        self.closure_fraction = None if limit is None else float(limit)
-
-    def assemble_residual(self, b) -> bool:
-        finite = bool(np.isfinite(self.model.residual()))
-        self.model.r.copy(b)
-        return finite
-
-    def assemble_jacobian(self, A) -> None:
-        self.model.jacobian_into(A)
-
-    def matrix(self):
-        """A matrix with the joint-aware sparsity (the bulk pattern plus cross-joint couplings)."""
-        return self.model.K.duplicate(copy=True)
-
-    def vector(self):
-        return self.model.r.duplicate()
+def stage_result(model, problem, name: str, reports: list, elapsed: float) -> StageResult:
+    """The StageResult of the stage `problem` just solved; a warning (rank 0) where a joint law
+    was driven past its range."""
+    # Re-evaluated from the state just committed: a point that slid in the last step sits on
+    # its strength and reads "slip" (joint_slip.cpp labels by where τ is).
+    state = problem.coupling.state(problem.u)
+    disp = fem.Function(problem.u.function_space, name="displacement")
+    disp.x.array[:] = problem.u.x.array
+    result = StageResult(disp, state, reports, model, name, problem.reactions(), elapsed)
+    beyond = result.beyond_law_range()
+    if beyond and problem.comm.rank == 0:
+        # Never silent: the answer there is the table's linear continuation, not the law.
+        log.warning("joint law driven past its range (status validity_limit) at %s; the "
+                    "response there is the table's linear continuation: tabulate to a higher "
+                    "maximum stress", ", ".join(f"{n} ({c} points)" for n, c in beyond.items()))
+    return result
 
 
-def snes_load_path(model, load_steps: int, options) -> list:
-    """Drive the model's load factor from 0 to 1 with PETSc SNES solving each load step, the
-    steps controlled as for the project's Newton (newton.solve_load_path: halved on failure, a
-    function-domain error (non-finite joint traction) included, grown after easy ones, the joint
-    state committed after every converged step and reverted after a failed one). Returns the
-    StepReports."""
-    problem = JointedProblem(model)
-    prefix = model.linear_solver.ksp.getOptionsPrefix()
-    snes = problem.snes_solver(options_prefix=prefix, ksp=model.linear_solver.ksp)
-    _flag_matrix(model.linear_solver, snes.getJacobian()[0])
+def snes_load_path(problem, load_steps: int, options) -> list:
+    """Drive the problem's (problem.JointedProblem) load factor from 0 to 1 with PETSc SNES
+    solving each load step, the steps controlled as for the project's Newton
+    (newton.solve_load_path: halved on failure, a function-domain error (non-finite joint
+    traction) included, grown after easy ones, the joint state committed after every converged
+    step and reverted after a failed one). Returns the StepReports."""
+    solver = problem.linear_solver
+    snes = problem.snes_solver(options_prefix=solver.ksp.getOptionsPrefix(), ksp=solver.ksp)
+    _flag_matrix(solver, snes.getJacobian()[0])
     norms = []
     snes.setMonitor(lambda s, it, rnorm: norms.append(rnorm))
-    x = model.u.x.petsc_vec.copy()
+    x = problem.u.x.petsc_vec.copy()
 
     def solve_step(_, target, step, start):
-        model.load_factor = target
-        model.residual()  # sets the prescribed displacements of λ = target into u
-        scale = model.load_norm(target)
+        problem.load_factor = target
+        problem.residual()  # sets the prescribed displacements of λ = target into u
+        scale = problem.load_norm(target)
         snes.setTolerances(atol=max(options.atol + options.rtol * scale, 1e-300), rtol=1e-14,
                            stol=0.0, max_it=options.max_iterations)
         snes.setFromOptions()  # user options (petsc_options, command line) win
-        model.u.x.petsc_vec.copy(x)
+        problem.u.x.petsc_vec.copy(x)
         norms.clear()
         snes.solve(None, x)
         reason = snes.getConvergedReason()
@@ -134,10 +118,10 @@ def snes_load_path(model, load_steps: int, options) -> list:
                           converged=reason > 0, reason=f"SNES reason {_snes_reason(reason)}")
 
     try:
-        return solve_load_path(model, load_steps, options, solve_step=solve_step)
+        return solve_load_path(problem, load_steps, options, solve_step=solve_step)
     finally:
-        model.linear_solver.unflag()
-        snes.setKSP(PETSc.KSP().create(model.comm))  # the model keeps its own KSP alive
+        solver.unflag()
+        snes.setKSP(PETSc.KSP().create(problem.comm))  # the model keeps its own KSP alive
         snes.destroy()
         x.destroy()
 

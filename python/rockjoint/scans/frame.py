@@ -15,7 +15,21 @@ import dataclasses
 
 import numpy as np
 
+from .._rockjoint.topography import PlaneRemoval
+
 FLIP_ABOUT_Y = np.diag([-1.0, 1.0, -1.0])
+
+
+def plane_removal_mode(plane_removal) -> PlaneRemoval:
+    """The PlaneRemoval of a composite topography from its name ("common", "separate" or
+    "none") or the enum itself."""
+    if isinstance(plane_removal, str):
+        try:
+            return getattr(PlaneRemoval, plane_removal)
+        except AttributeError:
+            raise ValueError(f"plane_removal '{plane_removal}' is not one of common, separate, "
+                             "none") from None
+    return plane_removal
 
 
 def flip(points: np.ndarray) -> np.ndarray:

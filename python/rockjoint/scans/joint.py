@@ -11,8 +11,9 @@ from typing import Optional
 import numpy as np
 from scipy.ndimage import binary_fill_holes
 
+from .._rockjoint import topography as _cpp_topography
 from .errors import NoOverlapError
-from .frame import Levelling, flip, level
+from .frame import Levelling, flip, level, plane_removal_mode
 from .lattice import ScanGrid, apply_fill, resample
 from .points import ScanPoints
 from .registration import Registration, register
@@ -67,7 +68,6 @@ def joint_from_scans(upper: ScanPoints, lower: ScanPoints, *, spacing: Optional[
     the analysis), "nearest" or "refuse" (MaskedNodesError); the hole count is logged.
     ``angle_step``, ``max_rotation``, ``min_overlap``, ``min_correlation``, ``max_misfit``:
     see registration.register (NoOverlapError when the walls do not face each other)."""
-    from .. import topography as topo
     up = flip(upper.points) if flip_upper else upper.points
     up, up_level = level(up)
     low, low_level = level(lower.points)
@@ -102,7 +102,8 @@ def joint_from_scans(upper: ScanPoints, lower: ScanPoints, *, spacing: Optional[
         zl = np.where(holes, np.nan, zl)
     ug = ScanGrid(zu, h, h, origin, upper.path)
     lg = ScanGrid(zl, h, h, origin, lower.path)
-    composite = topo.composite_topography(ug.surface(), lg.surface(), (0, 0), plane_removal)
+    composite = _cpp_topography.composite_topography(ug.surface(), lg.surface(), 0, 0,
+                                                     plane_removal_mode(plane_removal))
     joint = RegisteredJoint(ug, lg, composite, reg, low_level, up_level, count, fill)
     log.info("%s", joint.report())
     return joint

@@ -23,6 +23,7 @@ from scipy.interpolate import LinearNDInterpolator
 from scipy.ndimage import distance_transform_edt
 from scipy.spatial import Delaunay
 
+from .._rockjoint.topography import Surface
 from .errors import MaskedNodesError
 
 log = logging.getLogger(__name__)
@@ -61,7 +62,6 @@ class ScanGrid:
 
     def surface(self):
         """As a rockjoint.topography.Surface (origin dropped; NaN stays a masked point)."""
-        from ..topography import Surface
         return Surface(self.heights, self.spacing_x, self.spacing_y)
 
 

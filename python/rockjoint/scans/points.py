@@ -8,6 +8,7 @@ from typing import Optional
 import numpy as np
 from scipy.spatial import cKDTree
 
+from .._rockjoint.topography import metres_per_unit as _cpp_metres_per_unit
 from .errors import MalformedScanError, ScanUnitError
 
 # Plausible sample spacings and extents of a rock-joint scan [m]: laser and structured-light
@@ -18,10 +19,8 @@ PLAUSIBLE_SPACING = (1e-7, 5e-3)
 PLAUSIBLE_EXTENT = (1e-3, 20.0)
 
 
-def metres_per_unit(unit: str) -> float:
-    """Metres in one ``unit`` (m, cm, mm, um/µm, nm); the library's one unit table."""
-    from ..topography import metres_per_unit as _m
-    return _m(unit)
+#: metres in one unit (m, cm, mm, um/µm, nm): the library's one unit table (topography/units.cpp)
+metres_per_unit = _cpp_metres_per_unit
 
 
 @dataclasses.dataclass

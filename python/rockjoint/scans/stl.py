@@ -10,7 +10,7 @@ import numpy as np
 
 from .errors import (MalformedScanError, NonFiniteScanError, NonManifoldScanError,
                      TruncatedScanError)
-from .points import ScanPoints, finish
+from .points import ScanPoints, finish, metres_per_unit
 
 _RECORD = np.dtype([("normal", "<f4", 3), ("vertices", "<f4", (3, 3)), ("attribute", "<u2")])
 
@@ -183,5 +183,4 @@ def write_stl(path, points: np.ndarray, triangles: np.ndarray, *, unit: str = "m
 
 
 def _metres(unit: str) -> float:
-    from .points import metres_per_unit
     return metres_per_unit(unit)

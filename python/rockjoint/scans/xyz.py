@@ -13,7 +13,7 @@ import re
 import numpy as np
 
 from .errors import MalformedScanError, NonFiniteScanError, TruncatedScanError
-from .points import ScanPoints, finish
+from .points import ScanPoints, finish, metres_per_unit
 
 _SPLIT = re.compile(r"[\s,;]+")
 _COMMENT = ("#", "//", "%")
@@ -85,5 +85,4 @@ def write_xyz_points(path, points: np.ndarray, unit: str = "mm", header: bool = 
 
 
 def _metres(unit: str) -> float:
-    from .points import metres_per_unit
     return metres_per_unit(unit)

@@ -14,5 +14,5 @@ from .yamlnodes import SceneError  # noqa: F401
 
 def run_scene(scene, plan, output, comm=None, reduced=False):
     """Run `scene` as `plan` says (rockjoint.scenes.runner.run_scene; needs the FE stack)."""
-    from .runner import run_scene as run
+    from .runner import run_scene as run  # the FE stack is optional: planning works without it
     return run(scene, plan, output, comm, reduced)

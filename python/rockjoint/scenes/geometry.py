@@ -1,17 +1,49 @@
-"""Meshes of a scene through rockjoint.meshes (column, jointed_block, tunnel_section), and the
-intact mesh: the same mesh with its split nodes glued back (no joints), so that jointed minus
-intact is the joints' share and nothing else."""
+"""The geometry of a scene: its extent, joint sets and their normals; its meshes through
+rockjoint.meshes (column, jointed_block, tunnel_section), and the intact mesh: the same mesh with
+its split nodes glued back (no joints), so that jointed minus intact is the joints' share and
+nothing else."""
 from __future__ import annotations
 
 import math
 
 import numpy as np
 
+from .. import meshes
+
+
+def extent(g) -> np.ndarray:
+    """The box of a scene's geometry section `g` [m] along the axes x, y(, z): a block's size; a
+    column's width(s) and height; a tunnel's width and height, in 3D (width, length, height):
+    its section lies in the x-z plane and its axis is y."""
+    if g["kind"] == "block":
+        return np.array(g["size"])
+    if g["kind"] == "column":
+        return np.array([g["width"]] * (g["dimension"] - 1) + [g["height"]])
+    if "length" in g:
+        return np.array([g["width"], g["length"], g["height"]])
+    return np.array([g["width"], g["height"]])
+
+
+def joint_sets(scene) -> list:
+    """The scene's joint sets (a column's joints as one horizontal set named 'joint')."""
+    g = scene.data["geometry"]
+    if g["kind"] == "column":
+        return [{"name": "joint", "dip": 0.0, "dip_direction": math.pi / 2}]
+    return g.get("joint_sets", [])
+
+
+def set_normal(joint_set: dict, dim: int) -> np.ndarray:
+    """Unit normal of a joint set from its dip and dip direction [rad] (2D: in the x-y section)."""
+    dip, direction = joint_set["dip"], joint_set["dip_direction"]
+    if dim == 2:
+        return np.array([-math.sin(dip) * math.copysign(1.0, math.sin(direction)), math.cos(dip)])
+    return np.array([math.sin(dip) * math.sin(direction), math.sin(dip) * math.cos(direction),
+                     math.cos(dip)])
+
 
 def joint_objects(scene, exclude=()):
     """The scene's joint sets as rockjoint.meshes.Joint lists (names <set>_<i>), without the sets
     named in `exclude` (smeared ones)."""
-    from rockjoint import meshes
     g = scene.data["geometry"]
     # A 3D tunnel is its section (x-z plane) extruded along y: its joint sets run along y (the
     # schema checks it), so each is the section's joint through (x, z), with the same dip and
@@ -30,7 +62,6 @@ def joint_objects(scene, exclude=()):
 
 def jointed_mesh(scene, plan, comm):
     """The jointed mesh of the scene (a JointedMesh on rank 0, None elsewhere)."""
-    from rockjoint import meshes
     g = scene.data["geometry"]
     h, hj = plan.mesh_size, plan.joint_size
     if g["kind"] == "column":
@@ -53,7 +84,6 @@ def glued(jm):
     its blocks and boundaries kept, no joints."""
     if jm is None:
         return None
-    from rockjoint import meshes
     n0, g = jm.num_original_nodes, jm.glue
     nf = jm.joint_facets_minus.shape[1]
     return meshes.JointedMesh(

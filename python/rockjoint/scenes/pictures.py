@@ -11,35 +11,15 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from scipy.spatial import cKDTree
+
+from .. import Status
 
 #: joint point states, drawn in this order and colour; "closed" is a joint without strength in
 #: contact (it has no stick/slip distinction)
 STATE_COLOURS = {"stick": "#1f3a93", "slip": "#e8112d", "open": "#ff9900", "closed": "#1f3a93"}
 #: the largest displacement in the opening view is drawn as at most this fraction of the radius
 OPENING_FRACTION = 0.05
-
-
-def boundary_triangles(u):
-    """The boundary faces of a 3D P1 displacement's mesh (the outer faces and both faces of every
-    joint: split nodes make them boundaries), gathered on rank 0: (vertices (n, 3, 3) [m], u at
-    them (n, 3, 3) [m]); None elsewhere. Collective."""
-    from dolfinx import mesh as dmesh
-    V = u.function_space
-    mesh = V.mesh
-    tdim = mesh.topology.dim
-    mesh.topology.create_connectivity(tdim - 1, tdim)
-    facets = dmesh.exterior_facet_indices(mesh.topology)
-    nodes = dmesh.entities_to_geometry(mesh, tdim - 1, facets, False)
-    # P1 on simplices: a cell's geometry nodes and its dofs follow the same vertex order
-    n_cells = mesh.topology.index_map(tdim).size_local + mesh.topology.index_map(tdim).num_ghosts
-    node_dof = np.zeros(mesh.geometry.x.shape[0], dtype=np.int64)
-    node_dof[mesh.geometry.dofmaps[0][:n_cells].ravel()] = V.dofmap.list[:n_cells].ravel()
-    x = mesh.geometry.x[nodes]
-    values = u.x.array.reshape(-1, 3)[node_dof[nodes]]
-    parts = [mesh.comm.gather(p, root=0) for p in (x, values)]
-    if mesh.comm.rank != 0:
-        return None, None
-    return tuple(np.concatenate(p) for p in parts)
 
 
 def nice_scale(raw: float) -> float:
@@ -54,8 +34,7 @@ def joint_states(model) -> dict:
     """The joint points of `model` (all ranks, on every rank): coordinates (n, gdim) [m], state
     names (n,) ('stick', 'slip', 'open'; 'closed' for joints without strength) and joint tags.
     Collective."""
-    from rockjoint._rockjoint.constitutive import Status
-    from rockjoint.fem_coupling import ShearState
+    from ..fem_coupling import ShearState  # the FE stack is optional: imported when drawing
     state = model.solution.gather_joints()
     x = np.asarray(state["coordinates"], dtype=float).reshape(-1, model.gdim)
     if "shear_state" in state:
@@ -101,7 +80,6 @@ def joint_segments(x: np.ndarray, labels: np.ndarray, tags: np.ndarray, u_at):
 def _vertex_displacement(tri: np.ndarray, u: np.ndarray):
     """u at a point (mean over the mesh vertices at that place: on a joint, the mid-plane of its
     two faces), as a function of points (n, 2); nearest vertex."""
-    from scipy.spatial import cKDTree
     xy = tri.reshape(-1, 2)
     key, inverse = np.unique(np.round(xy, 9), axis=0, return_inverse=True)
     inverse = inverse.ravel()
@@ -117,7 +95,7 @@ def draw(models: dict, scene, path: str) -> list:
     2D: filled triangles with block outlines; 3D: the boundary faces of the deformed mesh, and
     for a tunnel the section through the opening. Joints by state in every 2D view and section.
     Collective; rank 0 writes `path`."""
-    from rockjoint.fem_coupling.output import gather_triangles
+    from ..fem_coupling.output import gather_triangles, section_triangles  # FE stack: optional
     if any(m.degree != 1 for m in models.values()):
         return []
     geometry = scene.data["geometry"]
@@ -148,7 +126,7 @@ def draw(models: dict, scene, path: str) -> list:
 
 
 def _pyplot():
-    import matplotlib
+    import matplotlib  # slow to import: only when a picture is drawn
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     return plt
@@ -169,7 +147,7 @@ def _view_box(plt, opening):
 
 def _field(ax, tri, u, scale, top, joints, limits=None):
     """|u| on the deformed triangles, block outlines, joints by state (legend of those drawn)."""
-    from matplotlib.collections import LineCollection, PolyCollection
+    from matplotlib.collections import LineCollection, PolyCollection  # slow: only when drawing
     mag = np.linalg.norm(u, axis=2).mean(axis=1) * 1e3
     # edges in the face colour: no white seams between filled triangles
     polys = PolyCollection(tri + scale * u, array=mag, cmap="viridis", edgecolors="face",
@@ -259,49 +237,14 @@ def _outline(tri: np.ndarray, u: np.ndarray, scale: float) -> np.ndarray:
     return moved[single | split]
 
 
-def section_triangles(u, y: float):
-    """The section of a 3D P1 displacement's mesh by the plane y = `y`, across a tunnel whose axis
-    is y (meshes.tunnel_section: the 2D section's (x, y) are (x, z) in 3D), gathered on rank 0:
-    triangles (n, 3, 2) [m] in section coordinates (x, z), u at their corners (n, 3, 3) [m] (linear
-    in each tetrahedron, so exact for P1). None elsewhere. Collective."""
-    V = u.function_space
-    mesh = V.mesh
-    n_cells = mesh.topology.index_map(3).size_local
-    x = mesh.geometry.x[mesh.geometry.dofmaps[0][:n_cells]]          # (cells, 4, 3)
-    values = u.x.array.reshape(-1, 3)[V.dofmap.list[:n_cells]]      # P1: dof i on vertex i
-    x = x[:, :, [0, 2, 1]]                      # (x, z) in the plane, y across it
-    values = values[:, :, [0, 2, 1]]
-    d = x[:, :, 2] - y
-    cut = (d.min(axis=1) < 0) & (d.max(axis=1) > 0)
-    tris, us = [], []
-    for xc, uc, dc in zip(x[cut], values[cut], d[cut]):
-        points, at = [], []
-        for i, j in ((0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)):
-            if (dc[i] < 0) != (dc[j] < 0):
-                w = dc[i] / (dc[i] - dc[j])
-                points.append(xc[i, :2] + w * (xc[j, :2] - xc[i, :2]))
-                at.append(uc[i] + w * (uc[j] - uc[i]))
-        points, at = np.array(points), np.array(at)
-        order = np.argsort(np.arctan2(*(points - points.mean(axis=0)).T[::-1]))
-        points, at = points[order], at[order]
-        for k in range(1, len(points) - 1):   # a triangle or a quadrilateral: fan triangles
-            tris.append(points[[0, k, k + 1]])
-            us.append(at[[0, k, k + 1]])
-    parts = [np.array(tris).reshape(-1, 3, 2), np.array(us).reshape(-1, 3, 3)]
-    gathered = [mesh.comm.gather(p, root=0) for p in parts]
-    if mesh.comm.rank != 0:
-        return None, None
-    tri, us = (np.concatenate(g) for g in gathered)
-    return tri, us[:, :, [0, 2, 1]]             # u back in (x, y, z)
-
-
 def _draw_3d(models: dict, scene, path: str, sections, joints) -> list:
+    from ..fem_coupling.output import boundary_triangles  # FE stack: optional
     gathered = {label: boundary_triangles(m.u) for label, m in models.items()}
     if models["jointed"].comm.rank != 0:
         return [path]
     plt = _pyplot()
-    from matplotlib import cm, colors
-    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+    from matplotlib import cm, colors  # slow to import: only when drawing
+    from mpl_toolkits.mplot3d.art3d import Poly3DCollection  # matplotlib's: only when drawing
     top = max(float(np.linalg.norm(u, axis=2).max()) for _, u in gathered.values()) or 1.0
     norm = colors.Normalize(0.0, top * 1e3)
     rows = 2 if sections else 1

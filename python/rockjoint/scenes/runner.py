@@ -1,4 +1,5 @@
-"""`rockjoint run`: a scene through the staged API, jointed beside intact on the same mesh.
+"""`rockjoint run`: a scene through the staged API, jointed beside intact on the same mesh (the
+FE stack is needed: rockjoint.scenes imports this module only when a scene is run).
 
 Outputs go to a fresh temporary folder beside the output folder and are moved in only when the
 whole run succeeded, so a failed run leaves nothing half-written.
@@ -12,9 +13,17 @@ import shutil
 import tempfile
 import time
 
-import numpy as np
+import math
 
-from . import geometry, joint_laws, planner, statics
+import numpy as np
+from mpi4py import MPI
+
+from ..continuum import EquivalentContinuum, JointSet
+from ..joint import joint_behaviours
+from ..fem_coupling import (ConvergenceError, InSituStress, JointedRockModel, LinearSolveError, NewtonOptions,
+                            ShearState, distribute)
+from ..meshes.joint_geometry import unit_normal
+from . import geometry, joint_laws, pictures, planner, statics
 
 log = logging.getLogger("rockjoint.scenes")
 
@@ -59,7 +68,6 @@ def _components(text: str):
 
 def build_model(scene, plan, dmesh, tables: dict | None):
     """A JointedRockModel of the scene on `dmesh` (tables None: the intact model)."""
-    from rockjoint.fem_coupling import InSituStress, JointedRockModel, NewtonOptions
     d = scene.data
     rock = d["rock"]
     blocks = dmesh.names["blocks"].values()
@@ -97,11 +105,7 @@ def smeared_material(scene, plan, tables: dict, rocks: dict) -> dict:
     """{block: EquivalentContinuum} with the plan's smeared sets in every block's rock: each set's
     normal and spacing from the scene, its behaviour (law table, shear model, residual stiffness,
     strength if the plan lets it slip) built as for its discrete joints."""
-    import math
-    from rockjoint import _rockjoint
-    from rockjoint.fem_coupling.behaviours import joint_behaviours
-    from rockjoint.meshes.joint_geometry import unit_normal
-    d, c = scene.data, _rockjoint.continuum
+    d = scene.data
     sets = []
     for s in d["geometry"]["joint_sets"]:
         if s["name"] not in plan.smeared:
@@ -112,25 +116,12 @@ def smeared_material(scene, plan, tables: dict, rocks: dict) -> dict:
                                      residual_stiffness=j["residual_stiffness"],
                                      strength=_strength(j["strength"]) if plan.slip.get(s["name"]) else None)[0]
         normal = unit_normal(math.degrees(s["dip"]), math.degrees(s["dip_direction"]), plan.dimension)
-        sets.append(c.JointSet([float(x) for x in normal], s["spacing"], behaviour, label=s["name"]))
-    return {b: c.EquivalentContinuum(plan.dimension, e, nu, sets) for b, (e, nu) in rocks.items()}
+        sets.append(JointSet([float(x) for x in normal], s["spacing"], behaviour, label=s["name"]))
+    return {b: EquivalentContinuum(plan.dimension, e, nu, sets) for b, (e, nu) in rocks.items()}
 
 
 def _strength(spec):
     return None if spec is None else dict(spec)
-
-
-def mean_normal_displacement(model, boundary: str) -> float:
-    """∫ u·n ds / ∫ ds over a named boundary, n the rock's outward normal [m] (into an opening:
-    its convergence; on a loaded face: its outward movement)."""
-    import ufl
-    from dolfinx import fem
-    from rockjoint.fem_coupling.distributed_mesh import lookup
-    ds = ufl.Measure("ds", domain=model.mesh, subdomain_data=model.dmesh.boundaries)(
-        lookup(model.dmesh, "boundaries", boundary))
-    n = ufl.FacetNormal(model.mesh)
-    area = model.comm.allreduce(fem.assemble_scalar(fem.form(fem.Constant(model.mesh, 1.0) * ds)))
-    return model.comm.allreduce(fem.assemble_scalar(fem.form(ufl.dot(model.u, n) * ds))) / area
 
 
 def smeared_state(scene, plan, model) -> dict:
@@ -140,11 +131,10 @@ def smeared_state(scene, plan, model) -> dict:
     sm = getattr(model, "smeared", None)
     if sm is None:
         return {}
-    from mpi4py import MPI
     dim = sm.gdim
     local = {}
     for tag, pts in sm.points.items():
-        voigt = np.asarray(sm._committed[tag][0]).reshape(-1, sm.nv)
+        voigt = sm.committed_stress(tag)
         sigma = np.zeros((voigt.shape[0], dim, dim))
         pairs = [(0, 0), (1, 1), (0, 1)] if dim == 2 else [(0, 0), (1, 1), (2, 2), (1, 2), (0, 2), (0, 1)]
         for k, (a, b) in enumerate(pairs):
@@ -176,7 +166,7 @@ def smeared_state(scene, plan, model) -> dict:
 
 
 def _record(scene, plan, model, label, stage, solution) -> StageRow:
-    monitors = {b: np.r_[model.boundary_mean_displacement(b), mean_normal_displacement(model, b)]
+    monitors = {b: np.r_[model.boundary_mean_displacement(b), model.mean_normal_displacement(b)]
                 for b in scene.data["outputs"]["monitor"]}
     u = model.u.x.array.reshape(-1, model.gdim)
     umax = model.comm.allreduce(float(np.linalg.norm(u, axis=1).max(initial=0.0)), op=_max())
@@ -192,7 +182,6 @@ def _record(scene, plan, model, label, stage, solution) -> StageRow:
             row.per_set[str(name)] = (float(np.max(state["closure"][at])),
                                       float(np.max(state["normal_stress"][at])))
         if "shear_state" in state:
-            from rockjoint.fem_coupling import ShearState
             slip = np.asarray(state["shear_state"]) == int(ShearState.slip)
             row.slipping = int(np.sum(slip))
             row.slipping_per_set = {str(name): int(np.sum(slip[sets == name])) for name in np.unique(sets)}
@@ -224,7 +213,6 @@ def beyond_tables(rows, tables: dict) -> list:
 
 
 def _max():
-    from mpi4py import MPI
     return MPI.MAX
 
 
@@ -260,9 +248,6 @@ def run_stages(scene, plan, model, label: str, current: list | None = None) -> l
 
 def run_scene(scene, plan, output: str, comm=None, reduced: bool = False) -> SceneResult:
     """Run the scene as planned; write its outputs to `output` (created; files replaced)."""
-    from mpi4py import MPI
-    from rockjoint.fem_coupling import distribute
-    from . import pictures
     comm = comm or MPI.COMM_WORLD
     t0 = time.perf_counter()
     tables = joint_laws.tables(scene, plan, reduced)
@@ -310,7 +295,6 @@ def run_scene(scene, plan, output: str, comm=None, reduced: bool = False) -> Sce
 def _run_explained(scene, plan, model, label, jm, comm) -> list:
     """run_stages; a failed solve of the jointed model that statics.diagnose explains (a joint
     set that opens, slides or carries no shear and frees a block) becomes NoEquilibrium."""
-    from rockjoint.fem_coupling import ConvergenceError, LinearSolveError
     current = [None]
     try:
         return run_stages(scene, plan, model, label, current)

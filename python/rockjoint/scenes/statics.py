@@ -39,9 +39,7 @@ def _face_points(g, face: str, dim: int) -> np.ndarray:
 
 def _extent(g, dim: int) -> np.ndarray:
     """The box the scene fills, axes x, y(, z); a 3D tunnel is (width, length, height)."""
-    if g["kind"] == "tunnel" and dim == 3:
-        return np.array([g["width"], g["length"], g["height"]])
-    return planner._extent(g)[:dim]
+    return geometry.extent(g)[:dim]
 
 
 def _modes(x: np.ndarray, dim: int) -> np.ndarray:
@@ -148,12 +146,12 @@ def set_failures(scene, plan, stage: str) -> dict:
     dim = plan.dimension
     s = _stage_stress(scene, stage)
     out = {}
-    for js in planner._joint_sets(scene):
+    for js in geometry.joint_sets(scene):
         name = js["name"]
         if name in plan.smeared:
             continue
         j = d["joints"][name]
-        n = planner._normal(js, dim)
+        n = geometry.set_normal(js, dim)
         t = s @ n
         sn = -float(t @ n)                     # compression positive
         tau = float(np.linalg.norm(t + sn * n))
