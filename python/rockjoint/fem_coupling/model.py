@@ -82,8 +82,9 @@ class JointedRockModel:
         and the slip is committed only when a load step converges.
     plane: "strain" (default) or "stress" in 2D; None (or "3D") in 3D.
     quadrature: "nodal" (default; smooth tractions for stiff joints) or "gauss".
-    linear_solver: "auto" (MUMPS up to 60k dofs in 2D and 5k in 3D, else CG+GAMG; see
-        linear_solver.DIRECT_DOF_LIMIT), "direct" or "iterative".
+    linear_solver: "auto" (MUMPS up to 60k dofs in 2D and 5k in 3D, 250k in 2D for a
+        non-symmetric Jacobian, else CG/GMRES + GAMG; see linear_solver.DIRECT_DOF_LIMIT),
+        "direct", "lagged" (a factorisation reused as GMRES's preconditioner) or "iterative".
     newton: NewtonOptions (tolerances, closure limit, load-step control, verbosity).
     petsc_options: {option: value} for the linear solver's KSP/PC, without the leading dash
         (DOLFINx convention, e.g. {"ksp_type": "gmres", "pc_type": "hypre"}); applied after the
@@ -272,10 +273,11 @@ class JointedRockModel:
                                       quadrature=self.quadrature)
         imap, bs = self.V.dofmap.index_map, self.V.dofmap.index_map_bs
         num_dofs = imap.size_global * bs
-        kind = resolve_kind(self.linear_solver_kind, num_dofs, self.gdim)
+        symmetric = symmetric_tangent(self.behaviours) and self.smeared is None
+        kind = resolve_kind(self.linear_solver_kind, num_dofs, self.gdim, symmetric)
         nullspace = rigid_body_modes(self.V) if kind == "iterative" else None
         self.linear_solver = LinearSolver(self.comm, kind, num_dofs=num_dofs, near_nullspace=nullspace,
-                                          symmetric=symmetric_tangent(self.behaviours) and self.smeared is None,
+                                          symmetric=symmetric,
                                           options=self.petsc_options, prefix=self.options_prefix)
         self.num_dofs = num_dofs
         self.timings["setup"] += time.perf_counter() - t0
