@@ -47,6 +47,15 @@ from rockjoint import meshes  # noqa: E402
 from rockjoint.fem_coupling import InSituStress, JointedRockModel, distribute  # noqa: E402
 from rockjoint.fem_coupling.probe import probe  # noqa: E402
 
+#: Before issue 31 (main at dbd35c6: joint pieces inside the opening removed after the fragment,
+#: GMRES + GAMG for the 90k-dof slip Jacobian), measured with this bench on 2026-11-27 03:37 UTC
+#: (one run, load average 5.9): phase -> (wall, CPU) [s]; CPU None where not timed
+BEFORE = {"geometry (OCC cut, fragment, synchronize, remove)": (21.98, 17.00),
+          "gmsh mesh generation": (11.12, 5.54), "rest of meshing": (4.99, 2.58),
+          "distribution": (1.37, 0.68), "linear solves (31, GMRES + GAMG, 1180 Krylov iterations)": (64.67, None),
+          "Jacobian + residual + Newton overhead": (1.83, None), "total (set-up + solve)": (106.99, 60.74)}
+BEFORE_ANSWER = (24.6708, 17.0147, 31)   # crown, sidewall [mm], Newton iterations (main, same day)
+
 #: PETSc events of the linear solves (their time is inside the model's linear_solve timing)
 EVENTS = ("MatLUFactorSym", "MatLUFactorNum", "MatCholFctrSym", "MatCholFctrNum", "MatSolve", "KSPSolve",
           "KSPGMRESOrthog", "MatMult")
@@ -167,12 +176,18 @@ def discrete_tunnel(spacing=bc.SPACING, mesh_size=1.5, **options):
     intact.excavate(meshes.OPENING, fraction_left=bc.SUPPORT)
     intact.solve(load_steps=5, name="excavation")
     solves = intact.counts["linear_solve"]
-    return dict(crown=-u[0, 1], sidewall=-u[1, 0], cpu=cpu, wall=wall, phases=phases, events=events,
+    return dict(factor_entries=(factor_entries(model), factor_entries(intact)),crown=-u[0, 1], sidewall=-u[1, 0], cpu=cpu, wall=wall, phases=phases, events=events,
                 cells=comm.allreduce(model.mesh.topology.index_map(2).size_local), dofs=model.num_dofs,
                 excavation_wall=exc_wall, excavation_iterations=res.newton_iterations,
                 newton_iterations=sum(s.newton_iterations for s in model.stages),
                 intact_solve=intact.timings["linear_solve"] / max(solves, 1), intact_solves=solves,
                 intact_dofs=intact.num_dofs)
+
+
+def factor_entries(model):
+    """Entries in the model's last LU / Cholesky factors (MUMPS INFOG(29)), None if iterative."""
+    solver = model.linear_solver
+    return None if solver.kind == "iterative" else solver.ksp.getPC().getFactorMatrix().getMumpsInfog(29)
 
 
 def run_demo(module_name, argv):
@@ -267,7 +282,29 @@ def main():
             f"excavation's {best['excavation_iterations']} iterations took {best['excavation_wall']:.2f} s, "
             f"{per_iteration:.3f} s each; the intact model ({best['intact_dofs']} dofs, Cholesky) "
             f"{best['intact_solve']:.3f} s per solve (mean of {best['intact_solves']}): ratio "
-            f"**{per_iteration / best['intact_solve']:.2f}**.\n"]
+            f"**{per_iteration / best['intact_solve']:.2f}**. Entries in the factors (MUMPS INFOG(29)): "
+            f"jointed {best['factor_entries'][0]}, intact {best['factor_entries'][1]}.\n"]
+    t, n = best["phases"].model_split()
+    after = {"geometry (OCC cut, fragment, synchronize, remove)": "geometry (OCC)",
+             "gmsh mesh generation": "gmsh generate"}
+    rows = ["| phase | before: wall / CPU [s] | after: wall / CPU [s] |", "|---|---|---|"]
+    ph = best["phases"]
+    rest = (ph.wall["meshing total"] - ph.wall["geometry (OCC)"] - ph.wall["gmsh generate"],
+            ph.cpu["meshing total"] - ph.cpu["geometry (OCC)"] - ph.cpu["gmsh generate"])
+    now = [(ph.wall[after[k]], ph.cpu[after[k]]) for k in after] + \
+          [rest, (ph.wall["distribution"], ph.cpu["distribution"]), (t["linear_solve"], None),
+           (t["newton"] - t["linear_solve"], None), (best["wall"], best["cpu"])]
+    def fmt(w, c):
+        return f"{w:.2f} / {'-' if c is None else f'{c:.2f}'}"
+    for (name, before), now_ in zip(BEFORE.items(), now):
+        rows.append(f"| {name} | {fmt(*before)} | {fmt(*now_)} |")
+    text += ["### Before and after issue 31\n",
+             f"Before: main at dbd35c6 through this bench (one run, load average 5.9), crown "
+             f"{BEFORE_ANSWER[0]:.4f} mm, sidewall {BEFORE_ANSWER[1]:.4f} mm, {BEFORE_ANSWER[2]} Newton iterations "
+             f"(bench/results/continuum.md, 2026-11-26: 64.71 s on a quieter machine). After: the fastest run above, "
+             f"{n['linear_solve']} MUMPS LU solves; crown {100 * (best['crown'] * 1e3 / BEFORE_ANSWER[0] - 1):+.3f} %, "
+             f"sidewall {100 * (best['sidewall'] * 1e3 / BEFORE_ANSWER[1] - 1):+.3f} % against before.\n",
+             "\n".join(rows), ""]
     if not args.no_demos:
         for module, argv in (("demo_tunnel", []), ("demo_blocky_rock_mass", [])):
             with tempfile.TemporaryDirectory() as tmp:
