@@ -186,9 +186,10 @@ def run_blocky(kind, spacing, mesh_size):
             elapsed, cells, iterations)
 
 
-def jointed_model(dmesh, smeared_sets):
+def jointed_model(dmesh, smeared_sets, **options):
     """The model of a section: its discrete joints with the bench's joint behaviour, every block
-    carrying `smeared_sets` (continuum.JointSet list) as an equivalent continuum."""
+    carrying `smeared_sets` (continuum.JointSet list) as an equivalent continuum; options: more
+    JointedRockModel arguments (the linear solver's, bench_tunnel_profile.py)."""
     names = list(dmesh.names["joints"].values())
     law = rockjoint.BartonBandis(KNI, VM)
     continuum = ({name: EquivalentContinuum(2, YOUNG, POISSON, smeared_sets)
@@ -196,7 +197,7 @@ def jointed_model(dmesh, smeared_sets):
     return JointedRockModel(dmesh, rock=(YOUNG, POISSON), joints={n: law for n in names},
                             shear_stiffness=KS, residual_stiffness=KR if names else 0.0, plane="strain",
                             strength={"model": "coulomb", "friction_angle": FRICTION} if names else None,
-                            newton=NewtonOptions(verbose=False, rtol=RTOL), continuum=continuum)
+                            newton=NewtonOptions(verbose=False, rtol=RTOL), continuum=continuum, **options)
 
 
 def attempt(kind, spacing, mesh_size, scene="tunnel"):

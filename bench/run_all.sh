@@ -19,3 +19,4 @@ echo "== FE speed against error"; /usr/bin/python3 bench/bench_fe_speed_vs_error
 echo "== exact contact (BEM)"; /usr/bin/python3 bench/bench_contact.py --repeat 5
 echo "== accuracy ladder"; /usr/bin/python3 bench/bench_accuracy_ladder.py
 echo "== equivalent continuum"; /usr/bin/python3 bench/bench_continuum.py
+echo "== slipping-joint profile"; /usr/bin/python3 bench/bench_tunnel_profile.py --repeat 3

@@ -27,6 +27,7 @@ A, SIGMA_V, K0, E, NU = 4.0, 2700.0 * 9.81 * 300.0, 0.5, 50e9, 0.25
 NAMES = ("right sidewall", "crown", "left sidewall", "invert")
 # Coulomb strength of granite joints: basic friction φ_b = 30° (Barton & Choubey 1977), c = 0
 FRICTION_ANGLE, COHESION = math.radians(30.0), 0.0
+RESIDUAL_STIFFNESS = 1e6  # [Pa/m], demos/scenes/tunnel.yaml
 STICK, SLIP, OPEN = 0, 1, 2  # rockjoint.fem_coupling.ShearState values
 
 
@@ -101,7 +102,14 @@ def test_slipping_points_lie_on_the_coulomb_line_and_sticking_points_inside(seri
     strength = COHESION + sn * math.tan(FRICTION_ANGLE)  # [Pa], compression +
     slips, sticks = shear_state == SLIP, shear_state == STICK
     assert slips.any() and sticks.any()
-    assert tau[slips] == pytest.approx(strength[slips], rel=1e-9)
+    # A slipping point is on the Coulomb line, or on the residual floor (docs/joint-strength.md,
+    # return mapping step 3): where σ_n is so close to zero that the strength has fallen below the
+    # residual spring's traction k_r e, it carries k_r e >= the strength, with e, the elastic shear
+    # jump, well under 1 mm: under 1 kPa (one point of 36 on the mesh of 2026-11-27, σ_n = 30 Pa).
+    on_line = np.isclose(tau, strength, rtol=1e-9, atol=0.0)
+    on_floor = (tau >= strength * (1 - 1e-9)) & (tau <= RESIDUAL_STIFFNESS * 1e-3)
+    assert np.all((on_line | on_floor)[slips]), (tau[slips], strength[slips])
+    assert np.count_nonzero(on_line[slips]) >= 0.9 * np.count_nonzero(slips)
     assert np.all(tau[sticks] <= strength[sticks] * (1 + 1e-9))
     assert np.all(sn[shear_state == OPEN] <= 0.0)  # an open joint carries no compression
 

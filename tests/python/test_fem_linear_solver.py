@@ -112,10 +112,75 @@ def test_auto_picks_mumps_only_below_the_measured_crossover():
     assert resolve_kind("auto", DIRECT_DOF_LIMIT[3], 3) == "direct"
     assert resolve_kind("auto", DIRECT_DOF_LIMIT[3] + 1, 3) == "iterative"
     assert resolve_kind("direct", 10**7, 3) == "direct"
-    with pytest.raises(ValueError, match="'direct', 'iterative' or 'auto'"):
+    assert resolve_kind("lagged", 10**7, 3) == "lagged"
+    with pytest.raises(ValueError, match="'direct', 'lagged', 'iterative' or 'auto'"):
         resolve_kind("lu", 100, 2)
     with pytest.raises(ValueError, match="gdim must be 2 or 3"):
         resolve_kind("auto", 100, 1)
+
+
+def test_auto_keeps_a_nonsymmetric_2d_jacobian_on_mumps_further():
+    """bench/results/tunnel_profile.md: on the 90k-dof slipping tunnel (a non-symmetric Jacobian)
+    MUMPS LU took 0.22 s CPU per solve against 1.04 s for GMRES + GAMG."""
+    from rockjoint.fem_coupling.linear_solver import (DIRECT_DOF_LIMIT, DIRECT_DOF_LIMIT_NONSYMMETRIC,
+                                                      resolve_kind)
+
+    assert resolve_kind("auto", 90_052, 2, symmetric=True) == "iterative"
+    assert resolve_kind("auto", 90_052, 2, symmetric=False) == "direct"
+    assert resolve_kind("auto", DIRECT_DOF_LIMIT_NONSYMMETRIC[2] + 1, 2, symmetric=False) == "iterative"
+    assert resolve_kind("auto", DIRECT_DOF_LIMIT[3] + 1, 3, symmetric=False) == "iterative"
+
+
+def convection_diffusion(n, velocity):
+    """The 5-point Laplacian on an n x n grid plus an upwind convection term `velocity` along x:
+    non-symmetric, same nonzero pattern for every velocity."""
+    A = laplacian(n)
+    for i in range(n):
+        for j in range(n):
+            k = i * n + j
+            A.setValue(k, k, velocity, addv=PETSc.InsertMode.ADD_VALUES)
+            if j > 0:
+                A.setValue(k, k - 1, -velocity, addv=PETSc.InsertMode.ADD_VALUES)
+    A.assemble()
+    return A
+
+
+def test_lagged_factorisation_preconditions_gmres_on_a_changed_nonsymmetric_matrix():
+    """kind "lagged": the LU of the first matrix is kept while GMRES converges fast with it; the
+    answer is held to the true residual whatever the preconditioner."""
+    solver = LinearSolver(PETSc.COMM_SELF, "lagged", symmetric=False, rtol=1e-10)
+    A = convection_diffusion(30, 0.5)
+    b = A.createVecLeft()
+    b.set(1.0)
+    x = b.duplicate()
+    assert solver.solve(A, b, x) <= 2 and solver.setups == 1   # an exact LU: one or two iterations
+    assert residual(A, x, b) <= 1e-10
+    convection_diffusion(30, 0.55).copy(A, structure=PETSc.Mat.Structure.SAME_NONZERO_PATTERN)
+    x.set(0.0)
+    its = solver.solve(A, b, x)
+    assert solver.setups == 1 and 2 < its <= 20 and residual(A, x, b) <= 1e-10
+    # a looser tolerance (inexact Newton) stops earlier on the same lagged factorisation
+    x.set(0.0)
+    assert solver.solve(A, b, x, rtol=1e-4) < its and 1e-10 < residual(A, x, b) <= 1e-4
+    assert solver.setups == 1
+
+
+def test_direct_solver_factorises_symbolically_once_for_a_fixed_pattern():
+    """PETSc reuses MUMPS's analysis (symbolic factorisation) while the nonzero pattern stays:
+    new values give a numeric factorisation only (PETSc's event log counts them)."""
+    PETSc.Log.begin()
+    sym, num = PETSc.Log.Event("MatLUFactorSym"), PETSc.Log.Event("MatLUFactorNum")
+    before = sym.getPerfInfo()["count"], num.getPerfInfo()["count"]
+    solver = LinearSolver(PETSc.COMM_SELF, "direct", symmetric=False)
+    A = convection_diffusion(20, 0.5)
+    b = A.createVecLeft()
+    b.set(1.0)
+    x = b.duplicate()
+    for velocity in (0.6, 0.7, 0.8):
+        convection_diffusion(20, velocity).copy(A, structure=PETSc.Mat.Structure.SAME_NONZERO_PATTERN)
+        solver.solve(A, b, x)
+        assert residual(A, x, b) <= 1e-12
+    assert (sym.getPerfInfo()["count"] - before[0], num.getPerfInfo()["count"] - before[1]) == (1, 3)
 
 
 def gamg_view(solver, tmp_path):

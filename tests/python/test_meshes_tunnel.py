@@ -172,6 +172,92 @@ def test_horseshoe_area_and_perimeter(invert_depth):
     assert segment_lengths(m.points, m.joint_facets_minus[sel]).sum() == pytest.approx(W - 2 * a, rel=1e-9)
 
 
+def horseshoe_chord_of_vertical(shoe, d):
+    """Closed form: the length of the vertical line x = x_c + d (|d| < a) inside a horseshoe, from
+    its invert (flat at y_c - h_w, or the arc of radius R = (a² + s²)/2s through the wall feet) to
+    its crown y_c + sqrt(a² - d²)."""
+    (_, yc), a, hw, s = shoe.centre, shoe.radius, shoe.wall_height, shoe.invert_depth
+    bottom = yc - hw
+    if s:
+        R = (a * a + s * s) / (2 * s)
+        bottom = yc - hw - s + R - math.sqrt(R * R - d * d)
+    return yc + math.sqrt(a * a - d * d) - bottom
+
+
+@pytest.mark.parametrize("invert_depth", [0.0, 1.5])
+def test_crossing_of_the_openings_is_the_closed_form_chord(invert_depth):
+    """crossing(a, b) gives the parameters where the line a + t (b - a) enters and leaves the
+    opening: the chords of a circle (2 sqrt(a² - h²)) and of a horseshoe's walls, crown and invert."""
+    lo, hi = CIRCLE.crossing((0.0, 15.0), (40.0, 15.0))
+    assert 40.0 * (hi - lo) == pytest.approx(2 * math.sqrt(A * A - 1.0), rel=1e-13)
+    assert 40.0 * lo == pytest.approx(20.0 - math.sqrt(A * A - 1.0), rel=1e-13)
+    assert CIRCLE.crossing((0.0, 18.5), (40.0, 18.5)) is None   # misses
+    assert CIRCLE.crossing((0.0, 18.0), (40.0, 18.0)) is None   # tangent: touches only
+    shoe = HorseshoeOpening(CENTRE, 3.0, 2.5, invert_depth)
+    for y, chord in ((13.0, 6.0), (15.5, 2 * math.sqrt(9.0 - 1.5 ** 2))):   # walls, crown
+        lo, hi = shoe.crossing((0.0, y), (40.0, y))
+        assert 40.0 * (hi - lo) == pytest.approx(chord, rel=1e-13)
+    lo, hi = shoe.crossing((21.0, 0.0), (21.0, 30.0))   # through the invert and the crown
+    assert 30.0 * (hi - lo) == pytest.approx(horseshoe_chord_of_vertical(shoe, 1.0), rel=1e-13)
+    assert shoe.crossing((0.0, 17.5), (40.0, 17.5)) is None
+    assert shoe.crossing((24.0, 0.0), (24.0, 30.0)) is None
+
+
+@pytest.mark.parametrize("invert_depth", [0.0, 1.5])
+def test_joints_crossing_a_horseshoe_end_on_its_outline(invert_depth):
+    """Joints through the walls, the crown and the invert are cut where they meet the outline:
+    each keeps the section's width (height) minus the closed-form chord, ends on two nodes of the
+    opening's boundary, and none of its facets lies inside the opening."""
+    shoe = HorseshoeOpening(CENTRE, 3.0, 2.5, invert_depth)
+    joints = [Joint((20.0, 13.0), 0.0, 90.0, "walls"), Joint((20.0, 15.5), 0.0, 90.0, "crown"),
+              Joint((21.0, 14.0), 90.0, 90.0, "vertical")]
+    m = tunnel_section(W, H, shoe, joints, mesh_size=3.0, opening_mesh_size=0.3, joint_mesh_size=1.0)
+    check_split_invariants(m)
+    assert m.names["joints"] == {100: "walls", 101: "crown", 102: "vertical"}
+    assert sorted(m.names["boundaries"].values()) == ["bottom", "left", "opening", "right", "top"]
+    expected = {"walls": W - 6.0, "crown": W - 2 * math.sqrt(9.0 - 1.5 ** 2),
+                "vertical": H - horseshoe_chord_of_vertical(shoe, 1.0)}
+    on_opening = set(m.glue[boundary(m, "opening")].ravel().tolist())
+    for name, length in expected.items():
+        facets = m.joint_facets_minus[m.joint_tags == m.tag("joints", name)]
+        assert segment_lengths(m.points, facets).sum() == pytest.approx(length, rel=1e-9), name
+        assert len(on_opening & set(m.glue[facets].ravel().tolist())) == 2, name
+    # no joint facet inside the horseshoe (its midpoint strictly inside by more than round-off)
+    x, y = m.points[m.joint_facets_minus].mean(axis=1).T
+    (xc, yc), a, hw = CENTRE, 3.0, 2.5
+    inside_walls = (np.abs(x - xc) < a - 1e-9) & (y < yc) & (y > yc - hw + 1e-9)
+    inside_crown = (y >= yc) & (np.hypot(x - xc, y - yc) < a - 1e-9)
+    assert not np.any(inside_walls | inside_crown)
+
+
+def test_dense_joint_sets_leave_nothing_inside_the_opening():
+    """Many joints crossing a circular opening (the continuum bench's sets at s = 1 m): every joint
+    keeps its closed-form length (the section's chord minus the opening's), its tag (100 + its
+    index) and its name; no joint facet lies inside the opening; the joint nodes on the opening lie
+    on the circle."""
+    width, centre, radius = 40.0, (20.0, 20.0), 4.0
+    bedding = joint_set(1.0, 0.0, 90.0, origin=(20.0, 0.65), count=40, name="bedding")
+    normal = np.array([math.sin(math.radians(60.0)), math.cos(math.radians(60.0))])
+    origin = np.asarray(centre) - 13.65 * 2.0 * normal
+    cross = joint_set(2.0, 60.0, 90.0, origin=tuple(origin), count=28, name="cross")
+    joints = [j for j in bedding + cross
+              if clipped_length3(j.point, j.dip, centre, radius, width, width) > 0.0]
+    m = tunnel_section(width, width, CircularOpening(centre, radius), joints, mesh_size=1.5,
+                       opening_mesh_size=0.375, opening_refine_distance=8.0)
+    check_split_invariants(m)
+    assert m.names["joints"] == {100 + i: j.name for i, j in enumerate(joints)}
+    for j in joints:
+        facets = m.joint_facets_minus[m.joint_tags == m.tag("joints", j.name)]
+        assert segment_lengths(m.points, facets).sum() == pytest.approx(
+            clipped_length3(j.point, j.dip, centre, radius, width, width), rel=1e-9), j.name
+    mid = m.points[m.joint_facets_minus].mean(axis=1)
+    assert np.linalg.norm(mid - centre, axis=1).min() > radius * (1 - 1e-3)
+    ends = np.array(sorted(set(m.glue[m.joint_facets_minus].ravel().tolist())
+                           & set(m.glue[boundary(m, "opening")].ravel().tolist())))
+    assert ends.size > 0
+    assert np.allclose(np.linalg.norm(m.points[ends] - centre, axis=1), radius, rtol=1e-9)
+
+
 # ---- bad input ----------------------------------------------------------------------------------
 @pytest.mark.parametrize("opening, message", [
     (CircularOpening((2.0, 14.0), 4.0), "not inside the section"),

@@ -1,7 +1,11 @@
 """Linear solves of the Newton steps, with failures detected instead of accepted.
 
 "direct": MUMPS Cholesky (symmetric Jacobian) or LU with null-pivot detection (ICNTL(24) = 1)
-— for small problems.
+— for small problems (and 2D problems with a non-symmetric Jacobian up to 250k dofs).
+"lagged": the same factorisation, kept as the preconditioner of CG / GMRES over several Newton
+iterations (rebuilt as GAMG is, below): fewer factorisations, each iteration a few triangular
+solves (bench/results/tunnel_profile.md: no faster than "direct" on the 2D tunnel, where a
+triangular solve costs 1/8 of a factorisation and inexact solves add Newton iterations).
 "iterative": CG + GAMG with a rigid-body near-nullspace (per block through the aggregates,
 see rigid_body_modes) — for large ones (SPD
 Jacobians: constant shear stiffness). "auto" picks direct up to DIRECT_DOF_LIMIT[gdim] dofs.
@@ -71,34 +75,45 @@ def rigid_body_modes(V):
 #: stay within 1.3x up to 93k dofs, so the direct solver (robust, exact null-pivot detection) is
 #: kept there. Below 5k dofs in 3D both take well under 0.1 s.
 DIRECT_DOF_LIMIT = {2: 60_000, 3: 5_000}
+#: The same for a non-symmetric Jacobian (slipping joints, smeared sets): GMRES + GAMG does much
+#: worse on it than CG + GAMG on an SPD one. Measured on the continuum bench's discrete tunnel
+#: (90k dofs, 2D, bench/results/tunnel_profile.md): MUMPS LU 0.22 s CPU per solve (18 Newton
+#: iterations), GMRES + GAMG 1.04 s (35 Krylov iterations per solve, 31 Newton iterations). A 2D
+#: factorisation grows like N^1.5, GAMG like N: the 4.7x would last to ~2M dofs; 250k keeps the
+#: factors to a few hundred MB (13.8M entries at 90k dofs).
+DIRECT_DOF_LIMIT_NONSYMMETRIC = {2: 250_000, 3: 5_000}
+#: Krylov iterations allowed with a lagged factorisation before it is given up and rebuilt
+LAGGED_MAX_ITERATIONS = 50
 
 
-def resolve_kind(kind: str, num_dofs: int, gdim: int) -> str:
-    """"direct" or "iterative" for a requested kind ("direct", "iterative" or "auto")."""
-    if kind not in ("direct", "iterative", "auto"):
-        raise ValueError(f"linear solver must be 'direct', 'iterative' or 'auto', got {kind!r}")
+def resolve_kind(kind: str, num_dofs: int, gdim: int, symmetric: bool = True) -> str:
+    """"direct", "lagged" or "iterative" for a requested kind ("direct", "lagged", "iterative" or
+    "auto"; "auto" by the Jacobian's symmetry and DIRECT_DOF_LIMIT(_NONSYMMETRIC))."""
+    if kind not in ("direct", "lagged", "iterative", "auto"):
+        raise ValueError(f"linear solver must be 'direct', 'lagged', 'iterative' or 'auto', got {kind!r}")
     if kind != "auto":
         return kind
     if gdim not in DIRECT_DOF_LIMIT:
         raise ValueError(f"linear solver: gdim must be 2 or 3, got {gdim!r}")
-    return "direct" if num_dofs <= DIRECT_DOF_LIMIT[gdim] else "iterative"
+    limit = (DIRECT_DOF_LIMIT if symmetric else DIRECT_DOF_LIMIT_NONSYMMETRIC)[gdim]
+    return "direct" if num_dofs <= limit else "iterative"
 
 
 class LinearSolver:
-    """KSP wrapper. kind: "direct" | "iterative" | "auto" (resolved with `resolve_kind`)."""
+    """KSP wrapper. kind: "direct" | "lagged" | "iterative" | "auto" (resolved with `resolve_kind`)."""
 
     def __init__(self, comm, kind: str = "auto", num_dofs: int = 0, gdim: int = 3,
                  near_nullspace=None, rtol: float = 1e-10, check_tolerance: float = 1e-6,
                  symmetric: bool = True, options: dict | None = None, prefix: str | None = None,
                  reuse_preconditioner: bool = True, rebuild_factor: float = 2.0):
-        kind = resolve_kind(kind, num_dofs, gdim)
+        kind = resolve_kind(kind, num_dofs, gdim, symmetric)
         self.kind = kind
         self.symmetric = symmetric
         self.check_tolerance = check_tolerance
         self.near_nullspace = near_nullspace
         if not rebuild_factor >= 1.0:
             raise ValueError(f"rebuild_factor must be >= 1, got {rebuild_factor!r}")
-        self.reuse_preconditioner = bool(reuse_preconditioner) and kind == "iterative"
+        self.reuse_preconditioner = bool(reuse_preconditioner) and kind in ("iterative", "lagged")
         self.rebuild_factor = float(rebuild_factor)
         self._fresh_rate = None   # Krylov iterations per decade of the solve that built the PC
         #: number of preconditioner set-ups (GAMG hierarchies, factorisations)
@@ -114,8 +129,19 @@ class LinearSolver:
         # "options you set that were not used" warning (issue 30, item 7).
         self._flagged = None   # the option flag() put into the database, until unflag()
         internal = {}
-        if kind == "direct":
-            self.ksp.setType("preonly")
+        if kind in ("direct", "lagged"):
+            if kind == "direct":
+                self.ksp.setType("preonly")
+            else:
+                # The factorisation of an earlier Jacobian preconditions a Krylov method on the
+                # current one (lagged as GAMG is, see the module docstring): one numeric
+                # factorisation serves several Newton iterations, each then costing a few
+                # triangular solves. Right preconditioning and the true residual's norm, as below.
+                self.ksp.setType("cg" if symmetric else "gmres")
+                self.ksp.setTolerances(rtol=rtol, atol=1e-50, max_it=LAGGED_MAX_ITERATIONS)
+                if not symmetric:
+                    self.ksp.setPCSide(PETSc.PC.Side.RIGHT)
+                self.ksp.setNormType(PETSc.KSP.NormType.UNPRECONDITIONED)
             pc = self.ksp.getPC()
             # A symmetric Jacobian (constant joint shear stiffness) is factorised by Cholesky
             # (LDLᵀ), about half the work and memory of LU.
@@ -160,7 +186,7 @@ class LinearSolver:
         solver's); raise LinearSolveError on any detected failure. Returns the Krylov iterations."""
         if rtol is not None and not (np.isfinite(rtol) and 0.0 < rtol < 1.0):
             raise ValueError(f"linear solve: rtol must be in (0, 1), got {rtol!r}")
-        if self.kind == "iterative":
+        if self.kind != "direct":
             self.ksp.setTolerances(rtol=self.rtol if rtol is None else max(rtol, self.rtol))
         reuse = self.reuse_preconditioner and self._fresh_rate is not None
         try:
@@ -173,7 +199,7 @@ class LinearSolver:
             return self._solve(A, b, x, False)
         finally:
             # Others may drive this KSP (SNES): leave it at its own tolerance, rebuilding its PC.
-            if self.kind == "iterative":
+            if self.kind != "direct":
                 self.ksp.setTolerances(rtol=self.rtol)
             self.ksp.getPC().setReusePreconditioner(False)
 
@@ -186,7 +212,7 @@ class LinearSolver:
         ignored). unflag() removes it again."""
         if self.near_nullspace is not None and self.kind == "iterative":
             A.setNearNullSpace(self.near_nullspace)
-        if self.kind == "direct" and self.symmetric:
+        if self.kind != "iterative" and self.symmetric:
             A.setOption(PETSc.Mat.Option.SYMMETRIC, True)  # MUMPS Cholesky requires the flag
         pc = self.ksp.getPC()
         key = f"{self._prefix}mat_mumps_icntl_24"
@@ -219,7 +245,7 @@ class LinearSolver:
         if reason < 0:
             raise LinearSolveError(f"linear solve diverged ({self.kind}, KSP reason {reason}); the "
                                    f"Jacobian may be singular (a block held only by an open joint?)")
-        if self.kind == "direct":
+        if self.kind != "iterative":
             F = self.ksp.getPC().getFactorMatrix()
             infog1, null_pivots = F.getMumpsInfog(1), F.getMumpsInfog(28)
             if infog1 < 0:
@@ -236,7 +262,7 @@ class LinearSolver:
         # A loose solve (inexact Newton) is held to 10 x its own tolerance, and must reduce ||b||.
         limit = self.check_tolerance
         rtol = self.ksp.getTolerances()[0]
-        if self.kind == "iterative" and 10.0 * rtol > limit:
+        if self.kind != "direct" and 10.0 * rtol > limit:
             if self.ksp.getNormType() == PETSc.KSP.NormType.UNPRECONDITIONED:
                 limit = min(10.0 * rtol, 0.99)
             else:

@@ -25,9 +25,10 @@ from .snes_problem import JointedSNESProblem
 
 def make_linear_solver(V, kind: str, options: dict, prefix: str | None, symmetric: bool) -> LinearSolver:
     """The linear solver of a displacement space V: kind "auto" (linear_solver.resolve_kind by
-    the number of dofs), "direct" or "iterative" (with V's rigid-body modes for GAMG)."""
+    the number of dofs and the Jacobian's symmetry), "direct", "lagged" or "iterative" (with V's
+    rigid-body modes for GAMG)."""
     num_dofs = V.dofmap.index_map.size_global * V.dofmap.index_map_bs
-    kind = resolve_kind(kind, num_dofs, V.mesh.geometry.dim)
+    kind = resolve_kind(kind, num_dofs, V.mesh.geometry.dim, symmetric)
     return LinearSolver(V.mesh.comm, kind, num_dofs=num_dofs,
                         near_nullspace=rigid_body_modes(V) if kind == "iterative" else None,
                         symmetric=symmetric, options=options, prefix=prefix)

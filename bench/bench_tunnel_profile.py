@@ -1,0 +1,320 @@
+#!/usr/bin/env python3
+"""Where the time of a slipping-joint analysis goes: the continuum bench's discrete tunnel, and the
+tunnel and blocky demos, split by phase.
+
+Cases:
+  discrete tunnel  bench/bench_continuum.py's discrete model at s = 0.25 m (40 m x 40 m section,
+                   a = 4 m, bedding every 0.25 m and a cross set dipping 60° every 0.5 m, all
+                   slipping, Coulomb φ = 30°; far-field element 1.5 m): in situ, then excavation in
+                   5 load steps. Beside it, in the same run, the intact model on the same
+                   triangles (tunnel_section(..., intact=True): one block, the joint traces kept as
+                   mesh lines): its linear solves are the yardstick of the Newton iterations.
+  demos            demos/demo_tunnel.py and demos/demo_blocky_rock_mass.py at their default sizes
+                   (every model each demo solves, summed).
+Phases (CPU seconds of this process, and wall seconds): geometry (OCC: cut, fragment,
+synchronize), gmsh mesh generation, node splitting (meshes.build_jointed_mesh), the rest of
+tunnel_section / jointed_block (entity queries, element extraction), distribution (DOLFINx mesh,
+joint pairing), table building (rockjoint.tabulate), model set-up (forms, the joint coupling, the
+linear solver), bulk assembly, joint residual, Jacobian (bulk copy + joint tangent), linear solves
+(with PETSc's own event log: symbolic and numeric factorisations, triangular solves, Krylov
+iterations), and the Python overhead of Newton (its time minus residual, Jacobian and solves).
+Load-step cuts are the failed load steps the adaptive stepping halved.
+
+Usage:  bash scripts/run.sh python3 bench/bench_tunnel_profile.py [--repeat N] [--no-demos]
+Writes bench/results/tunnel_profile.md (and prints it).
+"""
+from __future__ import annotations
+
+import argparse
+import contextlib
+import logging
+import os
+import sys
+import tempfile
+import time
+from collections import defaultdict
+
+import numpy as np
+from petsc4py import PETSc
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+sys.path.insert(0, os.path.join(HERE, "..", "demos"))
+
+import bench_continuum as bc  # noqa: E402
+import rockjoint  # noqa: E402
+from rockjoint import meshes  # noqa: E402
+from rockjoint.fem_coupling import InSituStress, JointedRockModel, distribute  # noqa: E402
+from rockjoint.fem_coupling.probe import probe  # noqa: E402
+
+#: Before issue 31 (main at dbd35c6: joint pieces inside the opening removed after the fragment,
+#: GMRES + GAMG for the 90k-dof slip Jacobian), measured with this bench on 2026-11-27 03:37 UTC
+#: (one run, load average 5.9): phase -> (wall, CPU) [s]; CPU None where not timed
+BEFORE = {"geometry (OCC cut, fragment, synchronize, remove)": (21.98, 17.00),
+          "gmsh mesh generation": (11.12, 5.54), "rest of meshing": (4.99, 2.58),
+          "distribution": (1.37, 0.68), "linear solves (31, GMRES + GAMG, 1180 Krylov iterations)": (64.67, None),
+          "Jacobian + residual + Newton overhead": (1.83, None), "total (set-up + solve)": (106.99, 60.74)}
+BEFORE_ANSWER = (24.6708, 17.0147, 31)   # crown, sidewall [mm], Newton iterations (main, same day)
+
+#: PETSc events of the linear solves (their time is inside the model's linear_solve timing)
+EVENTS = ("MatLUFactorSym", "MatLUFactorNum", "MatCholFctrSym", "MatCholFctrNum", "MatSolve", "KSPSolve",
+          "KSPGMRESOrthog", "MatMult")
+
+
+class Phases:
+    """CPU and wall seconds per phase, from timers wrapped around library calls while active."""
+
+    def __init__(self):
+        self.cpu, self.wall, self.calls = defaultdict(float), defaultdict(float), defaultdict(int)
+        self.models = []   # every JointedRockModel made while active
+        self._depth = defaultdict(int)
+
+    def _timed(self, f, label):
+        def timed(*args, **kwargs):
+            self._depth[label] += 1
+            c, w = time.process_time(), time.perf_counter()
+            try:
+                return f(*args, **kwargs)
+            finally:
+                self._depth[label] -= 1
+                if self._depth[label] == 0:   # recursion (e.g. a wrapper calling itself) counted once
+                    self.cpu[label] += time.process_time() - c
+                    self.wall[label] += time.perf_counter() - w
+                    self.calls[label] += 1
+        return timed
+
+    @contextlib.contextmanager
+    def active(self):
+        import gmsh
+        from rockjoint.meshes import builders
+        from rockjoint.fem_coupling import model as model_module
+        targets = [(gmsh.model.occ, n, "geometry (OCC)") for n in ("cut", "fragment", "synchronize", "remove")]
+        targets += [(gmsh.model.mesh, "generate", "gmsh generate"),
+                    (builders, "build_jointed_mesh", "node splitting"),
+                    (meshes, "tunnel_section", "meshing total"), (meshes, "jointed_block", "meshing total"),
+                    (rockjoint, "tabulate", "table building")]
+        for module in (bc, sys.modules.get("demo_tunnel"), sys.modules.get("demo_blocky_rock_mass")):
+            if module is not None:
+                for name, label in (("distribute", "distribution"), ("tabulate", "table building")):
+                    if hasattr(module, name):
+                        targets.append((module, name, label))
+        saved = [(obj, name, getattr(obj, name)) for obj, name, _ in targets]
+        for obj, name, label in targets:
+            setattr(obj, name, self._timed(getattr(obj, name), label))
+        init = model_module.JointedRockModel.__init__
+
+        def register(model, *args, **kwargs):
+            init(model, *args, **kwargs)
+            self.models.append(model)
+        model_module.JointedRockModel.__init__ = register
+        try:
+            yield self
+        finally:
+            model_module.JointedRockModel.__init__ = init
+            for obj, name, f in saved:
+                setattr(obj, name, f)
+
+    def model_split(self):
+        """{phase: wall seconds} summed over the models made while active, and the counts."""
+        t, n = defaultdict(float), defaultdict(int)
+        for m in self.models:
+            for k, v in m.timings.items():
+                t[k] += v
+            for k, v in m.counts.items():
+                n[k] += v
+            reports = [r for s in m.stages for r in s.reports]
+            n["newton_iterations"] += sum(r.iterations for r in reports)
+            n["load_step_cuts"] += sum(not r.converged for r in reports)
+            n["krylov"] += sum(i for r in reports for i in r.linear_iterations if i is not None)
+        return t, n
+
+
+def petsc_events():
+    """{event: (count, seconds)} of PETSc's log so far."""
+    return {e: (int(p["count"]), float(p["time"])) for e in EVENTS
+            for p in [PETSc.Log.Event(e).getPerfInfo()]}
+
+
+def tunnel_model(dmesh, **options):
+    """bench_continuum's tunnel model (discrete joints, or none on an intact mesh), in situ applied;
+    options: more JointedRockModel arguments (linear_solver, petsc_options)."""
+    model = bc.jointed_model(dmesh, None, **options)
+    for side, component in (("left", "x"), ("right", "x"), ("bottom", "y"), ("top", "y")):
+        model.fix(side, component)
+    model.set_in_situ_stress(InSituStress.uniform([[-bc.K0 * bc.SIGMA_V, 0.0], [0.0, -bc.SIGMA_V]]))
+    return model
+
+
+def discrete_tunnel(spacing=bc.SPACING, mesh_size=1.5, **options):
+    """Set-up + solve of the discrete tunnel with the phase split, and the intact model on the
+    same triangles solved in the same run. Returns a dict of the numbers."""
+    comm = bc.COMM
+    joints = bc.discrete_sets(spacing, ("bedding", "cross"))
+    opening = meshes.CircularOpening(bc.CENTRE, bc.RADIUS)
+    sizes = dict(mesh_size=mesh_size, opening_mesh_size=mesh_size / 4, opening_refine_distance=2 * bc.RADIUS)
+    phases = Phases()
+    before = petsc_events()
+    c0, w0 = time.process_time(), time.perf_counter()
+    with phases.active():
+        jm = meshes.tunnel_section(bc.WIDTH, bc.WIDTH, opening, joints, comm=comm, **sizes)
+        model = tunnel_model(bc.distribute(jm, comm), **options)
+        model.solve(name="in-situ")
+        model.excavate(meshes.OPENING, fraction_left=bc.SUPPORT)
+        t_exc = time.perf_counter()
+        res = model.solve(load_steps=5, name="excavation")
+        exc_wall = time.perf_counter() - t_exc
+    cpu, wall = time.process_time() - c0, time.perf_counter() - w0
+    after = petsc_events()
+    events = {e: (after[e][0] - before[e][0], after[e][1] - before[e][1]) for e in EVENTS}
+    h = mesh_size / 4
+    r = bc.RADIUS + h * h / (4 * bc.RADIUS)
+    u = probe(model.u, np.array([[bc.CENTRE[0], bc.CENTRE[1] + r], [bc.CENTRE[0] + r, bc.CENTRE[1]]]))
+    # The yardstick: one linear solve of the intact model on the same triangles (Cholesky of K).
+    intact = tunnel_model(distribute(meshes.tunnel_section(bc.WIDTH, bc.WIDTH, opening, joints, intact=True,
+                                                           comm=comm, **sizes), comm))
+    intact.solve(name="in-situ")
+    intact.excavate(meshes.OPENING, fraction_left=bc.SUPPORT)
+    intact.solve(load_steps=5, name="excavation")
+    solves = intact.counts["linear_solve"]
+    return dict(factor_entries=(factor_entries(model), factor_entries(intact)),crown=-u[0, 1], sidewall=-u[1, 0], cpu=cpu, wall=wall, phases=phases, events=events,
+                cells=comm.allreduce(model.mesh.topology.index_map(2).size_local), dofs=model.num_dofs,
+                excavation_wall=exc_wall, excavation_iterations=res.newton_iterations,
+                newton_iterations=sum(s.newton_iterations for s in model.stages),
+                intact_solve=intact.timings["linear_solve"] / max(solves, 1), intact_solves=solves,
+                intact_dofs=intact.num_dofs)
+
+
+def factor_entries(model):
+    """Entries in the model's last LU / Cholesky factors (MUMPS INFOG(29)), None if iterative."""
+    solver = model.linear_solver
+    return None if solver.kind == "iterative" else solver.ksp.getPC().getFactorMatrix().getMumpsInfog(29)
+
+
+def run_demo(module_name, argv):
+    """Run a demo's main() with the phase timers; returns (Phases, cpu, wall)."""
+    import importlib
+    demo = importlib.import_module(module_name)
+    phases = Phases()
+    saved = sys.argv
+    sys.argv = [module_name + ".py"] + argv
+    c0, w0 = time.process_time(), time.perf_counter()
+    try:
+        with phases.active():
+            demo.main()
+    finally:
+        sys.argv = saved
+    return phases, time.process_time() - c0, time.perf_counter() - w0
+
+
+def split_rows(phases, cpu, wall):
+    """Markdown rows of the phase split (wall seconds; CPU seconds where this process timed them)."""
+    t, n = phases.model_split()
+    mesh_total = phases.wall["meshing total"]
+    inner = sum(phases.wall[k] for k in ("geometry (OCC)", "gmsh generate", "node splitting"))
+    newton_parts = t["interface_residual"] + t["interface_jacobian"] + t["matrix_copy"] + t["linear_solve"]
+    its = max(n["newton_iterations"], 1)
+    rows = [("geometry (OCC cut, fragment, synchronize)", phases.wall["geometry (OCC)"], phases.cpu["geometry (OCC)"],
+             phases.calls["geometry (OCC)"]),
+            ("gmsh mesh generation", phases.wall["gmsh generate"], phases.cpu["gmsh generate"],
+             phases.calls["gmsh generate"]),
+            ("node splitting", phases.wall["node splitting"], phases.cpu["node splitting"],
+             phases.calls["node splitting"]),
+            ("rest of meshing (entity queries, elements)", mesh_total - inner,
+             phases.cpu["meshing total"] - sum(phases.cpu[k] for k in ("geometry (OCC)", "gmsh generate",
+                                                                       "node splitting")), ""),
+            ("distribution (DOLFINx mesh, joint pairs)", phases.wall["distribution"], phases.cpu["distribution"],
+             phases.calls["distribution"]),
+            ("table building (rockjoint.tabulate)", phases.wall["table building"], phases.cpu["table building"],
+             phases.calls["table building"]),
+            ("model set-up (forms, coupling, solver)", t["setup"], None, len(phases.models)),
+            ("bulk assembly", t["bulk_assembly"], None, ""),
+            ("joint residual", t["interface_residual"], None, n["interface_residual"]),
+            ("Jacobian (bulk copy + joint tangent)", t["interface_jacobian"] + t["matrix_copy"], None,
+             n["interface_jacobian"]),
+            ("linear solves", t["linear_solve"], None, n["linear_solve"]),
+            ("Newton's Python overhead", t["newton"] - newton_parts, None,
+             f"{1e3 * (t['newton'] - newton_parts) / its:.1f} ms/iteration"),
+            ("total (set-up + solve)", wall, cpu, "")]
+    lines = ["| phase | wall [s] | CPU [s] | calls / note |", "|---|---|---|---|"]
+    for name, w, c, k in rows:
+        lines.append(f"| {name} | {w:.2f} | {'' if c is None else f'{c:.2f}'} | {k} |")
+    lines.append(f"\nNewton iterations {n['newton_iterations']}, load-step cuts {n['load_step_cuts']}, "
+                 f"Krylov iterations {n['krylov']}, non-finite residuals {n['nonfinite_residuals']}.")
+    return "\n".join(lines)
+
+
+def events_rows(events):
+    lines = ["| PETSc event | count | seconds |", "|---|---|---|"]
+    for e, (count, seconds) in events.items():
+        if count:
+            lines.append(f"| {e} | {count} | {seconds:.2f} |")
+    return "\n".join(lines)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--repeat", type=int, default=3, help="runs of the discrete tunnel (the minimum is kept)")
+    parser.add_argument("--no-demos", action="store_true")
+    args = parser.parse_args()
+    logging.basicConfig(level=logging.WARNING)
+    PETSc.Log.begin()
+    runs = []
+    for k in range(args.repeat):
+        out = discrete_tunnel()
+        runs.append(out)
+        print(f"discrete tunnel run {k + 1}: {out['wall']:.2f} s wall, {out['cpu']:.2f} s CPU, crown "
+              f"{out['crown'] * 1e3:.4f} mm, sidewall {out['sidewall'] * 1e3:.4f} mm, "
+              f"{out['newton_iterations']} Newton iterations", flush=True)
+    best = min(runs, key=lambda r: r["wall"])
+    per_iteration = best["excavation_wall"] / best["excavation_iterations"]
+    load = os.getloadavg()
+    text = ["# Where the time of a slipping-joint analysis goes\n", __doc__.split("Usage:")[0],
+            f"Reproduce: `bash scripts/run.sh python3 bench/bench_tunnel_profile.py --repeat {args.repeat}`. "
+            f"Produced {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}, 1 rank, {os.cpu_count()} CPUs "
+            f"shared with other jobs: load average {load[0]:.1f} / {load[1]:.1f} / {load[2]:.1f} (1/5/15 min) at "
+            "the end. Wall times are inflated by that load; CPU times are this process's own.\n",
+            f"## Discrete tunnel (s = {bc.SPACING} m): {best['cells']} cells, {best['dofs']} dofs\n",
+            f"Runs (wall / CPU [s]): " + ", ".join(f"{r['wall']:.2f} / {r['cpu']:.2f}" for r in runs)
+            + f"; the fastest is split below. Crown {best['crown'] * 1e3:.4f} mm, sidewall "
+            f"{best['sidewall'] * 1e3:.4f} mm, {best['newton_iterations']} Newton iterations.\n",
+            split_rows(best["phases"], best["cpu"], best["wall"]), "", events_rows(best["events"]), "",
+            f"Newton iteration against one intact linear solve on the same triangles (same run): the "
+            f"excavation's {best['excavation_iterations']} iterations took {best['excavation_wall']:.2f} s, "
+            f"{per_iteration:.3f} s each; the intact model ({best['intact_dofs']} dofs, Cholesky) "
+            f"{best['intact_solve']:.3f} s per solve (mean of {best['intact_solves']}): ratio "
+            f"**{per_iteration / best['intact_solve']:.2f}**. Entries in the factors (MUMPS INFOG(29)): "
+            f"jointed {best['factor_entries'][0]}, intact {best['factor_entries'][1]}.\n"]
+    t, n = best["phases"].model_split()
+    after = {"geometry (OCC cut, fragment, synchronize, remove)": "geometry (OCC)",
+             "gmsh mesh generation": "gmsh generate"}
+    rows = ["| phase | before: wall / CPU [s] | after: wall / CPU [s] |", "|---|---|---|"]
+    ph = best["phases"]
+    rest = (ph.wall["meshing total"] - ph.wall["geometry (OCC)"] - ph.wall["gmsh generate"],
+            ph.cpu["meshing total"] - ph.cpu["geometry (OCC)"] - ph.cpu["gmsh generate"])
+    now = [(ph.wall[after[k]], ph.cpu[after[k]]) for k in after] + \
+          [rest, (ph.wall["distribution"], ph.cpu["distribution"]), (t["linear_solve"], None),
+           (t["newton"] - t["linear_solve"], None), (best["wall"], best["cpu"])]
+    def fmt(w, c):
+        return f"{w:.2f} / {'-' if c is None else f'{c:.2f}'}"
+    for (name, before), now_ in zip(BEFORE.items(), now):
+        rows.append(f"| {name} | {fmt(*before)} | {fmt(*now_)} |")
+    text += ["### Before and after issue 31\n",
+             f"Before: main at dbd35c6 through this bench (one run, load average 5.9), crown "
+             f"{BEFORE_ANSWER[0]:.4f} mm, sidewall {BEFORE_ANSWER[1]:.4f} mm, {BEFORE_ANSWER[2]} Newton iterations "
+             f"(bench/results/continuum.md, 2026-11-26: 64.71 s on a quieter machine). After: the fastest run above, "
+             f"{n['linear_solve']} MUMPS LU solves; crown {100 * (best['crown'] * 1e3 / BEFORE_ANSWER[0] - 1):+.3f} %, "
+             f"sidewall {100 * (best['sidewall'] * 1e3 / BEFORE_ANSWER[1] - 1):+.3f} % against before.\n",
+             "\n".join(rows), ""]
+    if not args.no_demos:
+        for module, argv in (("demo_tunnel", []), ("demo_blocky_rock_mass", [])):
+            with tempfile.TemporaryDirectory() as tmp:
+                phases, cpu, wall = run_demo(module, argv + ["--output", tmp])
+            text += [f"## demos/{module}.py (default sizes, every model it solves)\n", split_rows(phases, cpu, wall), ""]
+    report = "\n".join(text)
+    print(report)
+    with open(os.path.join(HERE, "results", "tunnel_profile.md"), "w") as f:
+        f.write(report + "\n")
+
+
+if __name__ == "__main__":
+    main()
