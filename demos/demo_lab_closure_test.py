@@ -13,7 +13,7 @@ intact cube is loaded beside it; the joint closure is the difference of the two 
 1983), which is exactly what the closure law describes (docs/theory.md §0).
 
 Outputs (in DIR, default the working directory): lab_closure_test.png (the curves),
-lab_closure_test_table.txt (the numbers), granite_tang_jiao.rjt (the tabulated law),
+lab_closure_test_table.txt (the numbers), granite_joint.rjt (the tabulated law),
 jointed_cube.xdmf / intact_cube.xdmf (+ joint state) for ParaView, and the load cycle:
 lab_closure_cycle.png / lab_closure_cycle.txt (load to 30 MPa, unload, reload: the walls'
 elastic-plastic contact beside the FE cube whose joint follows a hysteretic law).
@@ -32,6 +32,7 @@ from rockjoint import contact, meshes
 from rockjoint import topography as topo
 from rockjoint.fem_coupling import JointedRockModel, NewtonOptions, distribute
 from rockjoint.scenes import load_scene, make_plan
+from rockjoint.scenes.joint_laws import topography_law
 
 COMM = MPI.COMM_WORLD
 quiet_compiler_logging()  # DOLFINx's form compiler would log every command
@@ -44,6 +45,7 @@ quiet_compiler_logging()  # DOLFINx's form compiler would log every command
 SCENE = load_scene(os.path.join(os.path.dirname(os.path.abspath(__file__)), "scenes",
                                 "lab_closure_test.yaml"))
 PLAN = make_plan(SCENE)
+PLAN_LAW = next(c for c in PLAN.choices if c.topic == "law of joint")
 SIDE = SCENE["geometry"]["size"][0]                              # cube side [m]
 SCAN = SCENE["joints"]["joint"]["law"]["topography"]             # the synthetic scan
 SPACING = SCAN["spacing"]                                        # scan interval [m]
@@ -81,7 +83,6 @@ def joint_law():
         f"σ_s = {params.summit_height_std * 1e3:.4f} mm, E* = {params.composite_modulus * 1e-9:.2f} GPa")
     # GW, Tang, Tang & Jiao and the recommended law, seated at the measured first contact.
     laws = rockjoint.laws.laws_from_topography(params, summits=analysis, empirical=False)
-    say(f"  law for the FE model: {rockjoint.laws.RECOMMENDATION}")
     # The yardstick: exact elastic contact of the same walls (boundary elements, periodic: the
     # synthetic walls are one period), the reference every law is measured against.
     bem = contact.closure_curve(joint.aperture, params.composite_modulus, STRESS_LEVELS)
@@ -132,8 +133,11 @@ def main():
 
     # %% 1. Micro: the joint's roughness gives its closure law ------------------------------
     laws, params, closure_bem, aperture = joint_law()
-    law = laws[PLAN.laws["joint"]].law   # the planner's pick within the scene's error budget
-    table = tabulated(law, out("granite_tang_jiao.rjt"))
+    # The planner's pick within the scene's error budget, of least total cost: a law of the
+    # family above, or the exact contact curve of the walls (BEM) as a table.
+    say(f"planner: {PLAN_LAW.choice}; {PLAN_LAW.why}; cost {PLAN_LAW.cost}")
+    law = topography_law(PLAN.laws["joint"], SCAN, int(round(SIDE / SPACING)), YOUNG, POISSON, TABLE_STRESS)
+    table = tabulated(law, out("granite_joint.rjt"))
 
     # %% 2. Macro: jointed and intact cubes under the same loads ----------------------------
     jointed_mesh, intact_mesh = cube(True, args.mesh_size), cube(False, args.mesh_size)
@@ -172,7 +176,7 @@ def main():
                     f"{YOUNG * 1e-9:g} GPa, nu = {POISSON}; eta = {params.summit_density * 1e-6:.4f} "
                     f"1/mm2, beta = {params.summit_radius * 1e3:.4f} mm, sigma_s = "
                     f"{params.summit_height_std * 1e3:.5f} mm\n# " + "\n".join(lines) + "\n")
-        plot(rows, laws, out("lab_closure_test.png"))
+        plot(rows, laws, table, out("lab_closure_test.png"))
     say(f"wrote {out('lab_closure_test.png')}, {out('lab_closure_test_table.txt')}, "
         f"{out('jointed_cube.xdmf')}, {out('intact_cube.xdmf')}")
 
@@ -243,7 +247,7 @@ def load_cycle(aperture, params, table, jointed_mesh, intact_mesh, out):
         plt.close(fig)
 
 
-def plot(rows, laws, path):
+def plot(rows, laws, table_law, path):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -256,6 +260,9 @@ def plot(rows, laws, path):
     a1.set_title("150 mm granite cube, uniaxial compression")
     a1.legend()
     stress = np.linspace(0.0, MAX_STRESS, 200)[1:]
+    if PLAN.laws["joint"] not in laws:   # the FE model's table is the exact contact curve
+        a2.plot(np.r_[0, table_law.closure_at_stress(stress)] * 1e3, np.r_[0, stress] * 1e-6, "-",
+                lw=2.5, label="exact contact (BEM) as a table: the FE model's law")
     for key, named in laws.items():
         # At A/A0 ~ 1 % Tang & Jiao lies on Tang (theory §5): thin lines, the FE law thick.
         in_fe = key == PLAN.laws["joint"]

@@ -32,6 +32,7 @@ from typing import Dict, List, Optional, Sequence
 
 import numpy as np
 
+from . import law_registry
 from ._rockjoint import calibration as _cpp_calibration
 from ._rockjoint.constitutive import ClosureLaw
 from .law_registry import Quantity, calibratable, get
@@ -380,7 +381,7 @@ def calibrate(curve: ClosureCurve, law: str, *, composite_modulus: Optional[floa
     spec, given = calibration_spec(law, composite_modulus, summit_radius, "calibrate")
     if not spec.needs and (composite_modulus is not None or summit_radius is not None):
         log.info("calibrate: %s ignores composite_modulus/summit_radius", law)
-    options = {"distribution": distribution, "base": base or "tang_substrate", "variant": variant,
+    options = {"distribution": distribution, "base": base or law_registry.DEFAULT_TANG_JIAO_BASE, "variant": variant,
                "base_radius": None if base_radius is None else float(base_radius)}
     given.update({k: options[k] for k in spec.options if options[k] is not None})
     offset = spec.fit_offset if fit_offset is None else bool(fit_offset)
