@@ -67,7 +67,7 @@ CYCLE = np.r_[STRESS_LEVELS, np.array([20, 10, 5, 2, 1, 0.5, 1, 5, 10, 20, 30]) 
 
 
 def joint_law():
-    """Topography → (η, β, σ_s) → Tang & Jiao over Tang's substrate law."""
+    """Topography → (η, β, σ_s) → the asperity laws, and the exact contact of the walls (BEM)."""
     # A mated pair of self-affine walls: identical above the matedness wavelength (2.5 mm, a
     # few grains), independent below it. H = 0.8 and 1 mm rms over the specimen are typical
     # of granite fractures. Deterministic for the seed.
@@ -90,7 +90,13 @@ def joint_law():
 
 
 def tabulated(law, path):
-    """Tabulate once with error control; the FE model calls the table, not the law."""
+    """Tabulate once with error control; the FE model calls the table, not the law. The exact
+    contact curve is a table already (through the BEM's points): it is used as it is."""
+    if isinstance(law, rockjoint.TabulatedLaw):
+        if COMM.rank == 0:
+            law.save(path)
+        say(f"table: the exact contact curve's own, {law.knot_count} knots (the BEM's loads); saved {path}")
+        return law
     t0 = time.perf_counter()
     table = rockjoint.tabulate(law, max_stress=TABLE_STRESS, tolerance=TOLERANCE)
     build = time.perf_counter() - t0
@@ -186,7 +192,7 @@ def main():
 
 def load_cycle(aperture, params, table, jointed_mesh, intact_mesh, out):
     """The walls' elastic-plastic contact (BEM) along CYCLE beside the FE cube whose joint follows
-    the hysteretic law: the demo's Tang & Jiao table as the virgin curve with unloading branches of
+    the hysteretic law: the demo's joint table (the planner's pick) as the virgin curve with unloading branches of
     the laboratory's middle values (Bandis et al. 1983: permanent closure r = 0.25 of the largest,
     unloading 3 times stiffer at the top; docs/hysteresis.md). `rockjoint calibrate --cycles` fits
     r and m to a measured cycle instead."""
@@ -203,7 +209,7 @@ def load_cycle(aperture, params, table, jointed_mesh, intact_mesh, out):
     r = 0.25
     m = max(1.0, 3.0 * (1 - r) * top * table.normal_stiffness(top) / MAX_STRESS)   # (H4)
     law = rockjoint.NormalHysteresis(table, r, m)
-    say(f"hysteretic law: Tang & Jiao table, r = {r}, m = {m:.2f} (unloading 3 x stiffer at 30 MPa)")
+    say(f"hysteretic law: the joint's table, r = {r}, m = {m:.2f} (unloading 3 x stiffer at 30 MPa)")
     # FE: one model loaded along the path (its joint keeps its largest closure point by point);
     # the intact cube is linear: its settlement scales with σ.
     jointed = JointedRockModel(jointed_mesh, rock=(YOUNG, POISSON), joints={"joint": law},
@@ -236,7 +242,7 @@ def load_cycle(aperture, params, table, jointed_mesh, intact_mesh, out):
         ax.plot(rows[:, 3] * 1e3, rows[:, 0] * 1e-6, "o-", mfc="none", color="k",
                 label=f"exact contact, elastic-plastic walls (H = {HARDNESS * 1e-9:g} GPa)")
         ax.plot(rows[:, 2] * 1e3, rows[:, 0] * 1e-6, "-", color="C0", lw=2,
-                label="hysteretic law (Tang & Jiao + laboratory branches)")
+                label="hysteretic law (the joint's table + laboratory branches)")
         ax.plot(rows[:, 1] * 1e3, rows[:, 0] * 1e-6, "x", color="C3", ms=8, label="FE cube: jointed − intact")
         ax.set_xlabel("joint closure Δ [mm]")
         ax.set_ylabel("normal stress σ [MPa]")

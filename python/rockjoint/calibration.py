@@ -36,6 +36,7 @@ from . import law_registry
 from ._rockjoint import calibration as _cpp_calibration
 from ._rockjoint.constitutive import ClosureLaw
 from .law_registry import Quantity, calibratable, get
+from .tabulation import DEFAULT_TOLERANCE
 
 __all__ = ["ClosureCurve", "FittedParameter", "Calibration", "read_closure_curve",
            "calibrate", "calibratable_laws"]
@@ -300,7 +301,7 @@ class Calibration:
                          f"{self.fit.message}")
         return "\n".join(lines)
 
-    def table(self, max_stress: Optional[float] = None, tolerance: float = 1e-6):
+    def table(self, max_stress: Optional[float] = None, tolerance: float = DEFAULT_TOLERANCE):
         """The fitted law tabulated up to ``max_stress`` [Pa] (default: the curve's maximum)."""
         from .tabulation import tabulate
         top = float(max_stress if max_stress is not None else self.curve.normal_stress[-1])

@@ -373,7 +373,9 @@ class TopographyInputs:
     the seating options of the parametric laws, their height `distribution`, the Tang & Jiao
     `variant`, Tang's `substrate` options, the measured summit list (topography.empirical_summits
     of the analysis; None: not measured) and the geometric overlap curve (closure, ratio) or None.
-    `law(key)` builds each derived law once (a composed law reuses its base)."""
+    For the laws built from the walls themselves: their `aperture`, `composite_modulus` and the
+    `stresses` of the contact curve. `law(key)` builds each derived law once (a composed law
+    reuses its base)."""
 
     parameters: AsperityParameters
     seat: dict
@@ -382,6 +384,9 @@ class TopographyInputs:
     substrate: dict = dataclasses.field(default_factory=dict)
     summits: Optional[list] = None
     overlap: Optional[tuple] = None
+    aperture: object = None                 # the walls' aperture (topography.Surface), for "walls"
+    composite_modulus: Optional[float] = None   # E* [Pa], for "walls"
+    stresses: Optional[Sequence[float]] = None  # the loads of the exact contact curve [Pa]
     _built: dict = dataclasses.field(default_factory=dict, repr=False)
 
     def law(self, key: str) -> ClosureLaw:
@@ -457,6 +462,20 @@ RECOMMENDATION = (
 #: the exact contact curve of the walls (BEM, rockjoint.contact), tabulated: the planner's rung
 #: that is no parametric law (built from the walls by scenes.joint_laws.law_of_walls)
 EXACT_CONTACT = "exact_contact"
+#: its table's stiffness at zero closure, as a fraction of the secant to its first load σ1/Δ1:
+#: the walls' own onset is Hertzian (k(0+) = 0), which leaves a FE model's first linearisation
+#: at zero closure without a normal stiffness (a singular Jacobian); 1 % seats it and changes σ
+#: below the first load (1/300 of the table's top) only
+EXACT_CONTACT_SEATING = 0.01
+
+
+def _exact_contact(x: TopographyInputs) -> ClosureLaw:
+    """The walls' exact elastic contact (BEM) at x.stresses, as a table (contact.exact_elastic_law)."""
+    from . import contact
+    curve = contact.closure_curve(x.aperture, x.composite_modulus, x.stresses)
+    seating = EXACT_CONTACT_SEATING * curve.stress[0] / curve.closure[0]
+    return contact.exact_elastic_law(curve, initial_stiffness=seating)
+
 
 for _record in (
         TopographyLaw("greenwood_williamson", REGISTRY["greenwood_williamson"].label,
@@ -482,5 +501,5 @@ for _record in (
                       _tang_jiao_over("tang_substrate_empirical", geometric=True), needs="overlap"),
         TopographyLaw(EXACT_CONTACT, "exact contact of the walls (BEM), tabulated",
                       "the walls' exact elastic contact curve (rockjoint.contact, docs/contact.md) as "
-                      "a table", None, needs="walls")):
+                      "a table", _exact_contact, needs="walls")):
     register_topography_law(_record)

@@ -23,6 +23,7 @@ import numpy as np
 from ._rockjoint.constitutive import AsperityParameters, ClosureLaw
 from . import law_registry
 from .law_registry import MM, MPA, MPA_PER_MM, REGISTRY, TOPOGRAPHY_LAWS, get
+from .tabulation import DEFAULT_MAXIMUM_KNOTS, DEFAULT_TOLERANCE
 
 
 @dataclasses.dataclass(frozen=True)
@@ -108,8 +109,8 @@ def _table_options(path: str, doc: dict) -> dict:
     if ("maximum_stress_MPa" in table) == ("maximum_closure_mm" in table):
         raise ValueError(f"{path}: [table] needs exactly one of maximum_stress_MPa or "
                          "maximum_closure_mm")
-    options = {"tolerance": float(table.get("tolerance", 1e-6)),
-               "maximum_knots": int(table.get("maximum_knots", 20000))}
+    options = {"tolerance": float(table.get("tolerance", DEFAULT_TOLERANCE)),
+               "maximum_knots": int(table.get("maximum_knots", DEFAULT_MAXIMUM_KNOTS))}
     if "maximum_stress_MPa" in table:
         options["max_stress"] = float(table["maximum_stress_MPa"]) * MPA
     else:

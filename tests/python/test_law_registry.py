@@ -2,7 +2,7 @@
 to make_law, tabulation, the CLI (tabulate and calibrate, through ROCKJOINT_LAWS), calibration
 and the FE joint; every answer is checked against the toy law's closed form
 Δ(σ) = V_m (1 - exp(-σ/(k0 V_m))). And a law's identity lives in the registry only: no
-comparison with a law name elsewhere in the package, and the docs table is the registry's."""
+spelling of a law key elsewhere in the package, and the docs table is the registry's."""
 import os
 import pathlib
 import re
@@ -94,12 +94,21 @@ def test_fe_joint_takes_the_registered_law():
     assert top == pytest.approx(expected_top(2, stress, float(toy.closure(stress, K0, VM))), rel=1e-8)
 
 
-def test_law_names_are_compared_only_in_the_registry():
+def test_law_keys_are_spelled_only_in_the_registry():
+    """Any string literal of the package (parsed, not grepped: comparisons, arguments, dict keys,
+    defaults) equal to a registered law key or a topography-derived key is in law_registry.py;
+    so is any string ending like the derived keys' suffixes of old ("_empirical")."""
+    import ast
     package = pathlib.Path(SOURCE) / "python" / "rockjoint"
-    keys = [k for k in law_registry.REGISTRY if k != toy.KEY]
-    pattern = re.compile(r"(law|model|name|key|base)\s*[!=]=\s*[\"'](" + "|".join(keys) + r")[\"']")
-    offenders = [f"{p.relative_to(package)}:{i}" for p in package.rglob("*.py") if p.name != "law_registry.py"
-                 for i, line in enumerate(p.read_text(encoding="utf-8").splitlines(), 1) if pattern.search(line)]
+    keys = ({k for k in law_registry.REGISTRY if k != toy.KEY} | set(law_registry.TOPOGRAPHY_LAWS))
+    offenders = []
+    for path in package.rglob("*.py"):
+        if path.name == "law_registry.py":
+            continue
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.Constant) and isinstance(node.value, str) and (
+                    node.value in keys or node.value.endswith("_empirical")):
+                offenders.append(f"{path.relative_to(package)}:{node.lineno}: {node.value!r}")
     assert not offenders, offenders
 
 

@@ -59,17 +59,39 @@ def law_of_walls(key: str, upper, lower, young: float, poisson: float, top_stres
     """The law of rung `key` for two scanned walls (topography.Surface, mated, no offset): what
     the planner's cost of that rung counts (scenes.ladder)."""
     import rockjoint
-    from rockjoint import contact, laws
+    from rockjoint import law_registry, laws
     from rockjoint import topography as topo
     from . import ladder
     joint = topo.composite_topography(upper, lower, offset=(0, 0))
-    if key == ladder.EXACT_CONTACT:
-        e_star = rockjoint.composite_modulus(young, poisson)
-        curve = contact.closure_curve(joint.aperture, e_star, ladder.contact_stresses(top_stress))
-        return contact.exact_elastic_law(curve)
+    if law_registry.TOPOGRAPHY_LAWS[key].needs == "walls":   # the walls' own contact: no statistics
+        inputs = law_registry.TopographyInputs(None, {}, aperture=joint.aperture,
+                                               composite_modulus=rockjoint.composite_modulus(young, poisson),
+                                               stresses=ladder.contact_stresses(top_stress))
+        return inputs.law(key)
     analysis = topo.analyse(joint.composite)
     params = topo.closure_parameters(analysis, young=young, poisson=poisson)
     family = laws.laws_from_topography(params, summits=analysis, empirical=False)
     if key not in family:   # a law over the measured summits
         family = laws.laws_from_topography(params, summits=analysis)
     return family[key].law
+
+
+def tables(scene, plan, reduced: bool = False) -> dict:
+    """{joint set: tabulated law over the plan's normal-stress range} (a saved table and the
+    exact contact curve are tables already)."""
+    import rockjoint
+    from . import ladder
+    rungs = ladder.by_key()
+    out = {}
+    for name, spec in scene.data["joints"].items():
+        law = source_law(scene, name, plan, reduced)
+        rung = rungs.get(plan.laws.get(name))
+        if "table" in spec["law"] or (rung is not None and not rung.tabulation):
+            out[name] = law
+            continue
+        # laws over measured summits: a kink per summit, tabulated no tighter than the bench could
+        tolerance = max(plan.table_tolerance, rung.tightest_tolerance if rung else 0.0)
+        out[name] = rockjoint.tabulate(law, max_stress=plan.table_max_stress, tolerance=tolerance)
+        log.info("joint set %s: table of %d knots up to %.3g MPa", name, out[name].knot_count,
+                 plan.table_max_stress * 1e-6)
+    return out

@@ -1,17 +1,20 @@
 """The planner's rungs: every way rockjoint gets a joint's closure curve from its topography, with
-its error against exact elastic contact and its total cost, read from the accuracy ladder's
-result file (bench/results/accuracy_ladder.json, written by bench/bench_accuracy_ladder.py beside
-its .md: the one source of these numbers; tests/python/test_scenes_planner.py keeps the two equal).
+its error against the exact elastic contact of the walls and its total cost, read from the
+accuracy ladder's result file (bench/results/accuracy_ladder.json, written by
+bench/bench_accuracy_ladder.py beside its .md: the one source of these numbers;
+tests/python/test_scenes_planner.py keeps the two equal).
 
-Rungs: the laws of rockjoint.laws.laws_from_topography (seated at the measured first contact),
-each built from the scan's summit statistics and tabulated; and the exact contact curve of the
-walls themselves (EXACT_CONTACT: the BEM of rockjoint.contact at the scan's size, tabulated by
-contact.exact_elastic_law). Error of a law: its mean closure error against the BEM of the same
-walls (loads >= 1 MPa), the worse of the bench's granite-like and sandstone-like joints. Error of
-the exact contact: its own resolution error (the scan against the same walls at half its
-spacing) plus its table's. Total cost: the analysis of the scan and the law's table, or the BEM
-solve at the scan's size, as measured by the bench (wall time, interpolated in the number of
-scan points); the scan's synthesis is common to every rung and not counted.
+Rungs: the laws of rockjoint.laws.laws_from_topography that the ladder measures (the registry's
+topography laws with a ladder row), each built from the scan's summit statistics and tabulated;
+and the exact contact curve of the walls themselves (EXACT_CONTACT: the BEM of rockjoint.contact
+on the scan, tabulated by contact.exact_elastic_law). Error, per joint family of the bench
+(granite-like, sandstone-like; the planner takes the worse), against the walls' contact resolved
+at half the scan's spacing: for the exact contact its own resolution error (the scan's BEM
+against the same walls at half its spacing) plus its table's; for a law its mean closure error
+against the BEM of the same scan plus that resolution error (the law reproduces the scan's
+contact at best: the triangle inequality). Total cost: the scan's analysis and the law's table,
+or the BEM solve at the scan's size, as measured by the bench (wall time, interpolated log-log in
+the scan's side); the scan's synthesis is common to every rung and not counted.
 """
 from __future__ import annotations
 
@@ -64,7 +67,7 @@ def _interpolate_log(table: dict, x: float) -> float:
 class Rung:
     key: str                 # laws_from_topography key, or EXACT_CONTACT
     label: str               # the bench's words
-    errors: dict             # joint family -> error [-] (see the module's docstring)
+    errors: dict             # joint family -> error [-] against the walls at half the scan's spacing
     evaluation: float        # one σ + k evaluation [s] (0 for the exact contact: a table)
     tabulation: dict         # tolerance (str) -> seconds to tabulate (None: cannot); {} for EXACT_CONTACT
 
@@ -95,14 +98,16 @@ class Rung:
 def rungs() -> tuple:
     """Every rung, from the bench's JSON."""
     data = evidence()
+    exact = data["bem"]["families"]
+    resolution = {f: v["resolution_error_mean"] for f, v in exact.items()}
     out = []
     for key, record in law_registry.TOPOGRAPHY_LAWS.items():
         if record.ladder_row is None:
             continue
         law = data["laws"][record.ladder_row]
-        out.append(Rung(key, law["label"], {f: v["closure_error_mean"] for f, v in law["families"].items()},
+        out.append(Rung(key, law["label"], {f: v["closure_error_mean"] + resolution[f]
+                                            for f, v in law["families"].items()},
                         law["evaluation_seconds"], law["tabulation_seconds"]))
-    exact = data["bem"]["families"]
     out.append(Rung(EXACT_CONTACT, law_registry.TOPOGRAPHY_LAWS[EXACT_CONTACT].label,
                     {f: v["resolution_error_mean"] + v["table_error"] for f, v in exact.items()}, 0.0, {}))
     return tuple(out)
@@ -117,6 +122,11 @@ def contact_stresses(top: float) -> np.ndarray:
     table error is measured on those)."""
     s = np.asarray(evidence()["stresses"], dtype=float)
     return s * (top / s[-1])
+
+
+def evidence_spacing() -> float:
+    """The scan spacing [m] the bench measured the resolution error at."""
+    return float(evidence()["bem"]["spacing"])
 
 
 def cheapest_within(budget: float, points: int, tolerance: float):

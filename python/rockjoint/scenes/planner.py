@@ -294,12 +294,18 @@ def make_plan(scene, reduced: bool = False) -> Plan:
                     f"the scan's analysis and the law's table ({r.evaluation * 1e6:.2f} µs per evaluation "
                     "while tabulating)")
             errors = ", ".join(f"{e:.1%} {f}" for f, e in r.errors.items())
+            at = ladder.evidence_spacing()
+            spacing = law["topography"]["spacing"]
             choices.append(Choice(
                 f"law of {s['name']}", f"{key} ({r.label.replace('**', '')})", why=why,
                 cost=f"~{seconds:.2g} s on the {points}² scan: {what} (bench/results/accuracy_ladder.json)",
-                error=(f"closure vs exact contact at half the scan's spacing (resolution) + table: {errors}"
-                       if key == ladder.EXACT_CONTACT else f"closure vs exact contact: {errors}")
-                      + " (bench/results/accuracy_ladder.json)"))
+                error=(f"closure vs the walls' exact contact at half the scan's spacing, on the bench's joints "
+                       f"scanned at {at * 1e3:g} mm: {errors} ("
+                       + ("the BEM's resolution error + its table's" if key == ladder.EXACT_CONTACT else
+                          "the law vs the scan's BEM + the BEM's resolution error")
+                       + "; bench/results/accuracy_ladder.json)"
+                       + ("" if spacing <= at * (1 + 1e-9) else
+                          f"; this scan is coarser ({spacing * 1e3:g} mm): its resolution error is not measured"))))
             laws[s["name"]] = key
         else:
             how = next(k for k in ("model", "curve", "table") if k in law)
