@@ -39,7 +39,7 @@ import time
 import numpy as np
 
 import rockjoint
-from rockjoint import contact
+from rockjoint import contact, law_registry
 from rockjoint import topography as topo
 from rockjoint.calibration import ClosureCurve, calibrate
 from rockjoint.laws import make_law
@@ -51,6 +51,8 @@ JOINTS = {
 GRIDS = ((256, 0.5e-3), (512, 0.25e-3))
 STRESSES = np.unique(np.r_[np.geomspace(0.1e6, 1e6, 5), np.geomspace(1e6, 30e6, 11)])
 ASSESSED = STRESSES >= 1e6 * (1 - 1e-12)
+#: the product's topography laws with a row here (the planner's rungs): key -> row
+PRODUCT_ROWS = {k: r.ladder_row for k, r in law_registry.TOPOGRAPHY_LAWS.items() if r.ladder_row}
 #: tolerances whose tabulation time is measured (the planner's: FE settings 1e-2, laws over
 #: measured summits 1e-3, the tightest 1e-6) and the table's top (1.25 x the largest load)
 TABLE_TOLERANCES = (1e-2, 1e-3, 1e-6)
@@ -58,8 +60,8 @@ TABLE_TOP = 1.25 * STRESSES[-1]
 #: knots allowed when timing a table: 3x what the parametric laws need at 1e-6 (~600); a law over
 #: measured summits cannot reach 1e-6 (a kink per summit) and fails there without a minute's search
 TIMING_KNOTS = 2000
-#: the grids of the exact-contact rung's timing (points per side) beside the ladder's
-BEM_TIMING_SIDES = (64, 128, 300)
+#: the grids of the exact-contact rung's timing (points per side; scenes scan 64² to 300²)
+BEM_TIMING_SIDES = (64, 128, 200, 256, 300, 512)
 
 
 def ladder_laws(params, analysis, aperture, composite_heights, bem_closure):
@@ -172,14 +174,55 @@ def exact_contact_error(j, n, h, seed):
     return mean, worst, table, seconds
 
 
+#: the BEM's wall time in a fresh process, as a scene run pays it (FFT plans made once per grid)
+_FRESH_BEM = """
+import sys, time, numpy as np, rockjoint
+from rockjoint import contact, topography as topo
+hurst, rms, mated, young, poisson, n, h, seed = map(float, sys.argv[1:])
+stresses = np.array([float(s) for s in sys.stdin.read().split()])
+upper, lower = topo.mated_pair(topo.SelfAffineSpec(hurst, rms), (int(n), int(n)), h, mated, seed=int(seed))
+aperture = topo.composite_topography(upper, lower).aperture
+t0 = time.perf_counter()
+contact.closure_curve(aperture, rockjoint.composite_modulus(young, poisson), stresses)
+print(time.perf_counter() - t0)
+"""
+
+
+#: a law rung's work before its table (the scan's analysis, the statistics, the law), in a fresh
+#: process: what scenes.joint_laws.law_of_walls does for it
+_FRESH_LAW = """
+import sys, time, rockjoint
+from rockjoint import topography as topo
+from rockjoint.scenes import joint_laws
+key = sys.argv[1]
+hurst, rms, mated, young, poisson, n, h, seed = map(float, sys.argv[2:])
+upper, lower = topo.mated_pair(topo.SelfAffineSpec(hurst, rms), (int(n), int(n)), h, mated, seed=int(seed))
+t0 = time.perf_counter()
+joint_laws.law_of_walls(key, upper, lower, young, poisson, 37.5e6)
+print(time.perf_counter() - t0)
+"""
+#: the scan sides of that timing
+LAW_TIMING_SIDES = (128, 256)
+
+
+def law_seconds(key, j, n, h, seed) -> float:
+    """Wall time of a law rung's work before its table on an n² scan, in a fresh process."""
+    import subprocess
+    import sys
+    args = [key] + [str(x) for x in (j["hurst"], j["rms"], j["matedness"], j["young"], j["poisson"], n, h, seed)]
+    out = subprocess.run([sys.executable, "-c", _FRESH_LAW, *args], capture_output=True, text=True, check=True)
+    return float(out.stdout.split()[-1])
+
+
 def bem_seconds(j, n, h, seed) -> float:
-    """Wall time of the BEM closure curve (STRESSES) on an n² scan."""
-    upper, lower = topo.mated_pair(topo.SelfAffineSpec(j["hurst"], j["rms"]), (n, n), h,
-                                   j["matedness"], seed=seed)
-    aperture = topo.composite_topography(upper, lower).aperture
-    t0 = time.perf_counter()
-    contact.closure_curve(aperture, rockjoint.composite_modulus(j["young"], j["poisson"]), STRESSES)
-    return time.perf_counter() - t0
+    """Wall time of the BEM closure curve (STRESSES) on an n² scan, in a fresh process (what a
+    scene run pays: the FFT plans of that grid included)."""
+    import subprocess
+    import sys
+    args = [str(x) for x in (j["hurst"], j["rms"], j["matedness"], j["young"], j["poisson"], n, h, seed)]
+    out = subprocess.run([sys.executable, "-c", _FRESH_BEM, *args], input=" ".join(str(float(s)) for s in STRESSES),
+                         capture_output=True, text=True, check=True)
+    return float(out.stdout.split()[-1])
 
 
 def main():
@@ -192,6 +235,7 @@ def main():
     t_start = time.perf_counter()
     labels, costs = {}, {}
     tabulation, analysis_seconds, bem_time = {}, {}, {}   # key -> [{tol: s}], n -> [s], n -> [s]
+    law_time = {}                                         # row -> n -> [s]
     records = []   # (joint type, grid, seed, key, mean err, max err, incr err, area err)
     for jname, j in JOINTS.items():
         e_star = rockjoint.composite_modulus(j["young"], j["poisson"])
@@ -204,9 +248,7 @@ def main():
                 analysis = topo.analyse(joint.composite)
                 params = topo.closure_parameters(analysis, young=j["young"], poisson=j["poisson"])
                 analysis_seconds.setdefault(n, []).append(time.perf_counter() - t0)
-                t0 = time.perf_counter()
                 bem = contact.closure_curve(joint.aperture, e_star, STRESSES)
-                bem_time.setdefault(n, []).append(time.perf_counter() - t0)
                 ref, ref_area = bem.closure, bem.contact_area_ratio
                 ref_incr = ref[-1] - ref[ASSESSED][0]
                 for key, label, law in ladder_laws(params, analysis, joint.aperture, joint.composite.heights, ref):
@@ -246,11 +288,14 @@ def main():
               f"{exact[jname]['resolution_error_mean']:.2%}, table {exact[jname]['table_error']:.2%}", flush=True)
         for side in BEM_TIMING_SIDES:
             bem_time.setdefault(side, []).append(bem_seconds(j, side, h, args.seeds[0]))
+        for key, row in PRODUCT_ROWS.items():
+            for side in LAW_TIMING_SIDES:
+                law_time.setdefault(row, {}).setdefault(side, []).append(law_seconds(key, j, side, h, args.seeds[0]))
     wall = time.perf_counter() - t_start
     write_report(args.output, records, labels, costs, wall, args.seeds,
                  exact_contact_lines(exact, h, bem_time, analysis_seconds, tabulation, labels))
     write_json(args.output.replace(".md", ".json"), records, labels, costs, tabulation, analysis_seconds,
-               bem_time, exact, h)
+               bem_time, exact, h, law_time)
 
 
 def _finite(x):
@@ -266,7 +311,7 @@ def _finite(x):
     return x
 
 
-def write_json(path, records, labels, costs, tabulation, analysis_seconds, bem_time, exact, spacing):
+def write_json(path, records, labels, costs, tabulation, analysis_seconds, bem_time, exact, spacing, law_time):
     """The report's numbers as data (the planner's one source): per law and joint type the mean
     and max closure error, the increment error, the cost of one evaluation and the tabulation
     time per tolerance (mean over the grids); the exact-contact rung's errors at `spacing`; the
@@ -284,6 +329,8 @@ def write_json(path, records, labels, costs, tabulation, analysis_seconds, bem_t
             tab[f"{tol:g}"] = float(np.mean(times)) if times and len(times) == len(tabulation[key]) else None
         laws[key] = {"label": labels[key], "families": families, "evaluation_seconds": costs.get(key),
                      "tabulation_seconds": tab}
+        if key in law_time:   # the product's rungs: their work before the table, fresh process
+            laws[key]["law_seconds"] = {str(n): float(np.mean(t)) for n, t in sorted(law_time[key].items())}
     data = {"produced": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()), "machine": platform.machine(),
             "command": "PYTHONPATH=python:build/python /usr/bin/python3 bench/bench_accuracy_ladder.py",
             "stresses": [float(s) for s in STRESSES], "assessed_from": 1e6, "table_top": float(TABLE_TOP),
@@ -353,7 +400,8 @@ def exact_contact_lines(exact, spacing, bem_time, analysis_seconds, tabulation, 
     for jname, e in exact.items():
         lines.append(f"| {jname} | {100 * e['resolution_error_mean']:.1f} % | {100 * e['resolution_error_max']:.1f} % | "
                      f"{100 * e['table_error']:.2f} % |")
-    lines += ["", "Wall time of the BEM closure curve (the loads above) per scan side: "
+    lines += ["", "Wall time of the BEM closure curve (the loads above) per scan side, in a fresh process "
+              "(as a scene run pays it: the grid's FFT plans included; mean of the two joint types, seed 1): "
               + ", ".join(f"{n}²: {np.mean(t):.3g} s" for n, t in sorted(bem_time.items()))
               + "; of the topography analysis: "
               + ", ".join(f"{n}²: {1e3 * np.mean(t):.3g} ms" for n, t in sorted(analysis_seconds.items()))

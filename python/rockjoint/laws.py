@@ -143,7 +143,7 @@ def laws_from_topography(parameters: AsperityParameters, *, summits=None,
                          seating: str = "first_contact", empirical: bool = True,
                          overlap: Optional[Tuple[Sequence[float], Sequence[float]]] = None,
                          distribution: str = "gaussian", variant: str = "I1",
-                         **substrate) -> Dict[str, NamedLaw]:
+                         keys: Optional[Sequence[str]] = None, **substrate) -> Dict[str, NamedLaw]:
     """The asperity laws of one joint from its measured statistics, keyed by identifier:
 
     - "greenwood_williamson", "tang_substrate", "tang_jiao" (`variant` over Tang; elastic area
@@ -157,6 +157,7 @@ def laws_from_topography(parameters: AsperityParameters, *, summits=None,
     - with `summits` and `overlap` (topography.overlap_curve(joint.aperture)):
       "tang_jiao_empirical_geometric", whose Eq. (2) uses fraction{e <= Δ}.
 
+    `keys`: only these laws (and what they are built on) are built; default all.
     `substrate`: deflection_coefficient, base_radius (the laws' defaults unless given).
     """
     unknown = set(substrate) - {"deflection_coefficient", "base_radius"}
@@ -183,7 +184,7 @@ def laws_from_topography(parameters: AsperityParameters, *, summits=None,
     available = {"statistics": True, "summits": inputs.summits is not None,
                  "overlap": inputs.summits is not None and overlap is not None, "walls": False}
     return {r.key: NamedLaw(r.key, r.label, inputs.law(r.key), r.description)
-            for r in TOPOGRAPHY_LAWS.values() if available[r.needs]}
+            for r in TOPOGRAPHY_LAWS.values() if available[r.needs] and (keys is None or r.key in keys)}
 
 
 def describe_models() -> str:

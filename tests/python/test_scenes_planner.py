@@ -110,7 +110,7 @@ def rung_seconds(data, row, points, tolerance):
         return interp(data["bem_seconds"])
     tab = {float(t): v for t, v in data["laws"][row]["tabulation_seconds"].items() if v is not None}
     tight = min(tab)
-    return interp(data["analysis_seconds"]) + tab[max(t for t in tab if t <= max(tolerance, tight))]
+    return interp(data["laws"][row]["law_seconds"]) + tab[max(t for t in tab if t <= max(tolerance, tight))]
 
 
 @pytest.mark.parametrize("budget", [0.02, 0.05, 0.08, 0.10, 0.20, 0.25, 0.30, 0.40])

@@ -70,10 +70,7 @@ def law_of_walls(key: str, upper, lower, young: float, poisson: float, top_stres
         return inputs.law(key)
     analysis = topo.analyse(joint.composite)
     params = topo.closure_parameters(analysis, young=young, poisson=poisson)
-    family = laws.laws_from_topography(params, summits=analysis, empirical=False)
-    if key not in family:   # a law over the measured summits
-        family = laws.laws_from_topography(params, summits=analysis)
-    return family[key].law
+    return laws.laws_from_topography(params, summits=analysis, keys=(key,))[key].law
 
 
 def tables(scene, plan, reduced: bool = False) -> dict:

@@ -12,9 +12,10 @@ on the scan, tabulated by contact.exact_elastic_law). Error, per joint family of
 at half the scan's spacing: for the exact contact its own resolution error (the scan's BEM
 against the same walls at half its spacing) plus its table's; for a law its mean closure error
 against the BEM of the same scan plus that resolution error (the law reproduces the scan's
-contact at best: the triangle inequality). Total cost: the scan's analysis and the law's table,
-or the BEM solve at the scan's size, as measured by the bench (wall time, interpolated log-log in
-the scan's side); the scan's synthesis is common to every rung and not counted.
+contact at best: the triangle inequality). Total cost: the law's work on the scan (analysis,
+statistics, the law) and its table, or the BEM solve at the scan's size, as measured by the bench
+(wall time in a fresh process, as a scene run pays it; interpolated log-log in the scan's side);
+the scan's synthesis is common to every rung and not counted.
 """
 from __future__ import annotations
 
@@ -70,6 +71,7 @@ class Rung:
     errors: dict             # joint family -> error [-] against the walls at half the scan's spacing
     evaluation: float        # one σ + k evaluation [s] (0 for the exact contact: a table)
     tabulation: dict         # tolerance (str) -> seconds to tabulate (None: cannot); {} for EXACT_CONTACT
+    work: dict               # scan side (str) -> seconds of the law's work before its table
 
     @property
     def error(self) -> float:
@@ -78,13 +80,12 @@ class Rung:
 
     def seconds(self, points: int, tolerance: float) -> float:
         """Total cost [s] of this rung on a points² scan with tables at `tolerance`."""
-        data = evidence()
-        if self.key == EXACT_CONTACT:
-            return _interpolate_log(data["bem_seconds"], points)
-        analysis = _interpolate_log(data["analysis_seconds"], points)
+        if not self.tabulation:   # the exact contact: the BEM solve is its whole work
+            return _interpolate_log(self.work, points)
+        before_table = _interpolate_log(self.work, points)
         known = {float(t): s for t, s in self.tabulation.items() if s is not None}
         usable = [t for t in known if t <= max(tolerance, self.tightest_tolerance)]
-        return analysis + known[max(usable)]
+        return before_table + known[max(usable)]
 
     @property
     def tightest_tolerance(self) -> float:
@@ -107,9 +108,10 @@ def rungs() -> tuple:
         law = data["laws"][record.ladder_row]
         out.append(Rung(key, law["label"], {f: v["closure_error_mean"] + resolution[f]
                                             for f, v in law["families"].items()},
-                        law["evaluation_seconds"], law["tabulation_seconds"]))
+                        law["evaluation_seconds"], law["tabulation_seconds"], law["law_seconds"]))
     out.append(Rung(EXACT_CONTACT, law_registry.TOPOGRAPHY_LAWS[EXACT_CONTACT].label,
-                    {f: v["resolution_error_mean"] + v["table_error"] for f, v in exact.items()}, 0.0, {}))
+                    {f: v["resolution_error_mean"] + v["table_error"] for f, v in exact.items()}, 0.0, {},
+                    data["bem_seconds"]))
     return tuple(out)
 
 
