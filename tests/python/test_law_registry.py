@@ -124,3 +124,43 @@ def test_architecture_page_shows_the_registry_table():
         law_registry.REGISTRY.update(saved)
     page = (pathlib.Path(SOURCE) / "docs" / "architecture.md").read_text(encoding="utf-8")
     assert table in page, "docs/architecture.md: regenerate the law table with law_registry.docs_table()"
+
+
+def _recipe_files() -> list:
+    """The numbered file list of docs/architecture.md, "Adding a closure law"."""
+    page = (pathlib.Path(SOURCE) / "docs" / "architecture.md").read_text(encoding="utf-8")
+    section = page[page.index("## Adding a closure law"):page.index("## Where each equation lives")]
+    return re.findall(r"^\d+\. `([^`]+)`", section, re.M)
+
+
+def _naming(root: pathlib.Path, word: str, skip=()) -> set:
+    """Files of the repository's sources (C++, Python, CMake, docs) that contain `word`."""
+    found = set()
+    for path in root.rglob("*"):
+        rel = path.relative_to(root)
+        if (not path.is_file() or rel.parts[0].startswith(".") or rel.parts[0].startswith("build")
+                or rel.parts[0] in skip or path.suffix not in (".hpp", ".cpp", ".py", ".txt", ".md", ".cmake")
+                or "__pycache__" in rel.parts):
+            continue
+        if word in path.read_text(encoding="utf-8", errors="ignore"):
+            found.add(rel.as_posix())
+    return found
+
+
+def test_the_recipe_lists_every_file_a_cpp_law_touches():
+    """ExponentialLaw (<law> = empirical_laws) is named by exactly the recipe's library files;
+    the recipe's test file names it too; users of the law (other tests, benches, docs of use)
+    are not part of adding it."""
+    files = [f.replace("<law>", "empirical_laws") for f in _recipe_files()]
+    assert len(files) == 8, files
+    root = pathlib.Path(SOURCE)
+    library = {f for f in files if not f.startswith(("tests/", "docs/"))}
+    assert _naming(root, "ExponentialLaw", skip=("tests", "bench", "demos", "docs")) == library
+    assert all((root / f).exists() for f in files), files
+    assert "ExponentialLaw" in (root / "tests/cpp/test_empirical_laws.cpp").read_text(encoding="utf-8")
+
+
+def test_a_composed_law_is_one_file():
+    """The toy law is named by its plugin file and its own test only (the recipe: one record in
+    one file)."""
+    assert _naming(pathlib.Path(SOURCE), toy.KEY) == {"tests/python/toy_law_plugin.py"}
