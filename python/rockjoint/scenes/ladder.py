@@ -37,15 +37,19 @@ EVIDENCE_FILE = "accuracy_ladder.json"
 
 
 def evidence_path() -> str:
-    """The accuracy ladder's JSON: rockjoint/evidence/ of the installed or built package, else
-    bench/results/ of the source tree this module sits in."""
+    """The accuracy ladder's JSON: bench/results/ of the source tree this module sits in (where
+    the bench writes it), else rockjoint/evidence/ of an installed package (python/CMakeLists.txt)."""
+    here = os.path.dirname(os.path.abspath(__file__))
+    source = os.path.normpath(os.path.join(here, "..", "..", "..", "bench", "results", EVIDENCE_FILE))
+    if os.path.exists(source):
+        return source
     import rockjoint
     for root in rockjoint.__path__:
         path = os.path.join(root, "evidence", EVIDENCE_FILE)
         if os.path.exists(path):
             return path
-    here = os.path.dirname(os.path.abspath(__file__))
-    return os.path.normpath(os.path.join(here, "..", "..", "..", "bench", "results", EVIDENCE_FILE))
+    raise FileNotFoundError(f"{EVIDENCE_FILE}: neither {source} nor rockjoint/evidence/ of the package "
+                            "(bench/bench_accuracy_ladder.py writes it)")
 
 
 @functools.lru_cache(maxsize=None)
