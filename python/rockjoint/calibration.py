@@ -33,6 +33,7 @@ from typing import Dict, List, Optional, Sequence
 import numpy as np
 
 from . import law_registry
+from .units import DIMENSIONS
 from ._rockjoint import calibration as _cpp_calibration
 from ._rockjoint.constitutive import ClosureLaw
 from .law_registry import Quantity, calibratable, get
@@ -43,9 +44,9 @@ __all__ = ["ClosureCurve", "FittedParameter", "Calibration", "read_closure_curve
 
 log = logging.getLogger(__name__)
 
-#: unit name -> factor to SI, per dimension
-_LENGTH_UNITS = {"m": 1.0, "mm": 1e-3, "um": 1e-6, "µm": 1e-6, "micron": 1e-6}
-_STRESS_UNITS = {"pa": 1.0, "kpa": 1e3, "mpa": 1e6, "gpa": 1e9}
+#: unit name -> factor to SI, per dimension (rockjoint.units: the one table; stresses any case)
+_LENGTH_UNITS = DIMENSIONS["length"]
+_STRESS_UNITS = {unit.lower(): factor for unit, factor in DIMENSIONS["stress"].items()}
 #: column quantity -> (accepted names, unit table)
 _QUANTITIES = {
     "closure": (("closure",), _LENGTH_UNITS),

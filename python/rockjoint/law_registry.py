@@ -24,12 +24,13 @@ from typing import Callable, Dict, Optional, Sequence, Tuple
 
 import numpy as np
 
+from .units import DIMENSIONS, LAW_UNIT_DIMENSION
 from ._rockjoint.constitutive import (AsperityParameters, BartonBandis, ClosureLaw,
                                       ExponentialLaw, GreenwoodWilliamson, LogarithmicLaw,
                                       TangJiao, TangSubstrate, composite_modulus)
 
-#: SI per user unit, for files and reports (the only copy of these factors)
-UNITS = {"-": 1.0, "mm": 1e-3, "MPa": 1e6, "GPa": 1e9, "MPa/mm": 1e9, "1/mm²": 1e6}
+#: SI per user unit, for files and reports: entries of rockjoint.units (the one unit table)
+UNITS = {unit: DIMENSIONS[dimension][unit] for unit, dimension in LAW_UNIT_DIMENSION.items()}
 MM, MPA, GPA, MPA_PER_MM, PER_MM2 = (UNITS[u] for u in ("mm", "MPa", "GPa", "MPa/mm", "1/mm²"))
 _FILE_SUFFIX = {"-": "", "mm": "_mm", "MPa": "_MPa", "GPa": "_GPa", "MPa/mm": "_MPa_per_mm",
                 "1/mm²": "_per_mm2"}
