@@ -3,7 +3,9 @@
 contact (boundary elements) of the same joint walls. Which law to trust, at what cost.
 
 Run:  PYTHONPATH=python:build/python /usr/bin/python3 bench/bench_accuracy_ladder.py
-Writes bench/results/accuracy_ladder.md and accuracy_ladder.png (error against cost).
+Writes bench/results/accuracy_ladder.md, accuracy_ladder.png (error against cost) and
+accuracy_ladder.json: the same numbers as data, the one source of the planner's rungs
+(rockjoint/scenes/ladder.py reads it; tests/python/test_scenes_planner.py keeps it equal to the .md).
 
 Joints: synthetic mated pairs (rockjoint.topography.mated_pair), 3 seeds each of
   granite-like   H 0.8,  rms 1.0 mm, matedness 2.5 mm, E 50 GPa, ν 0.25
@@ -14,10 +16,21 @@ among them). Metrics over the loads >= 1 MPa: relative closure error (mean and m
 the closure increment 1 -> 30 MPa (which sets the joint's stiffness), relative A/A0 error (the
 BEM counts contact nodes: biased upward by about a node row per spot edge), and the cost of one
 σ+k evaluation (law.evaluate on 10⁴ closures, best of 3).
+
+Total cost of each rung (what the planner compares): for a law, the topography analysis plus
+its table (rockjoint.tabulate to 1.25 x 30 MPa, at the tolerances the planner uses); for the
+exact contact curve itself (the "exact contact" rung: the BEM curve tabulated by
+contact.exact_elastic_law), the BEM solve at the scan's size. Every time is wall clock on the
+machine of the run (the scan's synthesis is common to every rung and not counted).
+The exact-contact rung's own error: its resolution error, measured by halving the scan's
+spacing (the walls synthesised at h/2 on 2n², the scan at h their every other point; the
+closure at h against that at h/2), plus its table's (contact.exact_elastic_law through the loads
+against the BEM at the geometric middles between them, the largest difference).
 """
 from __future__ import annotations
 
 import argparse
+import json
 import logging
 import os
 import platform
@@ -26,7 +39,7 @@ import time
 import numpy as np
 
 import rockjoint
-from rockjoint import contact
+from rockjoint import contact, law_registry
 from rockjoint import topography as topo
 from rockjoint.calibration import ClosureCurve, calibrate
 from rockjoint.laws import make_law
@@ -38,6 +51,17 @@ JOINTS = {
 GRIDS = ((256, 0.5e-3), (512, 0.25e-3))
 STRESSES = np.unique(np.r_[np.geomspace(0.1e6, 1e6, 5), np.geomspace(1e6, 30e6, 11)])
 ASSESSED = STRESSES >= 1e6 * (1 - 1e-12)
+#: the product's topography laws with a row here (the planner's rungs): key -> row
+PRODUCT_ROWS = {k: r.ladder_row for k, r in law_registry.TOPOGRAPHY_LAWS.items() if r.ladder_row}
+#: tolerances whose tabulation time is measured (the planner's: FE settings 1e-2, laws over
+#: measured summits 1e-3, the tightest 1e-6) and the table's top (1.25 x the largest load)
+TABLE_TOLERANCES = (1e-2, 1e-3, 1e-6)
+TABLE_TOP = 1.25 * STRESSES[-1]
+#: knots allowed when timing a table: 3x what the parametric laws need at 1e-6 (~600); a law over
+#: measured summits cannot reach 1e-6 (a kink per summit) and fails there without a minute's search
+TIMING_KNOTS = 2000
+#: the grids of the exact-contact rung's timing (points per side; scenes scan 64² to 300²)
+BEM_TIMING_SIDES = (64, 128, 200, 256, 300, 512)
 
 
 def ladder_laws(params, analysis, aperture, composite_heights, bem_closure):
@@ -109,6 +133,98 @@ def evaluation_cost(law) -> float:
     return best / d.size
 
 
+def tabulation_seconds(law) -> dict:
+    """{tolerance: seconds to tabulate `law` to TABLE_TOP} (None where the law cannot be tabulated
+    that tightly: summit kinks)."""
+    out = {}
+    for tol in TABLE_TOLERANCES:
+        t0 = time.perf_counter()
+        try:
+            rockjoint.tabulate(law, max_stress=TABLE_TOP, tolerance=tol, maximum_knots=TIMING_KNOTS)
+        except (ValueError, RuntimeError):
+            out[tol] = None
+            continue
+        out[tol] = time.perf_counter() - t0
+    return out
+
+
+def relative_errors(closure, reference):
+    """(mean, max) of |Δ/Δ_ref - 1| over the assessed loads."""
+    rel = np.abs(closure[ASSESSED] / reference[ASSESSED] - 1.0)
+    return float(np.mean(rel)), float(np.max(rel))
+
+
+def exact_contact_error(j, n, h, seed):
+    """The exact-contact rung on an n² scan at spacing h: (resolution error mean, max; table error
+    max between the loads >= 1 MPa; seconds of the BEM at n²). Walls synthesised on (2n)² at h/2; the scan is every other point."""
+    upper, lower = topo.mated_pair(topo.SelfAffineSpec(j["hurst"], j["rms"]), (2 * n, 2 * n), h / 2,
+                                   j["matedness"], seed=seed)
+    e_star = rockjoint.composite_modulus(j["young"], j["poisson"])
+    fine = contact.closure_curve(topo.composite_topography(upper, lower).aperture, e_star, STRESSES)
+    scan = topo.composite_topography(topo.Surface(upper.heights[::2, ::2], h),
+                                     topo.Surface(lower.heights[::2, ::2], h)).aperture
+    t0 = time.perf_counter()
+    coarse = contact.closure_curve(scan, e_star, STRESSES)
+    seconds = time.perf_counter() - t0
+    mean, worst = relative_errors(coarse.closure, fine.closure)
+    table_law = contact.exact_elastic_law(coarse)
+    middle = np.sqrt(STRESSES[:-1] * STRESSES[1:])[STRESSES[1:] > 1e6]   # between the loads >= 1 MPa
+    between = contact.closure_curve(scan, e_star, middle).closure
+    table = float(np.max(np.abs(np.array([table_law.closure_at_stress(s) for s in middle]) / between - 1.0)))
+    return mean, worst, table, seconds
+
+
+#: the BEM's wall time in a fresh process, as a scene run pays it (FFT plans made once per grid)
+_FRESH_BEM = """
+import sys, time, numpy as np, rockjoint
+from rockjoint import contact, topography as topo
+hurst, rms, mated, young, poisson, n, h, seed = map(float, sys.argv[1:])
+stresses = np.array([float(s) for s in sys.stdin.read().split()])
+upper, lower = topo.mated_pair(topo.SelfAffineSpec(hurst, rms), (int(n), int(n)), h, mated, seed=int(seed))
+aperture = topo.composite_topography(upper, lower).aperture
+t0 = time.perf_counter()
+contact.closure_curve(aperture, rockjoint.composite_modulus(young, poisson), stresses)
+print(time.perf_counter() - t0)
+"""
+
+
+#: a law rung's work before its table (the scan's analysis, the statistics, the law), in a fresh
+#: process: what scenes.joint_laws.law_of_walls does for it
+_FRESH_LAW = """
+import sys, time, rockjoint
+from rockjoint import topography as topo
+from rockjoint.scenes import joint_laws
+key = sys.argv[1]
+hurst, rms, mated, young, poisson, n, h, seed = map(float, sys.argv[2:])
+upper, lower = topo.mated_pair(topo.SelfAffineSpec(hurst, rms), (int(n), int(n)), h, mated, seed=int(seed))
+t0 = time.perf_counter()
+joint_laws.law_of_walls(key, upper, lower, young, poisson, 37.5e6)
+print(time.perf_counter() - t0)
+"""
+#: the scan sides of that timing
+LAW_TIMING_SIDES = (128, 256)
+
+
+def law_seconds(key, j, n, h, seed) -> float:
+    """Wall time of a law rung's work before its table on an n² scan, in a fresh process."""
+    import subprocess
+    import sys
+    args = [key] + [str(x) for x in (j["hurst"], j["rms"], j["matedness"], j["young"], j["poisson"], n, h, seed)]
+    out = subprocess.run([sys.executable, "-c", _FRESH_LAW, *args], capture_output=True, text=True, check=True)
+    return float(out.stdout.split()[-1])
+
+
+def bem_seconds(j, n, h, seed) -> float:
+    """Wall time of the BEM closure curve (STRESSES) on an n² scan, in a fresh process (what a
+    scene run pays: the FFT plans of that grid included)."""
+    import subprocess
+    import sys
+    args = [str(x) for x in (j["hurst"], j["rms"], j["matedness"], j["young"], j["poisson"], n, h, seed)]
+    out = subprocess.run([sys.executable, "-c", _FRESH_BEM, *args], input=" ".join(str(float(s)) for s in STRESSES),
+                         capture_output=True, text=True, check=True)
+    return float(out.stdout.split()[-1])
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--seeds", type=int, nargs="+", default=[1, 2, 3])
@@ -118,6 +234,8 @@ def main():
     logging.basicConfig(level=logging.WARNING)
     t_start = time.perf_counter()
     labels, costs = {}, {}
+    tabulation, analysis_seconds, bem_time = {}, {}, {}   # key -> [{tol: s}], n -> [s], n -> [s]
+    law_time = {}                                         # row -> n -> [s]
     records = []   # (joint type, grid, seed, key, mean err, max err, incr err, area err)
     for jname, j in JOINTS.items():
         e_star = rockjoint.composite_modulus(j["young"], j["poisson"])
@@ -126,8 +244,10 @@ def main():
                 upper, lower = topo.mated_pair(topo.SelfAffineSpec(j["hurst"], j["rms"]), (n, n),
                                                h, j["matedness"], seed=seed)
                 joint = topo.composite_topography(upper, lower)
+                t0 = time.perf_counter()
                 analysis = topo.analyse(joint.composite)
                 params = topo.closure_parameters(analysis, young=j["young"], poisson=j["poisson"])
+                analysis_seconds.setdefault(n, []).append(time.perf_counter() - t0)
                 bem = contact.closure_curve(joint.aperture, e_star, STRESSES)
                 ref, ref_area = bem.closure, bem.contact_area_ratio
                 ref_incr = ref[-1] - ref[ASSESSED][0]
@@ -142,6 +262,8 @@ def main():
                         continue
                     if key not in costs:
                         costs[key] = evaluation_cost(law)
+                    if seed == args.seeds[0]:
+                        tabulation.setdefault(key, []).append(tabulation_seconds(law))
                     d = closures_of(law)
                     rel = d[ASSESSED] / ref[ASSESSED] - 1.0
                     incr = (d[-1] - d[ASSESSED][0]) / ref_incr - 1.0
@@ -153,8 +275,73 @@ def main():
                                     float(np.max(np.abs(rel))), float(incr), area))
                 print(f"{jname} {n}² seed {seed}: BEM Δ(1, 30 MPa) = {ref[ASSESSED][0] * 1e3:.4f}, "
                       f"{ref[-1] * 1e3:.4f} mm, A/A0(30 MPa) = {ref_area[-1]:.4f}", flush=True)
+    # The exact-contact rung: its resolution and table errors at the ladder's coarse spacing, and
+    # the BEM's time on more grid sizes (scenes scan 64² to 300²).
+    exact = {}
+    n, h = GRIDS[0]
+    for jname, j in JOINTS.items():
+        rows = [exact_contact_error(j, n, h, seed) for seed in args.seeds]
+        exact[jname] = dict(zip(("resolution_error_mean", "resolution_error_max", "table_error"),
+                                (float(np.mean([r[0] for r in rows])), float(np.max([r[1] for r in rows])),
+                                 float(np.max([r[2] for r in rows])))))
+        print(f"exact contact, {jname} {n}² at h = {h * 1e3:g} mm against h/2: closure error mean "
+              f"{exact[jname]['resolution_error_mean']:.2%}, table {exact[jname]['table_error']:.2%}", flush=True)
+        for side in BEM_TIMING_SIDES:
+            bem_time.setdefault(side, []).append(bem_seconds(j, side, h, args.seeds[0]))
+        for key, row in PRODUCT_ROWS.items():
+            for side in LAW_TIMING_SIDES:
+                law_time.setdefault(row, {}).setdefault(side, []).append(law_seconds(key, j, side, h, args.seeds[0]))
     wall = time.perf_counter() - t_start
-    write_report(args.output, records, labels, costs, wall, args.seeds)
+    write_report(args.output, records, labels, costs, wall, args.seeds,
+                 exact_contact_lines(exact, h, bem_time, analysis_seconds, tabulation, labels))
+    write_json(args.output.replace(".md", ".json"), records, labels, costs, tabulation, analysis_seconds,
+               bem_time, exact, h, law_time)
+
+
+def _finite(x):
+    """`x` with every non-finite float as None (JSON has no NaN)."""
+    if isinstance(x, dict):
+        return {k: _finite(v) for k, v in x.items()}
+    if isinstance(x, (list, tuple)):
+        return [_finite(v) for v in x]
+    if isinstance(x, (float, np.floating)):
+        return float(x) if np.isfinite(x) else None
+    if isinstance(x, np.integer):
+        return int(x)
+    return x
+
+
+def write_json(path, records, labels, costs, tabulation, analysis_seconds, bem_time, exact, spacing, law_time):
+    """The report's numbers as data (the planner's one source): per law and joint type the mean
+    and max closure error, the increment error, the cost of one evaluation and the tabulation
+    time per tolerance (mean over the grids); the exact-contact rung's errors at `spacing`; the
+    analysis and BEM wall times per grid side."""
+    laws = {}
+    for key, label in labels.items():
+        families = {}
+        for jname in JOINTS:
+            row = next(r for r in summarise(records, labels, jname) if r[0] == key)
+            families[jname] = {"closure_error_mean": row[1], "closure_error_max": row[2],
+                               "increment_error_mean": row[3], "failed": row[6]}
+        tab = {}
+        for tol in TABLE_TOLERANCES:
+            times = [t[tol] for t in tabulation.get(key, []) if t[tol] is not None]
+            tab[f"{tol:g}"] = float(np.mean(times)) if times and len(times) == len(tabulation[key]) else None
+        laws[key] = {"label": labels[key], "families": families, "evaluation_seconds": costs.get(key),
+                     "tabulation_seconds": tab}
+        if key in law_time:   # the product's rungs: their work before the table, fresh process
+            laws[key]["law_seconds"] = {str(n): float(np.mean(t)) for n, t in sorted(law_time[key].items())}
+    data = {"produced": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()), "machine": platform.machine(),
+            "command": "PYTHONPATH=python:build/python /usr/bin/python3 bench/bench_accuracy_ladder.py",
+            "stresses": [float(s) for s in STRESSES], "assessed_from": 1e6, "table_top": float(TABLE_TOP),
+            "laws": laws,
+            "bem": {"spacing": spacing, "families": exact},
+            "analysis_seconds": {str(n): float(np.mean(t)) for n, t in sorted(analysis_seconds.items())},
+            "bem_seconds": {str(n): float(np.mean(t)) for n, t in sorted(bem_time.items())}}
+    with open(path, "w") as fh:
+        json.dump(_finite(data), fh, indent=1, allow_nan=False)
+        fh.write("\n")
+    print(f"wrote {path}")
 
 
 def summarise(records, labels, jname):
@@ -200,7 +387,37 @@ def recommend(records, labels, costs, cost_limit=50e-6):
     return best
 
 
-def write_report(path, records, labels, costs, wall, seeds):
+def exact_contact_lines(exact, spacing, bem_time, analysis_seconds, tabulation, labels):
+    """The report's section on the planner's other numbers: the exact-contact rung's errors and
+    every rung's total cost."""
+    lines = ["", "## Exact contact as a rung, and the total cost of each rung", "",
+             f"The exact contact curve of a scan at h = {spacing * 1e3:g} mm (256²) against the same walls "
+             f"at h/2 (512², the scan is their every other point), mean over seeds of the mean closure error "
+             "over the loads >= 1 MPa (max: over loads and seeds); its table (contact.exact_elastic_law "
+             "through the loads) against the BEM at the geometric middles between them, the largest:", "",
+             "| joints | resolution error, mean | resolution error, max | table error, max |",
+             "|---|---:|---:|---:|"]
+    for jname, e in exact.items():
+        lines.append(f"| {jname} | {100 * e['resolution_error_mean']:.1f} % | {100 * e['resolution_error_max']:.1f} % | "
+                     f"{100 * e['table_error']:.2f} % |")
+    lines += ["", "Wall time of the BEM closure curve (the loads above) per scan side, in a fresh process "
+              "(as a scene run pays it: the grid's FFT plans included; mean of the two joint types, seed 1): "
+              + ", ".join(f"{n}²: {np.mean(t):.3g} s" for n, t in sorted(bem_time.items()))
+              + "; of the topography analysis: "
+              + ", ".join(f"{n}²: {1e3 * np.mean(t):.3g} ms" for n, t in sorted(analysis_seconds.items()))
+              + ". Tabulation to 1.25 x 30 MPa (mean over the joints of seed 1), per tolerance [ms]:", "",
+              "| law | " + " | ".join(f"{t:g}" for t in TABLE_TOLERANCES) + " |",
+              "|---|" + "---:|" * len(TABLE_TOLERANCES)]
+    for key, runs in tabulation.items():
+        cells = []
+        for tol in TABLE_TOLERANCES:
+            times = [r[tol] for r in runs]
+            cells.append("fails" if any(t is None for t in times) else f"{1e3 * np.mean(times):.3g}")
+        lines.append(f"| {labels[key]} | " + " | ".join(cells) + " |")
+    return lines
+
+
+def write_report(path, records, labels, costs, wall, seeds, extra=()):
     pct = lambda x: "n/a" if not np.isfinite(x) else f"{100 * x:.1f} %"  # noqa: E731
     lines = ["# Accuracy ladder: closure laws against the exact elastic contact of the same joint",
              "",
@@ -245,6 +462,7 @@ def write_report(path, records, labels, costs, wall, seeds):
         lines.append("")
         lines.append("Target (mean closure error <= 3 % and increment error <= 5 % on both joint "
                      f"types): **{'met' if met else 'not met'}**.")
+    lines += list(extra)
     text = "\n".join(lines) + "\n"
     os.makedirs(os.path.dirname(path), exist_ok=True)
     with open(path, "w") as fh:

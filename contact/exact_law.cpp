@@ -12,7 +12,8 @@ namespace rockjoint::contact
 
 constitutive::TabulatedLaw exact_elastic_law(std::span<const ContactState> curve,
                                              const ContactSource& source,
-                                             double residual_stiffness)
+                                             double residual_stiffness,
+                                             double initial_stiffness)
 {
   namespace hermite = constitutive::hermite;
   if (curve.size() < 2)
@@ -45,10 +46,18 @@ constitutive::TabulatedLaw exact_elastic_law(std::span<const ContactState> curve
   const std::size_t n = table.closure.size();
   table.stiffness.assign(n, 0.0);
   hermite::data_slopes(table.closure, table.normal_stress, table.stiffness);
-  // First segment: quartic in √Δ with k(0+) = 0; it is monotone when k1 <= 2 σ1/Δ1.
-  table.stiffness[0] = 0.0;
-  table.stiffness[1]
-      = std::min(table.stiffness[1], 2.0 * table.normal_stress[1] / table.closure[1]);
+  // First segment: quartic in √Δ with k(0+) = 0; it is monotone when k1 <= 2 σ1/Δ1 (its
+  // cubic coefficient 4σ1 - 2Δ1 k1 >= 0). At the bound that coefficient is 0 up to rounding,
+  // and a rounded -1e-16 σ1 fails hermite::first_segment_is_monotone: the cap is taken 1e-12
+  // inside (a curve whose data slope exceeds it: the first load far below the second's slope).
+  if (!(initial_stiffness >= 0.0
+        && initial_stiffness <= curve[0].mean_pressure / curve[0].closure))
+    throw std::invalid_argument("exact_elastic_law: initial_stiffness = "
+                                + std::to_string(initial_stiffness)
+                                + " Pa/m must be in [0, σ1/Δ1] (the secant to the first load)");
+  table.stiffness[0] = initial_stiffness;
+  table.stiffness[1] = std::min(table.stiffness[1], (1.0 - 1e-12) * 2.0 * table.normal_stress[1]
+                                                        / table.closure[1]);
   hermite::limit_slopes(table.closure, table.normal_stress, table.stiffness);
   table.residual_stiffness = std::isnan(residual_stiffness)
                                  ? constitutive::TabulatedLaw::default_residual_stiffness_fraction

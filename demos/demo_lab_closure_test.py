@@ -13,7 +13,7 @@ intact cube is loaded beside it; the joint closure is the difference of the two 
 1983), which is exactly what the closure law describes (docs/theory.md §0).
 
 Outputs (in DIR, default the working directory): lab_closure_test.png (the curves),
-lab_closure_test_table.txt (the numbers), granite_tang_jiao.rjt (the tabulated law),
+lab_closure_test_table.txt (the numbers), granite_joint.rjt (the tabulated law),
 jointed_cube.xdmf / intact_cube.xdmf (+ joint state) for ParaView, and the load cycle:
 lab_closure_cycle.png / lab_closure_cycle.txt (load to 30 MPa, unload, reload: the walls'
 elastic-plastic contact beside the FE cube whose joint follows a hysteretic law).
@@ -32,6 +32,7 @@ from rockjoint import contact, meshes
 from rockjoint import topography as topo
 from rockjoint.fem_coupling import JointedRockModel, NewtonOptions, distribute
 from rockjoint.scenes import load_scene, make_plan
+from rockjoint.scenes.joint_laws import topography_law
 
 COMM = MPI.COMM_WORLD
 quiet_compiler_logging()  # DOLFINx's form compiler would log every command
@@ -44,6 +45,7 @@ quiet_compiler_logging()  # DOLFINx's form compiler would log every command
 SCENE = load_scene(os.path.join(os.path.dirname(os.path.abspath(__file__)), "scenes",
                                 "lab_closure_test.yaml"))
 PLAN = make_plan(SCENE)
+PLAN_LAW = next(c for c in PLAN.choices if c.topic == "law of joint")
 SIDE = SCENE["geometry"]["size"][0]                              # cube side [m]
 SCAN = SCENE["joints"]["joint"]["law"]["topography"]             # the synthetic scan
 SPACING = SCAN["spacing"]                                        # scan interval [m]
@@ -65,7 +67,7 @@ CYCLE = np.r_[STRESS_LEVELS, np.array([20, 10, 5, 2, 1, 0.5, 1, 5, 10, 20, 30]) 
 
 
 def joint_law():
-    """Topography → (η, β, σ_s) → Tang & Jiao over Tang's substrate law."""
+    """Topography → (η, β, σ_s) → the asperity laws, and the exact contact of the walls (BEM)."""
     # A mated pair of self-affine walls: identical above the matedness wavelength (2.5 mm, a
     # few grains), independent below it. H = 0.8 and 1 mm rms over the specimen are typical
     # of granite fractures. Deterministic for the seed.
@@ -81,7 +83,6 @@ def joint_law():
         f"σ_s = {params.summit_height_std * 1e3:.4f} mm, E* = {params.composite_modulus * 1e-9:.2f} GPa")
     # GW, Tang, Tang & Jiao and the recommended law, seated at the measured first contact.
     laws = rockjoint.laws.laws_from_topography(params, summits=analysis, empirical=False)
-    say(f"  law for the FE model: {rockjoint.laws.RECOMMENDATION}")
     # The yardstick: exact elastic contact of the same walls (boundary elements, periodic: the
     # synthetic walls are one period), the reference every law is measured against.
     bem = contact.closure_curve(joint.aperture, params.composite_modulus, STRESS_LEVELS)
@@ -89,7 +90,13 @@ def joint_law():
 
 
 def tabulated(law, path):
-    """Tabulate once with error control; the FE model calls the table, not the law."""
+    """Tabulate once with error control; the FE model calls the table, not the law. The exact
+    contact curve is a table already (through the BEM's points): it is used as it is."""
+    if isinstance(law, rockjoint.TabulatedLaw):
+        if COMM.rank == 0:
+            law.save(path)
+        say(f"table: the exact contact curve's own, {law.knot_count} knots (the BEM's loads); saved {path}")
+        return law
     t0 = time.perf_counter()
     table = rockjoint.tabulate(law, max_stress=TABLE_STRESS, tolerance=TOLERANCE)
     build = time.perf_counter() - t0
@@ -132,8 +139,11 @@ def main():
 
     # %% 1. Micro: the joint's roughness gives its closure law ------------------------------
     laws, params, closure_bem, aperture = joint_law()
-    law = laws[PLAN.laws["joint"]].law   # the planner's pick within the scene's error budget
-    table = tabulated(law, out("granite_tang_jiao.rjt"))
+    # The planner's pick within the scene's error budget, of least total cost: a law of the
+    # family above, or the exact contact curve of the walls (BEM) as a table.
+    say(f"planner: {PLAN_LAW.choice}; {PLAN_LAW.why}; cost {PLAN_LAW.cost}")
+    law = topography_law(PLAN.laws["joint"], SCAN, int(round(SIDE / SPACING)), YOUNG, POISSON, TABLE_STRESS)
+    table = tabulated(law, out("granite_joint.rjt"))
 
     # %% 2. Macro: jointed and intact cubes under the same loads ----------------------------
     jointed_mesh, intact_mesh = cube(True, args.mesh_size), cube(False, args.mesh_size)
@@ -172,7 +182,7 @@ def main():
                     f"{YOUNG * 1e-9:g} GPa, nu = {POISSON}; eta = {params.summit_density * 1e-6:.4f} "
                     f"1/mm2, beta = {params.summit_radius * 1e3:.4f} mm, sigma_s = "
                     f"{params.summit_height_std * 1e3:.5f} mm\n# " + "\n".join(lines) + "\n")
-        plot(rows, laws, out("lab_closure_test.png"))
+        plot(rows, laws, table, out("lab_closure_test.png"))
     say(f"wrote {out('lab_closure_test.png')}, {out('lab_closure_test_table.txt')}, "
         f"{out('jointed_cube.xdmf')}, {out('intact_cube.xdmf')}")
 
@@ -182,7 +192,7 @@ def main():
 
 def load_cycle(aperture, params, table, jointed_mesh, intact_mesh, out):
     """The walls' elastic-plastic contact (BEM) along CYCLE beside the FE cube whose joint follows
-    the hysteretic law: the demo's Tang & Jiao table as the virgin curve with unloading branches of
+    the hysteretic law: the demo's joint table (the planner's pick) as the virgin curve with unloading branches of
     the laboratory's middle values (Bandis et al. 1983: permanent closure r = 0.25 of the largest,
     unloading 3 times stiffer at the top; docs/hysteresis.md). `rockjoint calibrate --cycles` fits
     r and m to a measured cycle instead."""
@@ -199,7 +209,7 @@ def load_cycle(aperture, params, table, jointed_mesh, intact_mesh, out):
     r = 0.25
     m = max(1.0, 3.0 * (1 - r) * top * table.normal_stiffness(top) / MAX_STRESS)   # (H4)
     law = rockjoint.NormalHysteresis(table, r, m)
-    say(f"hysteretic law: Tang & Jiao table, r = {r}, m = {m:.2f} (unloading 3 x stiffer at 30 MPa)")
+    say(f"hysteretic law: the joint's table, r = {r}, m = {m:.2f} (unloading 3 x stiffer at 30 MPa)")
     # FE: one model loaded along the path (its joint keeps its largest closure point by point);
     # the intact cube is linear: its settlement scales with σ.
     jointed = JointedRockModel(jointed_mesh, rock=(YOUNG, POISSON), joints={"joint": law},
@@ -232,7 +242,7 @@ def load_cycle(aperture, params, table, jointed_mesh, intact_mesh, out):
         ax.plot(rows[:, 3] * 1e3, rows[:, 0] * 1e-6, "o-", mfc="none", color="k",
                 label=f"exact contact, elastic-plastic walls (H = {HARDNESS * 1e-9:g} GPa)")
         ax.plot(rows[:, 2] * 1e3, rows[:, 0] * 1e-6, "-", color="C0", lw=2,
-                label="hysteretic law (Tang & Jiao + laboratory branches)")
+                label="hysteretic law (the joint's table + laboratory branches)")
         ax.plot(rows[:, 1] * 1e3, rows[:, 0] * 1e-6, "x", color="C3", ms=8, label="FE cube: jointed − intact")
         ax.set_xlabel("joint closure Δ [mm]")
         ax.set_ylabel("normal stress σ [MPa]")
@@ -243,7 +253,7 @@ def load_cycle(aperture, params, table, jointed_mesh, intact_mesh, out):
         plt.close(fig)
 
 
-def plot(rows, laws, path):
+def plot(rows, laws, table_law, path):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -256,6 +266,9 @@ def plot(rows, laws, path):
     a1.set_title("150 mm granite cube, uniaxial compression")
     a1.legend()
     stress = np.linspace(0.0, MAX_STRESS, 200)[1:]
+    if PLAN.laws["joint"] not in laws:   # the FE model's table is the exact contact curve
+        a2.plot(np.r_[0, table_law.closure_at_stress(stress)] * 1e3, np.r_[0, stress] * 1e-6, "-",
+                lw=2.5, label="exact contact (BEM) as a table: the FE model's law")
     for key, named in laws.items():
         # At A/A0 ~ 1 % Tang & Jiao lies on Tang (theory §5): thin lines, the FE law thick.
         in_fe = key == PLAN.laws["joint"]

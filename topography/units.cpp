@@ -1,24 +1,35 @@
 #include "units.hpp"
 
+#include <array>
 #include <stdexcept>
 
 namespace rockjoint::topography
 {
 
+namespace
+{
+constexpr std::array<LengthUnit, 8> units{{{"m", 1.0},
+                                           {"cm", 1e-2},
+                                           {"mm", 1e-3},
+                                           {"um", 1e-6},
+                                           {"µm", 1e-6},
+                                           {"micron", 1e-6},
+                                           {"nm", 1e-9},
+                                           {"km", 1e3}}};
+} // namespace
+
+std::span<const LengthUnit> length_units() { return units; }
+
 double metres_per_unit(const std::string& unit)
 {
-  if (unit == "m")
-    return 1.0;
-  if (unit == "cm")
-    return 1e-2;
-  if (unit == "mm")
-    return 1e-3;
-  if (unit == "um" || unit == "µm" || unit == "micron")
-    return 1e-6;
-  if (unit == "nm")
-    return 1e-9;
-  throw std::invalid_argument("unknown length unit '" + unit
-                              + "'; use one of m, cm, mm, um (µm), nm");
+  std::string names;
+  for (const LengthUnit& u : units)
+  {
+    if (u.name == unit)
+      return u.metres;
+    names += (names.empty() ? "" : ", ") + std::string(u.name);
+  }
+  throw std::invalid_argument("unknown length unit '" + unit + "'; use one of " + names);
 }
 
 } // namespace rockjoint::topography

@@ -1,14 +1,28 @@
 #pragma once
 /// @file units.hpp
-/// Length units of topography files. Inside the library everything is in metres.
+/// Length units: the one table of them (topography files here; the Python layer reads the same
+/// table through the bindings for scene files, calibration curves and law parameter files).
+/// Inside the library everything is in metres.
 
+#include <span>
 #include <string>
+#include <string_view>
 
 namespace rockjoint::topography
 {
 
-/// Metres per `unit`: "m", "cm", "mm", "um" (also "µm", "micron"), "nm".
-/// Throws std::invalid_argument naming the unit otherwise.
+/// A length unit and its size in metres.
+struct LengthUnit
+{
+  std::string_view name;
+  double metres;
+};
+
+/// Every length unit rockjoint reads: m, cm, mm, um (also µm, micron), nm, km.
+std::span<const LengthUnit> length_units();
+
+/// Metres per `unit` (a name of length_units()).
+/// Throws std::invalid_argument naming the unit and the valid ones otherwise.
 double metres_per_unit(const std::string& unit);
 
 } // namespace rockjoint::topography

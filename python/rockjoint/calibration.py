@@ -32,19 +32,21 @@ from typing import Dict, List, Optional, Sequence
 
 import numpy as np
 
+from . import law_registry
+from .units import DIMENSIONS
 from ._rockjoint import calibration as _cpp_calibration
 from ._rockjoint.constitutive import ClosureLaw
 from .law_registry import Quantity, calibratable, get
-from .tabulation import tabulate
+from .tabulation import DEFAULT_TOLERANCE, tabulate
 
 __all__ = ["ClosureCurve", "FittedParameter", "Calibration", "read_closure_curve",
            "calibrate", "calibratable_laws"]
 
 log = logging.getLogger(__name__)
 
-#: unit name -> factor to SI, per dimension
-_LENGTH_UNITS = {"m": 1.0, "mm": 1e-3, "um": 1e-6, "µm": 1e-6, "micron": 1e-6}
-_STRESS_UNITS = {"pa": 1.0, "kpa": 1e3, "mpa": 1e6, "gpa": 1e9}
+#: unit name -> factor to SI, per dimension (rockjoint.units: the one table; stresses any case)
+_LENGTH_UNITS = DIMENSIONS["length"]
+_STRESS_UNITS = {unit.lower(): factor for unit, factor in DIMENSIONS["stress"].items()}
 #: column quantity -> (accepted names, unit table)
 _QUANTITIES = {
     "closure": (("closure",), _LENGTH_UNITS),
@@ -300,7 +302,7 @@ class Calibration:
                          f"{self.fit.message}")
         return "\n".join(lines)
 
-    def table(self, max_stress: Optional[float] = None, tolerance: float = 1e-6):
+    def table(self, max_stress: Optional[float] = None, tolerance: float = DEFAULT_TOLERANCE):
         """The fitted law tabulated up to ``max_stress`` [Pa] (default: the curve's maximum)."""
         top = float(max_stress if max_stress is not None else self.curve.normal_stress[-1])
         return tabulate(self.law, max_stress=top, tolerance=tolerance)
@@ -380,7 +382,7 @@ def calibrate(curve: ClosureCurve, law: str, *, composite_modulus: Optional[floa
     spec, given = calibration_spec(law, composite_modulus, summit_radius, "calibrate")
     if not spec.needs and (composite_modulus is not None or summit_radius is not None):
         log.info("calibrate: %s ignores composite_modulus/summit_radius", law)
-    options = {"distribution": distribution, "base": base or "tang_substrate", "variant": variant,
+    options = {"distribution": distribution, "base": base or law_registry.DEFAULT_TANG_JIAO_BASE, "variant": variant,
                "base_radius": None if base_radius is None else float(base_radius)}
     given.update({k: options[k] for k in spec.options if options[k] is not None})
     offset = spec.fit_offset if fit_offset is None else bool(fit_offset)

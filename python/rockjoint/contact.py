@@ -142,10 +142,12 @@ def _plastic_curve(aperture, composite_modulus, stresses, kernel, hardness, opti
                         pressure=pressure if keep_fields else None, _states=states)
 
 
-def exact_elastic_law(curve: ClosureCurve, residual_stiffness: Optional[float] = None):
+def exact_elastic_law(curve: ClosureCurve, residual_stiffness: Optional[float] = None,
+                      initial_stiffness: float = 0.0):
     """The exact elastic law of the joint: a monotone C¹ TabulatedLaw through (0, 0) and the
     curve's (Δ, σ) points (PCHIP slopes limited to the Fritsch-Carlson disc, a Hertzian onset
-    k(0+) = 0), with the exact derivative of that interpolant as tangent. Beyond the last load:
+    k(0+) = 0 unless `initial_stiffness` [Pa/m] in [0, σ1/Δ1] seats it: σ changes below the
+    first load only), with the exact derivative of that interpolant as tangent. Beyond the last load:
     the table's linear continuation (status validity_limit); below 0: its opening branch with
     `residual_stiffness` [Pa/m] (default 1e-6 σ_max/Δ_max)."""
     rows, cols = curve.shape
@@ -153,4 +155,4 @@ def exact_elastic_law(curve: ClosureCurve, residual_stiffness: Optional[float] =
     return _cpp.exact_elastic_law(curve._states, curve.composite_modulus, curve.spacing,
                                   float(rows), float(cols), kernel, curve.tolerance,
                                   float("nan") if residual_stiffness is None
-                                  else float(residual_stiffness))
+                                  else float(residual_stiffness), float(initial_stiffness))

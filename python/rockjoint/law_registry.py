@@ -24,12 +24,13 @@ from typing import Callable, Dict, Optional, Sequence, Tuple
 
 import numpy as np
 
+from .units import DIMENSIONS, LAW_UNIT_DIMENSION
 from ._rockjoint.constitutive import (AsperityParameters, BartonBandis, ClosureLaw,
                                       ExponentialLaw, GreenwoodWilliamson, LogarithmicLaw,
                                       TangJiao, TangSubstrate, composite_modulus)
 
-#: SI per user unit, for files and reports (the only copy of these factors)
-UNITS = {"-": 1.0, "mm": 1e-3, "MPa": 1e6, "GPa": 1e9, "MPa/mm": 1e9, "1/mm²": 1e6}
+#: SI per user unit, for files and reports: entries of rockjoint.units (the one unit table)
+UNITS = {unit: DIMENSIONS[dimension][unit] for unit, dimension in LAW_UNIT_DIMENSION.items()}
 MM, MPA, GPA, MPA_PER_MM, PER_MM2 = (UNITS[u] for u in ("mm", "MPa", "GPa", "MPa/mm", "1/mm²"))
 _FILE_SUFFIX = {"-": "", "mm": "_mm", "MPa": "_MPa", "GPa": "_GPa", "MPa/mm": "_MPa_per_mm",
                 "1/mm²": "_per_mm2"}
@@ -216,6 +217,10 @@ _STATISTICS_KEYS = frozenset({"summit_density_per_mm2", "summit_radius_mm", "sum
 _SUBSTRATE_KEYS = frozenset({"deflection_coefficient", "base_radius_mm"})
 #: laws Tang & Jiao's interaction cell can sit on (calibrate(base=...), the CLI's --base)
 TANG_JIAO_BASES = ("tang_substrate", "greenwood_williamson")
+#: the base law of tang_jiao unless one is named (calibrate, the CLI's --base)
+DEFAULT_TANG_JIAO_BASE = TANG_JIAO_BASES[0]
+#: summit-height distributions of the parametric asperity laws
+HEIGHT_DISTRIBUTIONS = ("gaussian", "exponential")
 _TANG_JIAO_OPTIONS = ("variant", "overlap_closure", "overlap_area_ratio", "cell_radius", "cell_height_std")
 
 
@@ -233,32 +238,40 @@ def parameters_from_values(values) -> AsperityParameters:
                               sampling_interval=None if h is None else h * MM)
 
 
-def _asperity_build(key: str) -> Callable[..., ClosureLaw]:
-    """The SI builder of an asperity law (options: laws.make_law's docstring)."""
+def _summit_law_build(key: str, cls, substrate: bool) -> Callable[..., ClosureLaw]:
+    """The SI builder of a summit-population law `cls` (GW, or Tang's with `substrate` options
+    deflection_coefficient / base_radius); options: laws.make_law's docstring."""
+
+    def build(parameters: Optional[AsperityParameters] = None, **options) -> ClosureLaw:
+        extra = sorted(set(options) & (set(_TANG_JIAO_OPTIONS) | {"base"}))
+        if extra:
+            raise ValueError(f"{key}: {', '.join(extra)} apply to tang_jiao only")
+        if not substrate and {"deflection_coefficient", "base_radius"} & options.keys():
+            raise ValueError(f"{key}: deflection_coefficient and base_radius "
+                             "belong to tang_substrate / tang_jiao")
+        if parameters is None:
+            raise ValueError(f"{key}: AsperityParameters are required")
+        empirical = not isinstance(options.get("distribution", "gaussian"), str)
+        stats = ({} if empirical else
+                 dict(summit_density=parameters.summit_density, summit_radius=parameters.summit_radius,
+                      summit_height_std=parameters.summit_height_std))
+        return cls(parameters.composite_modulus, **stats, **options)
+
+    return build
+
+
+def _tang_jiao_build(default_base: Callable[..., ClosureLaw]) -> Callable[..., ClosureLaw]:
+    """The SI builder of Tang & Jiao's cell over `base=` (a ready law) or, by default, the law
+    `default_base(parameters, **options)` (options: laws.make_law's docstring)."""
 
     def build(parameters: Optional[AsperityParameters] = None, **options) -> ClosureLaw:
         tang_jiao = {k: options.pop(k) for k in _TANG_JIAO_OPTIONS if k in options}
         base = options.pop("base", None)
-        if key != "tang_jiao" and (tang_jiao or base is not None):
-            raise ValueError(f"{key}: {', '.join(list(tang_jiao) + ['base'] * (base is not None))} "
-                             "apply to tang_jiao only")
         if base is None:
-            if parameters is None:
-                raise ValueError(f"{key}: AsperityParameters are required")
-            empirical = not isinstance(options.get("distribution", "gaussian"), str)
-            stats = ({} if empirical else
-                     dict(summit_density=parameters.summit_density, summit_radius=parameters.summit_radius,
-                          summit_height_std=parameters.summit_height_std))
-            cls = GreenwoodWilliamson if key == "greenwood_williamson" else TangSubstrate
-            if cls is GreenwoodWilliamson and {"deflection_coefficient", "base_radius"} & options.keys():
-                raise ValueError("greenwood_williamson: deflection_coefficient and base_radius "
-                                 "belong to tang_substrate / tang_jiao")
-            base = cls(parameters.composite_modulus, **stats, **options)
+            base = default_base(parameters, **options)
         elif options:
-            raise ValueError(f"{key}: options {', '.join(options)} describe the base law; "
+            raise ValueError(f"tang_jiao: options {', '.join(options)} describe the base law; "
                              "they cannot be given with base=")
-        if key != "tang_jiao":
-            return base
         for k in ("overlap_closure", "overlap_area_ratio"):
             if k in tang_jiao:
                 tang_jiao[k] = np.asarray(tang_jiao[k], dtype=float)
@@ -276,9 +289,14 @@ def _asperity_build(key: str) -> Callable[..., ClosureLaw]:
     return build
 
 
-def _asperity_from_file(key: str) -> Callable[[dict], ClosureLaw]:
-    build = _asperity_build(key)
+_GW_BUILD = _summit_law_build("greenwood_williamson", GreenwoodWilliamson, substrate=False)
+_TANG_BUILD = _summit_law_build("tang_substrate", TangSubstrate, substrate=True)
+_TANG_JIAO_BUILD = _tang_jiao_build(_TANG_BUILD)
+#: the bases of TANG_JIAO_BASES: (builder, takes Tang's substrate options)
+_TANG_JIAO_BASE_BUILD = dict(zip(TANG_JIAO_BASES, ((_TANG_BUILD, True), (_GW_BUILD, False))))
 
+
+def _asperity_from_file(build: Callable[..., ClosureLaw]) -> Callable[[dict], ClosureLaw]:
     def from_file(values: dict) -> ClosureLaw:
         options = {"distribution": values.get("height_distribution", "gaussian")}
         if "deflection_coefficient" in values:
@@ -292,22 +310,19 @@ def _asperity_from_file(key: str) -> Callable[[dict], ClosureLaw]:
     return from_file
 
 
-def _gw_type(key: str) -> Callable[[Sequence[float], dict], ClosureLaw]:
-    """(η, σ_s) fitted, E* and β given: GW, or Tang & Jiao over the given base."""
+def _gw_type(tang_jiao: bool) -> Callable[[Sequence[float], dict], ClosureLaw]:
+    """(η, σ_s) fitted, E* and β given: GW, or (`tang_jiao`) Tang & Jiao over the given base."""
     def build(values, given) -> ClosureLaw:
         eta, sigma_s = values
         stats = AsperityParameters(composite_modulus=given["composite_modulus"], summit_density=eta,
                                    summit_radius=given["summit_radius"], summit_height_std=sigma_s)
         distribution = given.get("distribution", "gaussian")
-        gw = _asperity_build("greenwood_williamson")
-        if key == "greenwood_williamson":
-            return gw(stats, distribution=distribution)
-        tj = _asperity_build("tang_jiao")
-        variant = given.get("variant", "I1")
-        if given.get("base", "tang_substrate") == "greenwood_williamson":
-            return tj(stats, base=gw(stats, distribution=distribution), variant=variant)
-        kw = {} if given.get("base_radius") is None else {"base_radius": given["base_radius"]}
-        return tj(stats, distribution=distribution, variant=variant, **kw)
+        if not tang_jiao:
+            return _GW_BUILD(stats, distribution=distribution)
+        base_build, substrate = _TANG_JIAO_BASE_BUILD[given.get("base", DEFAULT_TANG_JIAO_BASE)]
+        kw = {} if given.get("base_radius") is None or not substrate else {"base_radius": given["base_radius"]}
+        return _TANG_JIAO_BUILD(stats, base=base_build(stats, distribution=distribution, **kw),
+                                variant=given.get("variant", "I1"))
     return build
 
 
@@ -334,16 +349,158 @@ def _gw_type_guess(s, d, given, build, offset, closure_of) -> list:
 _ETA = Quantity("summit_density", "η", "1/mm²")
 _SIGMA_S = Quantity("summit_height_std", "σ_s", "mm")
 _GIVEN = ("composite_modulus", "summit_radius")
-for _key, _label, _description, _optional, _options in (
+for _key, _label, _description, _build, _optional, _options in (
         ("greenwood_williamson", "GW", "Greenwood-Williamson on the composite topography (theory §2)",
-         _ASPERITY_KEYS, ("distribution",)),
+         _GW_BUILD, _ASPERITY_KEYS, ("distribution",)),
         ("tang_substrate", "Tang", "GW with Tang's substrate deformation (theory §4)",
-         _ASPERITY_KEYS | _SUBSTRATE_KEYS, None),
+         _TANG_BUILD, _ASPERITY_KEYS | _SUBSTRATE_KEYS, None),
         ("tang_jiao", "Tang & Jiao", "Tang & Jiao's interaction cell over Tang's substrate law (theory §5)",
-         _ASPERITY_KEYS | _SUBSTRATE_KEYS | {"variant"}, ("distribution", "base", "variant", "base_radius"))):
+         _TANG_JIAO_BUILD, _ASPERITY_KEYS | _SUBSTRATE_KEYS | {"variant"},
+         ("distribution", "base", "variant", "base_radius"))):
     register(LawRecord(
-        _key, _label, _description, _asperity_build(_key), _STATISTICS_KEYS, _optional,
-        _asperity_from_file(_key),
-        None if _options is None else CalibrationSpec((_ETA, _SIGMA_S), _gw_type(_key), _gw_type_guess,
-                                                      needs=_GIVEN, options=_options, fit_offset=True),
+        _key, _label, _description, _build, _STATISTICS_KEYS, _optional, _asperity_from_file(_build),
+        None if _options is None else CalibrationSpec((_ETA, _SIGMA_S), _gw_type(_build is _TANG_JIAO_BUILD),
+                                                      _gw_type_guess, needs=_GIVEN, options=_options,
+                                                      fit_offset=True),
         asperity=True))
+
+
+# ---- laws derived from a topography (laws.laws_from_topography, the planner's rungs) ------------
+
+
+@dataclasses.dataclass
+class TopographyInputs:
+    """What a law derived from a topography is built from: the statistics (AsperityParameters),
+    the seating options of the parametric laws, their height `distribution`, the Tang & Jiao
+    `variant`, Tang's `substrate` options, the measured summit list (topography.empirical_summits
+    of the analysis; None: not measured) and the geometric overlap curve (closure, ratio) or None.
+    For the laws built from the walls themselves: their `aperture`, `composite_modulus` and the
+    `stresses` of the contact curve. `law(key)` builds each derived law once (a composed law
+    reuses its base)."""
+
+    parameters: AsperityParameters
+    seat: dict
+    distribution: str = "gaussian"
+    variant: str = "I1"
+    substrate: dict = dataclasses.field(default_factory=dict)
+    summits: Optional[list] = None
+    overlap: Optional[tuple] = None
+    aperture: object = None                 # the walls' aperture (topography.Surface), for "walls"
+    composite_modulus: Optional[float] = None   # E* [Pa], for "walls"
+    stresses: Optional[Sequence[float]] = None  # the loads of the exact contact curve [Pa]
+    _built: dict = dataclasses.field(default_factory=dict, repr=False)
+
+    def law(self, key: str) -> ClosureLaw:
+        if key not in self._built:
+            self._built[key] = TOPOGRAPHY_LAWS[key].build(self)
+        return self._built[key]
+
+
+@dataclasses.dataclass(frozen=True)
+class TopographyLaw:
+    """A law derived from a joint's topography: its key, words, builder (TopographyInputs ->
+    law), what it needs ("statistics"; "summits": the measured summit list; "overlap": that and
+    the overlap curve; "walls": the walls themselves, built outside laws_from_topography) and its
+    row of the accuracy ladder (bench/results/accuracy_ladder.json; None: not on the ladder)."""
+
+    key: str
+    label: str
+    description: str
+    build: Callable[[TopographyInputs], ClosureLaw]
+    needs: str = "statistics"
+    ladder_row: Optional[str] = None
+
+
+TOPOGRAPHY_LAWS: Dict[str, TopographyLaw] = {}
+
+
+def register_topography_law(record: TopographyLaw) -> TopographyLaw:
+    """Add a topography-derived law (ValueError for a key already taken, by either registry)."""
+    if record.key in TOPOGRAPHY_LAWS:
+        raise ValueError(f"register_topography_law: {record.key!r} is registered already")
+    if record.needs not in ("statistics", "summits", "overlap", "walls"):
+        raise ValueError(f"register_topography_law: needs = {record.needs!r}")
+    TOPOGRAPHY_LAWS[record.key] = record
+    return record
+
+
+def _parametric(build_law, substrate: bool) -> Callable[[TopographyInputs], ClosureLaw]:
+    """GW or Tang (`substrate`: with Tang's options) on the parametric height distribution,
+    seated as asked."""
+    def build(x: TopographyInputs) -> ClosureLaw:
+        return build_law(x.parameters, distribution=x.distribution, **x.seat,
+                         **(x.substrate if substrate else {}))
+    return build
+
+
+def _on_summits(build_law, substrate: bool) -> Callable[[TopographyInputs], ClosureLaw]:
+    """GW or Tang over the measured summit list (each summit its own radius, seated at the highest)."""
+    def build(x: TopographyInputs) -> ClosureLaw:
+        return build_law(x.parameters, distribution=x.summits, **(x.substrate if substrate else {}))
+    return build
+
+
+def _tang_jiao_over(base: str, variant: Optional[str] = None, geometric: bool = False):
+    """Tang & Jiao's cell over the derived law `base` (`variant`: fixed, or the inputs' own)."""
+    def build(x: TopographyInputs) -> ClosureLaw:
+        options = dict(base=x.law(base), variant=variant or x.variant)
+        if geometric:
+            options.update(overlap_closure=x.overlap[0], overlap_area_ratio=x.overlap[1])
+        return _TANG_JIAO_BUILD(None, **options)
+    return build
+
+
+#: The law recommended for a joint described by its topography, and why. Evidence:
+#: bench/results/accuracy_ladder.md (every law against the exact elastic contact, BEM, of
+#: the same walls on the project's synthetic granite-like and sandstone-like joints).
+RECOMMENDED = "tang_jiao_i2_gw"
+RECOMMENDATION = (
+    "Tang & Jiao I2 over GW, seated at the measured first contact: of every law rockjoint offers "
+    "it has the smallest mean closure error against exact elastic contact (BEM) of the same "
+    "walls on the project's synthetic joints (loads 1-30 MPa: sandstone-like 1.9 %, increment "
+    "-4.4 %; granite-like 7.3 %, increment -12.9 %), at ~7 µs per evaluation "
+    "(bench/results/accuracy_ladder.md). It misses the 3 % target on well-mated joints.")
+#: the exact contact curve of the walls (BEM, rockjoint.contact), tabulated: the planner's rung
+#: that is no parametric law (built from the walls by scenes.joint_laws.law_of_walls)
+EXACT_CONTACT = "exact_contact"
+#: its table's stiffness at zero closure, as a fraction of the secant to its first load σ1/Δ1:
+#: the walls' own onset is Hertzian (k(0+) = 0), which leaves a FE model's first linearisation
+#: at zero closure without a normal stiffness (a singular Jacobian); 1 % seats it and changes σ
+#: below the first load (1/300 of the table's top) only
+EXACT_CONTACT_SEATING = 0.01
+
+
+def _exact_contact(x: TopographyInputs) -> ClosureLaw:
+    """The walls' exact elastic contact (BEM) at x.stresses, as a table (contact.exact_elastic_law)."""
+    from . import contact
+    curve = contact.closure_curve(x.aperture, x.composite_modulus, x.stresses)
+    seating = EXACT_CONTACT_SEATING * curve.stress[0] / curve.closure[0]
+    return contact.exact_elastic_law(curve, initial_stiffness=seating)
+
+
+for _record in (
+        TopographyLaw("greenwood_williamson", REGISTRY["greenwood_williamson"].label,
+                      REGISTRY["greenwood_williamson"].description, _parametric(_GW_BUILD, substrate=False),
+                      ladder_row="gw|first contact"),
+        TopographyLaw("tang_substrate", REGISTRY["tang_substrate"].label, REGISTRY["tang_substrate"].description,
+                      _parametric(_TANG_BUILD, substrate=True), ladder_row="tang|first contact"),
+        TopographyLaw("tang_jiao", REGISTRY["tang_jiao"].label, REGISTRY["tang_jiao"].description,
+                      _tang_jiao_over("tang_substrate"), ladder_row="tj_I1_Tang|first contact"),
+        TopographyLaw(RECOMMENDED, "Tang & Jiao I2 over GW (recommended)", RECOMMENDATION,
+                      _tang_jiao_over("greenwood_williamson", "I2"), ladder_row="tj_I2_GW|first contact"),
+        TopographyLaw("greenwood_williamson_empirical", "GW (empirical summits)",
+                      REGISTRY["greenwood_williamson"].description, _on_summits(_GW_BUILD, substrate=False),
+                      needs="summits", ladder_row="gw_empirical"),
+        TopographyLaw("tang_substrate_empirical", "Tang (empirical summits)", REGISTRY["tang_substrate"].description,
+                      _on_summits(_TANG_BUILD, substrate=True), needs="summits", ladder_row="tang_empirical"),
+        TopographyLaw("tang_jiao_empirical", "Tang & Jiao (empirical summits)", REGISTRY["tang_jiao"].description,
+                      _tang_jiao_over("tang_substrate_empirical"), needs="summits",
+                      ladder_row="tj_I1_tang_empirical"),
+        TopographyLaw("tang_jiao_empirical_geometric", "Tang & Jiao (empirical, geometric area)",
+                      "Tang & Jiao over the empirical Tang law with the geometric overlap ratio "
+                      "fraction{e <= Δ} in Eq. (2) (theory §3, §5)",
+                      _tang_jiao_over("tang_substrate_empirical", geometric=True), needs="overlap"),
+        TopographyLaw(EXACT_CONTACT, "exact contact of the walls (BEM), tabulated",
+                      "the walls' exact elastic contact curve (rockjoint.contact, docs/contact.md) as "
+                      "a table", _exact_contact, needs="walls")):
+    register_topography_law(_record)

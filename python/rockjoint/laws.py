@@ -21,7 +21,9 @@ from typing import Dict, Optional, Sequence, Tuple
 import numpy as np
 
 from ._rockjoint.constitutive import AsperityParameters, ClosureLaw
-from .law_registry import MM, MPA, MPA_PER_MM, REGISTRY, get
+from . import law_registry
+from .law_registry import MM, MPA, MPA_PER_MM, REGISTRY, TOPOGRAPHY_LAWS, get
+from .tabulation import DEFAULT_MAXIMUM_KNOTS, DEFAULT_TOLERANCE
 
 
 @dataclasses.dataclass(frozen=True)
@@ -107,8 +109,8 @@ def _table_options(path: str, doc: dict) -> dict:
     if ("maximum_stress_MPa" in table) == ("maximum_closure_mm" in table):
         raise ValueError(f"{path}: [table] needs exactly one of maximum_stress_MPa or "
                          "maximum_closure_mm")
-    options = {"tolerance": float(table.get("tolerance", 1e-6)),
-               "maximum_knots": int(table.get("maximum_knots", 20000))}
+    options = {"tolerance": float(table.get("tolerance", DEFAULT_TOLERANCE)),
+               "maximum_knots": int(table.get("maximum_knots", DEFAULT_MAXIMUM_KNOTS))}
     if "maximum_stress_MPa" in table:
         options["max_stress"] = float(table["maximum_stress_MPa"]) * MPA
     else:
@@ -119,16 +121,8 @@ def _table_options(path: str, doc: dict) -> dict:
 
 
 # ---- from a topography -------------------------------------------------------------------------
-#: The law recommended for a joint described by its topography, and why. Evidence:
-#: bench/results/accuracy_ladder.md (every law against the exact elastic contact, BEM, of
-#: the same walls on the project's synthetic granite-like and sandstone-like joints).
-RECOMMENDED = "tang_jiao_i2_gw"
-RECOMMENDATION = (
-    "Tang & Jiao I2 over GW, seated at the measured first contact: of every law rockjoint offers "
-    "it has the smallest mean closure error against exact elastic contact (BEM) of the same "
-    "walls on the project's synthetic joints (loads 1-30 MPa: sandstone-like 1.9 %, increment "
-    "-4.4 %; granite-like 7.3 %, increment -12.9 %), at ~7 µs per evaluation "
-    "(bench/results/accuracy_ladder.md). It misses the 3 % target on well-mated joints.")
+#: the law recommended for a joint described by its topography, and why (law_registry: its record)
+RECOMMENDED, RECOMMENDATION = law_registry.RECOMMENDED, law_registry.RECOMMENDATION
 
 
 def first_contact_separation(summits, parameters: AsperityParameters,
@@ -139,7 +133,9 @@ def first_contact_separation(summits, parameters: AsperityParameters,
     z = np.asarray(summits.summits["heights"], dtype=float)
     if z.size < 2:
         raise ValueError(f"{z.size} summit(s): no first-contact datum")
-    mean_in_frame = parameters.summit_height_std if distribution == "exponential" else 0.0
+    # the frames of law_registry.HEIGHT_DISTRIBUTIONS: Gaussian heights around 0, exponential from 0
+    gaussian, _ = law_registry.HEIGHT_DISTRIBUTIONS
+    mean_in_frame = 0.0 if distribution == gaussian else parameters.summit_height_std
     return float(z.max() - z.mean()) + mean_in_frame
 
 
@@ -147,7 +143,7 @@ def laws_from_topography(parameters: AsperityParameters, *, summits=None,
                          seating: str = "first_contact", empirical: bool = True,
                          overlap: Optional[Tuple[Sequence[float], Sequence[float]]] = None,
                          distribution: str = "gaussian", variant: str = "I1",
-                         **substrate) -> Dict[str, NamedLaw]:
+                         keys: Optional[Sequence[str]] = None, **substrate) -> Dict[str, NamedLaw]:
     """The asperity laws of one joint from its measured statistics, keyed by identifier:
 
     - "greenwood_williamson", "tang_substrate", "tang_jiao" (`variant` over Tang; elastic area
@@ -161,6 +157,7 @@ def laws_from_topography(parameters: AsperityParameters, *, summits=None,
     - with `summits` and `overlap` (topography.overlap_curve(joint.aperture)):
       "tang_jiao_empirical_geometric", whose Eq. (2) uses fraction{e <= Δ}.
 
+    `keys`: only these laws (and what they are built on) are built; default all.
     `substrate`: deflection_coefficient, base_radius (the laws' defaults unless given).
     """
     unknown = set(substrate) - {"deflection_coefficient", "base_radius"}
@@ -179,34 +176,15 @@ def laws_from_topography(parameters: AsperityParameters, *, summits=None,
         seat = {}
     else:
         raise ValueError(f"seating {seating!r}: expected 'first_contact' or 'mean+3.5'")
-    laws: Dict[str, NamedLaw] = {}
-
-    def add(key, label, description, law):
-        laws[key] = NamedLaw(key, label, law, description)
-
-    def family(suffix: str, label_suffix: str, options: dict):
-        gw = make_law("greenwood_williamson", parameters, **options)
-        tang = make_law("tang_substrate", parameters, **options, **substrate)
-        for key, law in (("greenwood_williamson", gw), ("tang_substrate", tang),
-                         ("tang_jiao", make_law("tang_jiao", base=tang, variant=variant))):
-            add(key + suffix, REGISTRY[key].label + label_suffix, REGISTRY[key].description, law)
-        return gw, tang
-
-    gw, _ = family("", "", dict(distribution=distribution, **seat))
-    add(RECOMMENDED, "Tang & Jiao I2 over GW (recommended)", RECOMMENDATION,
-        make_law("tang_jiao", base=gw, variant="I2"))
-    if summits is not None and empirical:
-        from .topography import empirical_summits
-        _, tang = family("_empirical", " (empirical summits)",
-                         dict(distribution=empirical_summits(summits)))
-        if overlap is not None:
-            closure, ratio = overlap
-            add("tang_jiao_empirical_geometric", "Tang & Jiao (empirical, geometric area)",
-                "Tang & Jiao over the empirical Tang law with the geometric overlap ratio "
-                "fraction{e <= Δ} in Eq. (2) (theory §3, §5)",
-                make_law("tang_jiao", base=tang, variant=variant, overlap_closure=closure,
-                         overlap_area_ratio=ratio))
-    return laws
+    from .topography import empirical_summits   # topography imports this module
+    inputs = law_registry.TopographyInputs(
+        parameters, seat, distribution, variant, substrate,
+        summits=empirical_summits(summits) if summits is not None and empirical else None,
+        overlap=overlap)
+    available = {"statistics": True, "summits": inputs.summits is not None,
+                 "overlap": inputs.summits is not None and overlap is not None, "walls": False}
+    return {r.key: NamedLaw(r.key, r.label, inputs.law(r.key), r.description)
+            for r in TOPOGRAPHY_LAWS.values() if available[r.needs] and (keys is None or r.key in keys)}
 
 
 def describe_models() -> str:

@@ -17,10 +17,15 @@ from ._rockjoint.constitutive import ClosureLaw, TabulatedLaw
 __all__ = ["TabulatedLaw", "tabulate", "plot_table", "table_errors"]
 
 
+#: the tabulation defaults: the C++ TabulatedLaw::Options' own (their one spelling)
+DEFAULT_TOLERANCE = TabulatedLaw.default_tolerance
+DEFAULT_MAXIMUM_KNOTS = TabulatedLaw.default_maximum_knots
+
+
 def tabulate(law: ClosureLaw, *, max_stress: Optional[float] = None,
-             max_closure: Optional[float] = None, tolerance: float = 1e-6,
+             max_closure: Optional[float] = None, tolerance: float = DEFAULT_TOLERANCE,
              residual_stiffness: Optional[float] = None,
-             maximum_knots: int = 20000) -> TabulatedLaw:
+             maximum_knots: int = DEFAULT_MAXIMUM_KNOTS) -> TabulatedLaw:
     """Tabulate ``law`` up to ``max_stress`` [Pa] or over [0, ``max_closure``] [m].
 
     ``tolerance`` bounds the relative error of σ and of k against ``law``;

@@ -637,6 +637,11 @@ void declare_tabulation(py::module_& m)
       "A closure law tabulated with error control (monotone C¹ Hermite, exact tangent; "
       "first segment in √Δ). Build with from_stress/from_closure (or rockjoint.tabulate), "
       "or load().")
+      // The tabulation defaults, spelled once (TabulatedLaw::Options): Python reads them here.
+      .def_property_readonly_static("default_tolerance", [](py::object)
+                                    { return TabulatedLaw::Options{}.tolerance; })
+      .def_property_readonly_static("default_maximum_knots", [](py::object)
+                                    { return TabulatedLaw::Options{}.maximum_knots; })
       .def_static(
           "from_stress",
           [](const ClosureLaw& law, double maximum_stress, double tolerance,
@@ -647,8 +652,9 @@ void declare_tabulation(py::module_& m)
             return std::make_shared<TabulatedLaw>(
                 TabulatedLaw::up_to_stress(law, maximum_stress, o));
           },
-          py::arg("law"), py::arg("maximum_stress"), py::arg("tolerance") = 1e-6,
-          py::arg("residual_stiffness") = py::none(), py::arg("maximum_knots") = 20000,
+          py::arg("law"), py::arg("maximum_stress"), py::arg("tolerance") = TabulatedLaw::Options{}.tolerance,
+          py::arg("residual_stiffness") = py::none(),
+          py::arg("maximum_knots") = TabulatedLaw::Options{}.maximum_knots,
           "Tabulate `law` up to σ_max [Pa] (Δ_max = law.closure_at_stress(σ_max)); relative "
           "error of σ and k <= tolerance; residual_stiffness k_res [Pa/m] (None: 1e-6 "
           "σ_max/Δ_max, 0: strict σ = k = 0 when open)")
@@ -662,8 +668,9 @@ void declare_tabulation(py::module_& m)
             return std::make_shared<TabulatedLaw>(
                 TabulatedLaw::over_closure_range(law, maximum_closure, o));
           },
-          py::arg("law"), py::arg("maximum_closure"), py::arg("tolerance") = 1e-6,
-          py::arg("residual_stiffness") = py::none(), py::arg("maximum_knots") = 20000,
+          py::arg("law"), py::arg("maximum_closure"), py::arg("tolerance") = TabulatedLaw::Options{}.tolerance,
+          py::arg("residual_stiffness") = py::none(),
+          py::arg("maximum_knots") = TabulatedLaw::Options{}.maximum_knots,
           "Tabulate `law` over closures [0, Δ_max] [m] (Δ_max < law.maximum_closure)")
       .def_static(
           "load",

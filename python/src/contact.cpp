@@ -115,14 +115,16 @@ void declare_contact(py::module_& m)
   m.def(
       "exact_elastic_law",
       [](const std::vector<ContactState>& curve, double modulus, double spacing, double rows,
-         double cols, Kernel kernel, double tolerance, double residual_stiffness)
+         double cols, Kernel kernel, double tolerance, double residual_stiffness,
+         double initial_stiffness)
       {
         return std::make_shared<constitutive::TabulatedLaw>(exact_elastic_law(
             curve, ContactSource{modulus, spacing, rows, cols, kernel, tolerance},
-            residual_stiffness));
+            residual_stiffness, initial_stiffness));
       },
       py::arg("curve"), py::arg("composite_modulus"), py::arg("spacing"), py::arg("rows"),
-      py::arg("cols"), py::arg("kernel"), py::arg("tolerance"), py::arg("residual_stiffness"));
+      py::arg("cols"), py::arg("kernel"), py::arg("tolerance"), py::arg("residual_stiffness"),
+      py::arg("initial_stiffness") = 0.0);
 }
 
 } // namespace rockjoint::python

@@ -95,6 +95,16 @@ void declare_topography(py::module_& m)
   m.def("decimate", &decimate, py::arg("surface"), py::arg("factor"),
         "Every factor-th point: the same surface sampled factor times more coarsely");
   m.def("metres_per_unit", &metres_per_unit, py::arg("unit"));
+  m.def(
+      "length_units",
+      []()
+      {
+        py::dict out;
+        for (const LengthUnit& u : length_units())
+          out[py::str(std::string(u.name))] = u.metres;
+        return out;
+      },
+      "{unit: metres}: every length unit rockjoint reads (the one table, topography/units.cpp)");
 
   // ---- files -----------------------------------------------------------------------------
   m.def("read_height_grid",

@@ -130,6 +130,24 @@ def test_exact_elastic_law_passes_through_the_curve_and_is_monotone():
         assert law.normal_stress(law.closure_at_stress(s)) == pytest.approx(s, rel=1e-10)
 
 
+def test_exact_elastic_law_takes_a_curve_whose_first_slope_reaches_the_quartics_bound():
+    """The first segment (a quartic in √Δ with k(0+) = 0) is monotone for k1 <= 2 σ1/Δ1; this
+    scan's curve has its data slope at the first load (0.1 MPa) far above that bound, so the
+    bound is taken, and the table must accept it (rounding once put its cubic coefficient at
+    -1e-16 σ1 and the table refused). The walls: the accuracy ladder's granite-like seed 1 on
+    512² at 0.25 mm, scanned at every other point (0.5 mm)."""
+    u, l = topo.mated_pair(topo.SelfAffineSpec(0.8, 1e-3), (512, 512), 0.25e-3, 2.5e-3, seed=1)
+    scan = topo.composite_topography(topo.Surface(u.heights[::2, ::2], 0.5e-3),
+                                     topo.Surface(l.heights[::2, ::2], 0.5e-3)).aperture
+    stresses = np.unique(np.r_[np.geomspace(0.1e6, 1e6, 5), np.geomspace(1e6, 30e6, 11)])
+    c = contact.closure_curve(scan, E_STAR, stresses)
+    assert (c.stress[1] - c.stress[0]) / (c.closure[1] - c.closure[0]) > 2 * c.stress[0] / c.closure[0]
+    law = contact.exact_elastic_law(c)
+    np.testing.assert_allclose(law.normal_stress(c.closure), stresses, rtol=1e-12)
+    d = np.linspace(1e-9, c.closure[1], 500)
+    assert np.all(np.diff(law.normal_stress(d)) > 0)
+
+
 def test_cli_prints_the_bem_reference_beside_the_laws(tmp_path):
     import subprocess
     import sys

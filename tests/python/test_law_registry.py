@@ -2,7 +2,7 @@
 to make_law, tabulation, the CLI (tabulate and calibrate, through ROCKJOINT_LAWS), calibration
 and the FE joint; every answer is checked against the toy law's closed form
 Δ(σ) = V_m (1 - exp(-σ/(k0 V_m))). And a law's identity lives in the registry only: no
-comparison with a law name elsewhere in the package, and the docs table is the registry's."""
+spelling of a law key elsewhere in the package, and the docs table is the registry's."""
 import os
 import pathlib
 import re
@@ -94,12 +94,21 @@ def test_fe_joint_takes_the_registered_law():
     assert top == pytest.approx(expected_top(2, stress, float(toy.closure(stress, K0, VM))), rel=1e-8)
 
 
-def test_law_names_are_compared_only_in_the_registry():
+def test_law_keys_are_spelled_only_in_the_registry():
+    """Any string literal of the package (parsed, not grepped: comparisons, arguments, dict keys,
+    defaults) equal to a registered law key or a topography-derived key is in law_registry.py;
+    so is any string ending like the derived keys' suffixes of old ("_empirical")."""
+    import ast
     package = pathlib.Path(SOURCE) / "python" / "rockjoint"
-    keys = [k for k in law_registry.REGISTRY if k != toy.KEY]
-    pattern = re.compile(r"(law|model|name|key|base)\s*[!=]=\s*[\"'](" + "|".join(keys) + r")[\"']")
-    offenders = [f"{p.relative_to(package)}:{i}" for p in package.rglob("*.py") if p.name != "law_registry.py"
-                 for i, line in enumerate(p.read_text(encoding="utf-8").splitlines(), 1) if pattern.search(line)]
+    keys = ({k for k in law_registry.REGISTRY if k != toy.KEY} | set(law_registry.TOPOGRAPHY_LAWS))
+    offenders = []
+    for path in package.rglob("*.py"):
+        if path.name == "law_registry.py":
+            continue
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.Constant) and isinstance(node.value, str) and (
+                    node.value in keys or node.value.endswith("_empirical")):
+                offenders.append(f"{path.relative_to(package)}:{node.lineno}: {node.value!r}")
     assert not offenders, offenders
 
 
@@ -115,3 +124,43 @@ def test_architecture_page_shows_the_registry_table():
         law_registry.REGISTRY.update(saved)
     page = (pathlib.Path(SOURCE) / "docs" / "architecture.md").read_text(encoding="utf-8")
     assert table in page, "docs/architecture.md: regenerate the law table with law_registry.docs_table()"
+
+
+def _recipe_files() -> list:
+    """The numbered file list of docs/architecture.md, "Adding a closure law"."""
+    page = (pathlib.Path(SOURCE) / "docs" / "architecture.md").read_text(encoding="utf-8")
+    section = page[page.index("## Adding a closure law"):page.index("## Where each equation lives")]
+    return re.findall(r"^\d+\. `([^`]+)`", section, re.M)
+
+
+def _naming(root: pathlib.Path, word: str, skip=()) -> set:
+    """Files of the repository's sources (C++, Python, CMake, docs) that contain `word`."""
+    found = set()
+    for path in root.rglob("*"):
+        rel = path.relative_to(root)
+        if (not path.is_file() or rel.parts[0].startswith(".") or rel.parts[0].startswith("build")
+                or rel.parts[0] in skip or path.suffix not in (".hpp", ".cpp", ".py", ".txt", ".md", ".cmake")
+                or "__pycache__" in rel.parts):
+            continue
+        if word in path.read_text(encoding="utf-8", errors="ignore"):
+            found.add(rel.as_posix())
+    return found
+
+
+def test_the_recipe_lists_every_file_a_cpp_law_touches():
+    """ExponentialLaw (<law> = empirical_laws) is named by exactly the recipe's library files;
+    the recipe's test file names it too; users of the law (other tests, benches, docs of use)
+    are not part of adding it."""
+    files = [f.replace("<law>", "empirical_laws") for f in _recipe_files()]
+    assert len(files) == 8, files
+    root = pathlib.Path(SOURCE)
+    library = {f for f in files if not f.startswith(("tests/", "docs/"))}
+    assert _naming(root, "ExponentialLaw", skip=("tests", "bench", "demos", "docs")) == library
+    assert all((root / f).exists() for f in files), files
+    assert "ExponentialLaw" in (root / "tests/cpp/test_empirical_laws.cpp").read_text(encoding="utf-8")
+
+
+def test_a_composed_law_is_one_file():
+    """The toy law is named by its plugin file and its own test only (the recipe: one record in
+    one file)."""
+    assert _naming(pathlib.Path(SOURCE), toy.KEY) == {"tests/python/toy_law_plugin.py"}

@@ -3,22 +3,30 @@
 - a 2D scene is solved in 2D (the mesh the run solves has gdim 2), and cannot be forced to 3D;
 - the table covers what the scene reaches: after the run, every joint's largest closure and normal
   stress are inside its table (tunnel: opening concentration; blocky: block corners);
-- the law picked from a topography meets the budget on the ladder's joints, read from
-  bench/results/accuracy_ladder.md itself, and no cheaper law of that file does;
+- the ladder's numbers are the bench's: bench/results/accuracy_ladder.json (the planner's source)
+  says what bench/results/accuracy_ladder.md says, row by row;
+- the rung picked for a topography meets the budget by the bench's JSON, read here on its own,
+  and no rung of less total cost does; the exact contact curve (BEM) is a rung;
+- the strength the slip decision uses is the joint's own (JointStrength.shear_strength, its
+  maximum_friction_angle included), checked against the closed forms;
 - slip is left out where joints stay far from their envelope and put in where they reach it; run
   both ways, leaving it out changes the answer by less than the budget.
 """
+import json
+import math
 import os
 import re
 
 import pytest
 
-from rockjoint.scenes import SceneError, load_scene, make_plan
-from rockjoint.scenes.ladder import LADDER
+from rockjoint.scenes import SceneError, load_scene, make_plan, planner
+from rockjoint.scenes import ladder
 from fe_stack import require_fe
 from scene_cases import COLUMN, SCENES, SOURCE, cli, write
 
 LADDER_FILE = os.path.join(SOURCE, "bench", "results", "accuracy_ladder.md")
+LADDER_JSON = os.path.join(SOURCE, "bench", "results", "accuracy_ladder.json")
+FAMILIES = ("granite-like", "sandstone-like")
 
 
 def ladder_file_rows():
@@ -43,23 +51,110 @@ def test_two_d_scene_is_planned_in_2d_and_cannot_be_forced_to_3d(tmp_path):
     assert code == 0 and "2D plane strain" in out and "cost:" in out and "error:" in out
 
 
-@pytest.mark.parametrize("budget", [0.05, 0.08, 0.10, 0.14, 0.20])
-def test_law_meets_the_budget_on_the_ladders_joints(tmp_path, budget):
+def ladder_rows():
+    """{topography-derived law key: its row of the ladder's JSON} (the registry's records)."""
+    from rockjoint import law_registry
+    return {k: r.ladder_row for k, r in law_registry.TOPOGRAPHY_LAWS.items() if r.ladder_row}
+
+
+def bench_json():
+    with open(LADDER_JSON, encoding="utf-8") as fh:
+        return json.load(fh)
+
+
+def test_ladder_json_says_what_the_report_says():
+    """Every law row of the .md (mean closure error per joint type, cost per evaluation) equals
+    the JSON's to the .md's rounding; the planner reads the JSON, people read the .md."""
+    data, rows = bench_json(), ladder_file_rows()
+    by_label = {law["label"]: law for law in data["laws"].values()}
+    checked = 0
+    for (family, label), (error, cost) in rows.items():
+        law = by_label[label.replace(" **(recommended)**", "")]
+        if family in FAMILIES:
+            assert round(100 * law["families"][family]["closure_error_mean"], 1) == pytest.approx(100 * error, abs=1e-9), \
+                (family, label)
+            assert round(law["evaluation_seconds"] * 1e6, 2) == pytest.approx(cost, abs=1e-9), label
+            checked += 1
+    assert checked == 2 * len(data["laws"])
+    # the exact contact's errors: the .md's section against the JSON
+    text = open(LADDER_FILE, encoding="utf-8").read()
+    section = text[text.index("## Exact contact as a rung"):]
+    for family in FAMILIES:
+        row = re.search(r"^\| " + family + r" \| ([\d.]+) % \| ([\d.]+) % \| ([\d.]+) % \|$", section, re.M)
+        e = data["bem"]["families"][family]
+        assert [float(x) for x in row.groups()] == [round(100 * e["resolution_error_mean"], 1),
+                                                    round(100 * e["resolution_error_max"], 1),
+                                                    round(100 * e["table_error"], 2)], family
+    # the planner's rungs are the JSON's rows: a law's error its error against the scan's BEM plus
+    # the BEM's resolution error, the exact contact's that resolution error plus its table's
+    rungs = ladder.by_key()
+    exact = data["bem"]["families"]
+    for key, row in ladder_rows().items():
+        assert rungs[key].errors == {f: data["laws"][row]["families"][f]["closure_error_mean"]
+                                     + exact[f]["resolution_error_mean"] for f in FAMILIES}
+    assert rungs[ladder.EXACT_CONTACT].errors == {
+        f: exact[f]["resolution_error_mean"] + exact[f]["table_error"] for f in FAMILIES}
+
+
+def rung_seconds(data, row, points, tolerance):
+    """Total cost of a rung by the JSON, interpolated here on its own (log-log in the points)."""
+    def interp(table):
+        xs = sorted(table, key=float)
+        lo = max([x for x in xs if float(x) <= points] or xs[:1], key=float)
+        hi = min([x for x in xs if float(x) > float(lo)] or xs[-1:], key=float)
+        if lo == hi:
+            lo, hi = xs[-2], xs[-1]
+        p = math.log(table[hi] / table[lo]) / math.log(float(hi) / float(lo))
+        return table[lo] * (points / float(lo)) ** p
+    if row is None:
+        return interp(data["bem_seconds"])
+    tab = {float(t): v for t, v in data["laws"][row]["tabulation_seconds"].items() if v is not None}
+    tight = min(tab)
+    return interp(data["laws"][row]["law_seconds"]) + tab[max(t for t in tab if t <= max(tolerance, tight))]
+
+
+@pytest.mark.parametrize("budget", [0.02, 0.05, 0.08, 0.10, 0.20, 0.25, 0.30, 0.40])
+def test_rung_meets_the_budget_at_least_total_cost(tmp_path, budget):
     text = open(os.path.join(SCENES, "lab_closure_test.yaml"), encoding="utf-8").read()
     text = re.sub(r"error_budget: .*", f"error_budget: {budget * 100:g} %", text)
-    plan = make_plan(load_scene(write(tmp_path, text)))
+    scene = load_scene(write(tmp_path, text))
+    plan = make_plan(scene)
+    points, tol = scene["joints"]["joint"]["law"]["topography"]["points"], plan.table_tolerance
+    data = bench_json()
+    error, seconds = {}, {}
+    exact = data["bem"]["families"]
+    for key, row in ladder_rows().items():
+        error[key] = max(data["laws"][row]["families"][f]["closure_error_mean"] + exact[f]["resolution_error_mean"]
+                         for f in FAMILIES)
+        seconds[key] = rung_seconds(data, row, points, tol)
+    error[ladder.EXACT_CONTACT] = max(exact[f]["resolution_error_mean"] + exact[f]["table_error"] for f in FAMILIES)
+    seconds[ladder.EXACT_CONTACT] = rung_seconds(data, None, points, tol)
     key = plan.laws["joint"]
-    measured = ladder_file_rows()
-    row = next(r.row for r in LADDER if r.key == key)
-    errors = [measured[f, row][0] for f in ("granite-like", "sandstone-like")]
-    if budget >= 0.073:   # the ladder's best law on granite-like joints
-        assert max(errors) <= budget
-        cheaper = [r for r in LADDER if measured["granite-like", r.row][1] < measured["granite-like", row][1]]
-        assert all(max(measured[f, r.row][0] for f in ("granite-like", "sandstone-like")) > budget
-                   for r in cheaper)
-    else:   # nothing meets it: the most accurate law, and the plan says so
-        assert key == min(LADDER, key=lambda r: r.error).key
-        assert any("no law meets" in c.why for c in plan.choices)
+    choice = next(c for c in plan.choices if c.topic == "law of joint")
+    assert f"~{seconds[key]:.2g} s" in choice.cost   # the plan says the cost
+    if min(error.values()) <= budget:
+        assert error[key] <= budget
+        assert all(seconds[k] >= seconds[key] for k in error if error[k] <= budget)
+    else:   # nothing meets it: the most accurate rung, and the plan says so
+        assert key == min(error, key=error.get)
+        assert "no rung meets" in choice.why
+
+
+def test_slip_decision_uses_the_joints_own_strength():
+    """Coulomb: c + σ_n tan φ; Barton: σ_n tan(φ_r + JRC log10(JCS/σ_n)) capped at the strength's
+    maximum_friction_angle (50° here: at 0.1 MPa Barton's angle is 30 + 15·3 = 75°)."""
+    coulomb = {"model": "coulomb", "friction_angle": math.radians(30), "cohesion": 1e5}
+    assert planner.shear_capacity(coulomb, 2e6) == pytest.approx(1e5 + 2e6 * math.tan(math.radians(30)), rel=1e-12)
+    barton = {"model": "barton", "friction_angle": math.radians(30), "cohesion": 0.0, "jrc": 15.0, "jcs": 100e6,
+              "maximum_friction_angle": math.radians(50)}
+    assert planner.shear_capacity(barton, 0.1e6) == pytest.approx(0.1e6 * math.tan(math.radians(50)), rel=1e-12)
+    at_10 = math.radians(30 + 15 * math.log10(100 / 10))
+    assert planner.shear_capacity(barton, 10e6) == pytest.approx(10e6 * math.tan(at_10), rel=1e-12)
+    # on a plane at 45° of a uniaxial 0.2 MPa stress: τ = σ_n = 0.1 MPa, so τ/τ_max = 1/tan 50°
+    n = [math.sqrt(0.5), math.sqrt(0.5)]
+    import numpy as np
+    stress = np.array([[0.0, 0.0], [0.0, -0.2e6]])
+    assert planner.mobilised_friction(barton, np.array(n), stress) == pytest.approx(1 / math.tan(math.radians(50)))
 
 
 @pytest.fixture

@@ -25,7 +25,8 @@ from pathlib import Path
 from .. import composite_modulus
 from ..calibration import calibrate, read_closure_curve
 from ..cycle_calibration import calibrate_cycles, read_load_cycles
-from ..law_registry import GPA, MM, MPA, TANG_JIAO_BASES, calibratable
+from ..law_registry import (DEFAULT_TANG_JIAO_BASE, GPA, HEIGHT_DISTRIBUTIONS, MM, MPA, TANG_JIAO_BASES,
+                            calibratable)
 
 
 def add_parser(subparsers) -> None:
@@ -46,11 +47,10 @@ def add_parser(subparsers) -> None:
                    help="E* [GPa], 1/E* = Σ(1-ν²)/E (GW-type laws; else --young/--poisson)")
     p.add_argument("--summit-radius", type=float, metavar="MM",
                    help="mean summit radius β [mm] (GW-type laws; also R of Eq. (1))")
-    p.add_argument("--distribution", choices=["gaussian", "exponential"], default="gaussian",
+    p.add_argument("--distribution", choices=HEIGHT_DISTRIBUTIONS, default=HEIGHT_DISTRIBUTIONS[0],
                    help="summit-height distribution of GW-type laws (default gaussian)")
-    p.add_argument("--base", choices=TANG_JIAO_BASES,
-                   default="tang_substrate", help="base law of tang_jiao (default "
-                                                  "tang_substrate)")
+    p.add_argument("--base", choices=TANG_JIAO_BASES, default=DEFAULT_TANG_JIAO_BASE,
+                   help=f"base law of tang_jiao (default {DEFAULT_TANG_JIAO_BASE})")
     p.add_argument("--variant", choices=["I1", "I2"], default="I1",
                    help="tang_jiao reading of Eq. (7): I1 stress interaction (default), I2 "
                         "kinematic (docs/theory.md §5)")

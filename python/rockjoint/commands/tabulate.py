@@ -11,9 +11,9 @@ Example parameter file::
 
     [table]
     maximum_stress_MPa = 30.0          # or maximum_closure_mm
-    tolerance = 1e-6                   # relative error of σ and k
+    tolerance = 1e-6                   # relative error of σ and k (default: TabulatedLaw.default_tolerance)
     # residual_stiffness_MPa_per_mm = 0.0   (default: 1e-6 σ_max/Δ_max; 0: strict open law)
-    # maximum_knots = 20000
+    # maximum_knots = ...              (default: rockjoint.TabulatedLaw.default_maximum_knots)
 
 Models and their [law] keys are listed by ``--list-models``.
 """

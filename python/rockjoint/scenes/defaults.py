@@ -43,10 +43,6 @@ def fe_settings(budget: float) -> tuple:
     return min(FE_SETTINGS, key=lambda s: s.error_budget), False
 
 
-#: tables of laws over a measured summit list (keys *_empirical): every summit coming into contact
-#: is a kink of σ(Δ), which a 1e-6 table cannot follow (TabulatedLaw refuses); 1e-3 is still
-#: two orders below the ladder's 6-9 % law errors
-TABLE_TOLERANCE_EMPIRICAL = 1e-3
 #: the table extends this far past the normal-stress bound (the lab demo: round-off puts points a
 #: hair above an exact bound)
 TABLE_MARGIN = 1.25

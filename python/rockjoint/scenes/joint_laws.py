@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import logging
 
-from . import defaults
 
 log = logging.getLogger("rockjoint.scenes")
 
@@ -32,31 +31,63 @@ def source_law(scene, set_name: str, plan, reduced: bool = False):
         fit = calibration.calibrate(curve, spec["fit"])
         log.info("joint set %s: %s calibrated to %s", set_name, spec["fit"], spec["curve"])
         return fit.law
-    from rockjoint import topography as topo
     t = spec["topography"]
     n = scene.data["reduced"].get("topography_points", t["points"]) if reduced else t["points"]
-    upper, lower = topo.mated_pair(topo.SelfAffineSpec(hurst_exponent=t["hurst"], rms_height=t["rms_height"]),
-                                   (n, n), t["spacing"], t["matedness"], seed=t["seed"])
-    analysis = topo.analyse(topo.composite_topography(upper, lower, offset=(0, 0)).composite)
-    params = topo.closure_parameters(analysis, young=rock["young"], poisson=rock["poisson"])
     key = plan.laws[set_name]
-    family = laws.laws_from_topography(params, summits=analysis, empirical=key.endswith("_empirical"))
     log.info("joint set %s: %s from a %dx%d topography at %.3g mm", set_name, key, n, n, t["spacing"] * 1e3)
-    return family[key].law
+    return topography_law(key, t, n, rock["young"], rock["poisson"], plan.table_max_stress)
+
+
+def topography_law(key: str, topography: dict, points: int, young: float, poisson: float,
+                   top_stress: float):
+    """The law of rung `key` (scenes.ladder) for the synthetic mated pair `topography` (the scene's
+    {hurst, rms_height, spacing, matedness, seed}) on a points² scan: the exact contact curve
+    (BEM) up to `top_stress` [Pa], or a law of rockjoint.laws.laws_from_topography."""
+    upper, lower = scan(topography, points)
+    return law_of_walls(key, upper, lower, young, poisson, top_stress)
+
+
+def scan(topography: dict, points: int) -> tuple:
+    """(upper, lower) walls of the scene's synthetic mated pair on a points² scan."""
+    from rockjoint import topography as topo
+    t = topography
+    return topo.mated_pair(topo.SelfAffineSpec(hurst_exponent=t["hurst"], rms_height=t["rms_height"]),
+                           (points, points), t["spacing"], t["matedness"], seed=t["seed"])
+
+
+def law_of_walls(key: str, upper, lower, young: float, poisson: float, top_stress: float):
+    """The law of rung `key` for two scanned walls (topography.Surface, mated, no offset): what
+    the planner's cost of that rung counts (scenes.ladder)."""
+    import rockjoint
+    from rockjoint import law_registry, laws
+    from rockjoint import topography as topo
+    from . import ladder
+    joint = topo.composite_topography(upper, lower, offset=(0, 0))
+    if law_registry.TOPOGRAPHY_LAWS[key].needs == "walls":   # the walls' own contact: no statistics
+        inputs = law_registry.TopographyInputs(None, {}, aperture=joint.aperture,
+                                               composite_modulus=rockjoint.composite_modulus(young, poisson),
+                                               stresses=ladder.contact_stresses(top_stress))
+        return inputs.law(key)
+    analysis = topo.analyse(joint.composite)
+    params = topo.closure_parameters(analysis, young=young, poisson=poisson)
+    return laws.laws_from_topography(params, summits=analysis, keys=(key,))[key].law
 
 
 def tables(scene, plan, reduced: bool = False) -> dict:
-    """{joint set: tabulated law over the plan's normal-stress range}."""
+    """{joint set: tabulated law over the plan's normal-stress range} (a saved table and the
+    exact contact curve are tables already)."""
     import rockjoint
+    from . import ladder
+    rungs = ladder.by_key()
     out = {}
     for name, spec in scene.data["joints"].items():
         law = source_law(scene, name, plan, reduced)
-        if "table" in spec["law"]:
+        rung = rungs.get(plan.laws.get(name))
+        if "table" in spec["law"] or (rung is not None and not rung.tabulation):
             out[name] = law
             continue
-        tolerance = plan.table_tolerance
-        if plan.laws.get(name, "").endswith("_empirical"):  # kinks: defaults.TABLE_TOLERANCE_EMPIRICAL
-            tolerance = max(tolerance, defaults.TABLE_TOLERANCE_EMPIRICAL)
+        # laws over measured summits: a kink per summit, tabulated no tighter than the bench could
+        tolerance = max(plan.table_tolerance, rung.tightest_tolerance if rung else 0.0)
         out[name] = rockjoint.tabulate(law, max_stress=plan.table_max_stress, tolerance=tolerance)
         log.info("joint set %s: table of %d knots up to %.3g MPa", name, out[name].knot_count,
                  plan.table_max_stress * 1e-6)

@@ -5,8 +5,9 @@ Rules (docs/scenes.md §planner):
 - joint normal-stress bound: the largest compressive principal stress of in-situ + loads (every
   load added in full: an upper bound), times the Kirsch concentration 3 at an opening; the tables
   cover it with a margin (defaults.TABLE_MARGIN);
-- law: from a topography, the cheapest law of the accuracy ladder (ladder.py) whose closure
-  error is within the error budget; a law given by name, curve or table is kept;
+- law: from a topography, the rung of least total cost (ladder.py: each law of the accuracy
+  ladder, or the exact contact curve of the walls) whose error is within the error budget; a
+  law given by name, curve or table is kept;
 - slip: only for joint sets with a strength whose mobilised friction τ/τ_max can reach
   defaults.SLIP_MARGIN under the bound (at an opening: the wall's uniaxial state, every plane);
 - mesh: refined only near joints and openings; the intact model on the same mesh (glued nodes).
@@ -146,22 +147,23 @@ def _largest_stress(scene) -> float:
     return top if top > 0 else 1e6
 
 
-def friction(strength: dict, normal_stress: float) -> float:
-    """tan of the mobilised friction angle at `normal_stress` (Coulomb, or Barton's
-    φ_r + JRC log10(JCS/σ_n), capped at 70° as in docs/joint-strength.md)."""
-    phi = strength["friction_angle"]
-    if strength["model"] == "barton" and normal_stress > 0:
-        phi += math.radians(strength.get("jrc", 0.0) * math.log10(
-            max(strength.get("jcs", normal_stress) / normal_stress, 1.0)))
-    return math.tan(min(phi, math.radians(70.0)))
+def shear_capacity(strength: dict, normal_stress):
+    """τ_max [Pa] of a scene's strength description at `normal_stress` [Pa] (a number or an array;
+    compression +): the joint's own JointStrength.shear_strength (docs/joint-strength.md: Coulomb c + σ_n tan φ,
+    or Barton's angle capped at its maximum_friction_angle), not a copy of it."""
+    from rockjoint.joint import make_strength
+    joint = make_strength(strength)
+    sn = np.asarray(normal_stress, dtype=float)
+    out = np.array([joint.shear_strength(float(v)) for v in sn.ravel()]).reshape(sn.shape)
+    return float(out) if out.ndim == 0 else out
 
 
 def mobilised_friction(strength: dict, normal: np.ndarray, stress: np.ndarray) -> float:
-    """τ / (c + σ_n tan φ) on the plane of unit `normal` under `stress` (tension positive)."""
+    """τ / τ_max on the plane of unit `normal` under `stress` (tension positive)."""
     t = stress @ normal
     sn = -float(t @ normal)
     tau = float(np.linalg.norm(t + sn * normal))
-    capacity = strength["cohesion"] + max(sn, 0.0) * friction(strength, sn)
+    capacity = shear_capacity(strength, max(sn, 0.0))   # a tension bound counts as no compression
     return math.inf if capacity <= 0 else tau / capacity
 
 
@@ -171,7 +173,7 @@ def wall_mobilised_friction(strength: dict, hoop: float) -> float:
     σ_θ sin²α, τ = σ_θ sinα cosα."""
     alpha = np.linspace(1e-3, math.pi / 2, 400)
     sn, tau = hoop * np.sin(alpha) ** 2, hoop * np.sin(alpha) * np.cos(alpha)
-    cap = np.array([strength["cohesion"] + s * friction(strength, s) for s in sn])
+    cap = shear_capacity(strength, sn)
     return float(np.max(tau / np.maximum(cap, 1e-300)))
 
 
@@ -273,20 +275,37 @@ def make_plan(scene, reduced: bool = False) -> Plan:
     for s in sets:
         law = d["joints"][s["name"]]["law"]
         if "topography" in law:
-            rung, met = ladder.cheapest_within(budget)
+            points = law["topography"]["points"]
+            if reduced:
+                points = d["reduced"].get("topography_points", points)
+            rung, met = ladder.cheapest_within(budget, points, tol)
             auto = rung.key
             key = over.get("law", auto)
-            if key not in ladder.BY_KEY:
+            rungs = ladder.by_key()
+            if key not in rungs:
                 scene.fail(("plan", "law"), f"{key!r} is not on the accuracy ladder; one of "
-                           f"{', '.join(ladder.BY_KEY)}")
-            r = ladder.BY_KEY[key]
+                           f"{', '.join(rungs)}")
+            r = rungs[key]
             why = ("set in the scene's plan (law)" if "law" in over else
-                   f"cheapest law of the accuracy ladder within the {budget:.0%} budget" if met else
-                   f"no law meets the {budget:.0%} budget: the most accurate one")
-            choices.append(Choice(f"law of {s['name']}", f"{key} ({r.row.replace('**', '')})", why=why,
-                                  cost=f"{r.cost * 1e6:.2f} µs per evaluation, only while tabulating",
-                                  error=f"closure vs exact contact: {r.error_granite:.1%} granite-like, "
-                                        f"{r.error_sandstone:.1%} sandstone-like (bench/results/accuracy_ladder.md)"))
+                   f"least total cost within the {budget:.0%} budget of every way to the joint's curve" if met else
+                   f"no rung meets the {budget:.0%} budget: the most accurate one")
+            seconds = r.seconds(points, tol)
+            what = ("the BEM solve of the exact contact" if key == ladder.EXACT_CONTACT else
+                    f"the scan's analysis and the law's table ({r.evaluation * 1e6:.2f} µs per evaluation "
+                    "while tabulating)")
+            errors = ", ".join(f"{e:.1%} {f}" for f, e in r.errors.items())
+            at = ladder.evidence_spacing()
+            spacing = law["topography"]["spacing"]
+            choices.append(Choice(
+                f"law of {s['name']}", f"{key} ({r.label.replace('**', '')})", why=why,
+                cost=f"~{seconds:.2g} s on the {points}² scan: {what} (bench/results/accuracy_ladder.json)",
+                error=(f"closure vs the walls' exact contact at half the scan's spacing, on the bench's joints "
+                       f"scanned at {at * 1e3:g} mm: {errors} ("
+                       + ("the BEM's resolution error + its table's" if key == ladder.EXACT_CONTACT else
+                          "the law vs the scan's BEM + the BEM's resolution error")
+                       + "; bench/results/accuracy_ladder.json)"
+                       + ("" if spacing <= at * (1 + 1e-9) else
+                          f"; this scan is coarser ({spacing * 1e3:g} mm): its resolution error is not measured"))))
             laws[s["name"]] = key
         else:
             how = next(k for k in ("model", "curve", "table") if k in law)

@@ -148,10 +148,7 @@ def smeared_state(scene, plan, model) -> dict:
             strength = scene.data["joints"][js.label].get("strength") if plan.slip.get(js.label) else None
             slipping = 0
             if strength is not None and sn.size:
-                if strength["model"] == "coulomb":  # tan φ constant; Barton's depends on σ_n
-                    cap = strength["cohesion"] + np.maximum(sn, 0.0) * planner.friction(strength, 0.0)
-                else:
-                    cap = np.array([strength["cohesion"] + max(v, 0.0) * planner.friction(strength, v) for v in sn])
+                cap = planner.shear_capacity(strength, np.maximum(sn, 0.0))
                 slipping = int(np.sum((cap > 0) & (tau >= (1.0 - 1e-6) * cap)))
             c0, s0, n0 = local.get(js.label, (-np.inf, -np.inf, 0))
             local[js.label] = (max(c0, float(closure.max(initial=-np.inf))),

@@ -110,7 +110,9 @@ STRENGTH = Mapping({
     "jrc": Quantity("number", low=0.0, high=20.0, required=False),
     "jcs": Quantity("stress", required=False, **POSITIVE),
     "dilation_angle": Quantity("angle", low=0.0, high=math.radians(60.0), required=False),
-    "dilation_limit": Quantity("length", low=0.0, required=False)}, rule=_strength_rule)
+    "dilation_limit": Quantity("length", low=0.0, required=False),
+    "maximum_friction_angle": Quantity("angle", low=0.0, high=math.radians(89.0), required=False)},
+    rule=_strength_rule)
 
 
 _ASPERITY_STATISTICS = (law_registry.Quantity("summit_density", "η", "1/mm²"),

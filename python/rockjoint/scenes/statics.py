@@ -161,9 +161,9 @@ def set_failures(scene, plan, stage: str) -> dict:
                          "no tension and it has no residual_stiffness)" if sn < 0 else
                          f"opens: stage '{stage}' puts no compression on it and it has no residual_stiffness")
         elif strength is not None and tau > 0.0:
-            phi_tan = planner.friction(strength, sn)
-            capacity = strength["cohesion"] + sn * phi_tan
+            capacity = planner.shear_capacity(strength, sn)
             if tau >= capacity:
+                phi_tan = (capacity - strength["cohesion"]) / sn   # sn > 0: a capacity above c
                 out[name] = (f"slides: stage '{stage}' mobilises τ/σ_n = {tau / sn:.3f} "
                              f"(tan {math.degrees(math.atan(tau / sn)):.1f}°) on it, its strength allows "
                              f"{capacity / sn:.3f} (tan φ = tan {math.degrees(math.atan(phi_tan)):.1f}°"

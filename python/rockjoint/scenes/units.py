@@ -1,32 +1,16 @@
 """Quantities with their units, as a scene file states them ("30 MPa", "0.5 mm", "60 deg"), in SI.
 
 A scene states a unit for every dimensional value so that nothing is read in the wrong one; a bare
-number is accepted only for dimensionless quantities (Poisson's ratio, ratios, counts). Each
-dimension lists the units it accepts and their SI factor; the law parameters' own units come from
-rockjoint.law_registry.UNITS (the one copy of the mm/MPa/GPa factors), mapped to a dimension here.
+number is accepted only for dimensionless quantities (Poisson's ratio, ratios, counts). The units
+each dimension accepts and their SI factors are rockjoint.units.DIMENSIONS (the one table; its
+lengths are the C++ topography parser's own).
 """
 from __future__ import annotations
 
 import math
 import re
 
-from ..law_registry import UNITS as LAW_UNITS
-
-#: dimension -> {unit: SI per unit}
-DIMENSIONS = {
-    "stress": {"Pa": 1.0, "kPa": 1e3, "MPa": 1e6, "GPa": 1e9},
-    "length": {"m": 1.0, "cm": 1e-2, "mm": 1e-3, "um": 1e-6, "µm": 1e-6, "km": 1e3},
-    "angle": {"deg": math.pi / 180.0, "°": math.pi / 180.0, "rad": 1.0},
-    "stiffness": {"Pa/m": 1.0, "MPa/m": 1e6, "GPa/m": 1e9, "MPa/mm": 1e9},   # k_n, k_s
-    "density": {"kg/m3": 1.0, "kg/m³": 1.0, "t/m3": 1e3},
-    "per_area": {"1/m2": 1.0, "1/mm2": 1e6, "1/mm²": 1e6},                  # summit density η
-    "fraction": {"%": 1e-2, "-": 1.0},
-    "number": {"-": 1.0},
-}
-#: the dimension of each law-registry unit (a law parameter's Quantity.unit)
-LAW_UNIT_DIMENSION = {"-": "number", "mm": "length", "MPa": "stress", "GPa": "stress",
-                      "MPa/mm": "stiffness", "1/mm²": "per_area"}
-assert set(LAW_UNIT_DIMENSION) == set(LAW_UNITS), "a law unit has no dimension in scenes.units"
+from ..units import DIMENSIONS, LAW_UNIT_DIMENSION  # noqa: F401  (the one table; re-exported)
 
 _QUANTITY = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(\S.*?)?\s*$")
 
