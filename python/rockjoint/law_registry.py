@@ -24,6 +24,7 @@ from typing import Callable, Dict, Optional, Sequence, Tuple
 
 import numpy as np
 
+from . import contact
 from .units import DIMENSIONS, LAW_UNIT_DIMENSION
 from ._rockjoint.constitutive import (AsperityParameters, BartonBandis, ClosureLaw,
                                       ExponentialLaw, GreenwoodWilliamson, LogarithmicLaw,
@@ -472,7 +473,6 @@ EXACT_CONTACT_SEATING = 0.01
 
 def _exact_contact(x: TopographyInputs) -> ClosureLaw:
     """The walls' exact elastic contact (BEM) at x.stresses, as a table (contact.exact_elastic_law)."""
-    from . import contact
     curve = contact.closure_curve(x.aperture, x.composite_modulus, x.stresses)
     seating = EXACT_CONTACT_SEATING * curve.stress[0] / curve.closure[0]
     return contact.exact_elastic_law(curve, initial_stiffness=seating)

@@ -26,12 +26,6 @@ _spec.loader.exec_module(graph)
 #: work), each with what removes it; the test fails when one is gone, so the list only shrinks.
 PENDING_LOCAL = {
     ("python/rockjoint/law_registry.py", "importlib"): "hoist (stdlib, not slow)",
-    ("python/rockjoint/laws.py", "rockjoint.topography"): "hoist: topography no longer imports back",
-    ("python/rockjoint/scenes/joint_laws.py", "rockjoint"): "hoist",
-    ("python/rockjoint/scenes/joint_laws.py", "rockjoint.calibration"): "hoist",
-    ("python/rockjoint/scenes/joint_laws.py", "rockjoint.law_registry"): "hoist",
-    ("python/rockjoint/scenes/joint_laws.py", "rockjoint.laws"): "hoist",
-    ("python/rockjoint/scenes/joint_laws.py", "rockjoint.topography"): "hoist",
     ("python/rockjoint/scenes/planner.py", "rockjoint.scenes.statics"): "the cycle below",
     ("python/rockjoint/fem_coupling/linear_solver.py", "rockjoint.fem_coupling.compat"): "hoist",
 }

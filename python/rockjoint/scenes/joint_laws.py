@@ -4,14 +4,17 @@ from __future__ import annotations
 
 import logging
 
+import rockjoint
+from rockjoint import calibration, law_registry, laws
+from rockjoint import topography as topo
+
+from . import ladder
 
 log = logging.getLogger("rockjoint.scenes")
 
 
 def source_law(scene, set_name: str, plan, reduced: bool = False):
     """The closure law of a joint set (before tabulation; a saved table is returned as it is)."""
-    import rockjoint
-    from rockjoint import calibration, law_registry, laws
     spec = scene.data["joints"][set_name]["law"]
     rock = scene.data["rock"]
     if "model" in spec and law_registry.get(spec["model"]).asperity:
@@ -49,7 +52,6 @@ def topography_law(key: str, topography: dict, points: int, young: float, poisso
 
 def scan(topography: dict, points: int) -> tuple:
     """(upper, lower) walls of the scene's synthetic mated pair on a points² scan."""
-    from rockjoint import topography as topo
     t = topography
     return topo.mated_pair(topo.SelfAffineSpec(hurst_exponent=t["hurst"], rms_height=t["rms_height"]),
                            (points, points), t["spacing"], t["matedness"], seed=t["seed"])
@@ -58,10 +60,6 @@ def scan(topography: dict, points: int) -> tuple:
 def law_of_walls(key: str, upper, lower, young: float, poisson: float, top_stress: float):
     """The law of rung `key` for two scanned walls (topography.Surface, mated, no offset): what
     the planner's cost of that rung counts (scenes.ladder)."""
-    import rockjoint
-    from rockjoint import law_registry, laws
-    from rockjoint import topography as topo
-    from . import ladder
     joint = topo.composite_topography(upper, lower, offset=(0, 0))
     if law_registry.TOPOGRAPHY_LAWS[key].needs == "walls":   # the walls' own contact: no statistics
         inputs = law_registry.TopographyInputs(None, {}, aperture=joint.aperture,
@@ -76,8 +74,6 @@ def law_of_walls(key: str, upper, lower, young: float, poisson: float, top_stres
 def tables(scene, plan, reduced: bool = False) -> dict:
     """{joint set: tabulated law over the plan's normal-stress range} (a saved table and the
     exact contact curve are tables already)."""
-    import rockjoint
-    from . import ladder
     rungs = ladder.by_key()
     out = {}
     for name, spec in scene.data["joints"].items():

@@ -28,6 +28,8 @@ from typing import Optional
 
 import numpy as np
 
+import rockjoint
+
 from .. import law_registry
 
 #: the exact contact curve of the walls (BEM), the rung that is not a parametric law
@@ -43,7 +45,6 @@ def evidence_path() -> str:
     source = os.path.normpath(os.path.join(here, "..", "..", "..", "bench", "results", EVIDENCE_FILE))
     if os.path.exists(source):
         return source
-    import rockjoint
     for root in rockjoint.__path__:
         path = os.path.join(root, "evidence", EVIDENCE_FILE)
         if os.path.exists(path):

@@ -20,6 +20,8 @@ import math
 
 import numpy as np
 
+from rockjoint.joint import make_strength
+
 from . import defaults, ladder
 
 _AXIS = {"left": (0, -1), "right": (0, 1), "bottom": (1, -1), "top": (1, 1),
@@ -151,7 +153,6 @@ def shear_capacity(strength: dict, normal_stress):
     """τ_max [Pa] of a scene's strength description at `normal_stress` [Pa] (a number or an array;
     compression +): the joint's own JointStrength.shear_strength (docs/joint-strength.md: Coulomb c + σ_n tan φ,
     or Barton's angle capped at its maximum_friction_angle), not a copy of it."""
-    from rockjoint.joint import make_strength
     joint = make_strength(strength)
     sn = np.asarray(normal_stress, dtype=float)
     out = np.array([joint.shear_strength(float(v)) for v in sn.ravel()]).reshape(sn.shape)
