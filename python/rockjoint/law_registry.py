@@ -456,11 +456,10 @@ def _tang_jiao_over(base: str, variant: Optional[str] = None, geometric: bool = 
 #: the same walls on the project's synthetic granite-like and sandstone-like joints).
 RECOMMENDED = "tang_jiao_i2_gw"
 RECOMMENDATION = (
-    "Tang & Jiao I2 over GW, seated at the measured first contact: of every law rockjoint offers "
-    "it has the smallest mean closure error against exact elastic contact (BEM) of the same "
-    "walls on the project's synthetic joints (loads 1-30 MPa: sandstone-like 1.9 %, increment "
-    "-4.4 %; granite-like 7.3 %, increment -12.9 %), at ~7 µs per evaluation "
-    "(bench/results/accuracy_ladder.md). It misses the 3 % target on well-mated joints.")
+    "Tang & Jiao I2 over GW, seated at the measured first contact: of the parametric laws "
+    "rockjoint offers it has the smallest mean closure error against exact elastic contact (BEM) "
+    "of the same walls on the project's synthetic joints (loads 1-30 MPa; the errors per joint "
+    "family and its cost are bench/results/accuracy_ladder.json, read by rockjoint.scenes.ladder).")
 #: the exact contact curve of the walls (BEM, rockjoint.contact), tabulated: the planner's rung
 #: that is no parametric law (built from the walls by scenes.joint_laws.law_of_walls)
 EXACT_CONTACT = "exact_contact"

@@ -198,3 +198,29 @@ def test_reaching_below_the_public_api_is_caught(tmp_path):
         """))
     found = below_public_api(str(f))
     assert [line.split(":")[0] for line in found] == ["1", "2", "3", "4", "5"], found
+
+
+def test_jointed_rock_model_is_small_and_sets_its_attributes_in_init():
+    """Issue 29, item 2: JointedRockModel at most 300 lines, composed of parts; every attribute it
+    assigns anywhere is first assigned in __init__ (no state appearing later)."""
+    path = os.path.join(os.path.dirname(__file__), "..", "..", "python", "rockjoint", "fem_coupling", "model.py")
+    with open(path, encoding="utf-8") as fh:
+        tree = ast.parse(fh.read())
+    (cls,) = [n for n in tree.body if isinstance(n, ast.ClassDef) and n.name == "JointedRockModel"]
+    assert cls.end_lineno - cls.lineno + 1 <= 300
+
+    def assigned(fn):
+        out = set()
+        for node in ast.walk(fn):
+            targets = node.targets if isinstance(node, ast.Assign) else \
+                [node.target] if isinstance(node, (ast.AugAssign, ast.AnnAssign)) else []
+            for t in targets:
+                for sub in ast.walk(t):
+                    if isinstance(sub, ast.Attribute) and isinstance(sub.value, ast.Name) and sub.value.id == "self":
+                        out.add(sub.attr)
+        return out
+
+    methods = {m.name: m for m in cls.body if isinstance(m, ast.FunctionDef)}
+    in_init = assigned(methods["__init__"])
+    later = {name: assigned(m) - in_init for name, m in methods.items() if name != "__init__"}
+    assert not any(later.values()), {k: v for k, v in later.items() if v}

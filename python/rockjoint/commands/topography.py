@@ -9,6 +9,7 @@ import numpy as np
 from .. import contact, scans
 from .. import topography as topo
 from ..laws import RECOMMENDATION, RECOMMENDED, laws_from_topography
+from ..scenes import ladder
 from ..topography import pyplot, save_figure
 
 
@@ -235,6 +236,11 @@ def _analyse(args) -> int:
                                         periodic=args.bem_kernel == "periodic").closure
             report["bem_closure_mm"] = dict(zip(map(str, sorted(args.stresses)), bem * 1e3))
         print(f"\nrecommended: {RECOMMENDATION}")
+        rung = ladder.by_key().get(RECOMMENDED)
+        if rung is not None:   # the bench's measured errors (one source: the ladder's JSON)
+            print("  mean closure error against the walls' exact contact at half the scan's spacing "
+                  "(the law's own and the scan's resolution error): " + ", ".join(
+                f"{family} {100 * e:.1f} %" for family, e in sorted(rung.errors.items())))
         print(f"\nclosure Δ [mm] (laws seated at the measured first contact)"
               + (" and relative error against the BEM reference" if bem is not None else ""))
         print(f"{'law':<42}" + "".join(f"{f'{s:g} MPa':>16}" for s in sorted(args.stresses)))
