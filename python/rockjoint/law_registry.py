@@ -20,6 +20,7 @@ from __future__ import annotations
 import dataclasses
 import importlib
 import os
+from importlib.metadata import entry_points
 from typing import Callable, Dict, Optional, Sequence, Tuple
 
 import numpy as np
@@ -135,7 +136,6 @@ def load_plugins() -> list:
         except ImportError as err:
             raise ValueError(f"ROCKJOINT_LAWS: cannot import law plugin {name!r}: {err}") from err
         loaded.append(name)
-    from importlib.metadata import entry_points
     for ep in entry_points(group="rockjoint.laws"):
         ep.load()
         loaded.append(ep.value)

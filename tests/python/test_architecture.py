@@ -25,14 +25,7 @@ _spec.loader.exec_module(graph)
 #: Function-level imports in files another change owns (issue 29, item 3, and the Newton speed
 #: work), each with what removes it; the test fails when one is gone, so the list only shrinks.
 PENDING_LOCAL = {
-    ("python/rockjoint/law_registry.py", "importlib"): "hoist (stdlib, not slow)",
-    ("python/rockjoint/scenes/planner.py", "rockjoint.scenes.statics"): "the cycle below",
-    ("python/rockjoint/fem_coupling/linear_solver.py", "rockjoint.fem_coupling.compat"): "hoist",
 }
-#: The one module cycle left, hidden in a function-level import of planner.py (make_plan calls
-#: statics.check; statics uses planner.stage_stresses and planner.friction): it goes when those two
-#: move below both (planner.friction is JointStrength.shear_strength: issue 29).
-PENDING_CYCLE = ("rockjoint.scenes.planner", "rockjoint.scenes.statics")
 
 FE_MODULES = ("dolfinx", "ufl", "basix")
 #: the user-model demo is the user's own DOLFINx model: its UFL forms are the point of it
@@ -47,8 +40,6 @@ def test_no_import_cycle_between_modules_or_packages():
     mods = graph.modules()
     assert "rockjoint.fem_coupling.model" in mods and "rockjoint.meshes.builders" in mods
     modules = graph.module_graph(mods)
-    assert PENDING_CYCLE[1] in modules[PENDING_CYCLE[0]]   # remove PENDING_CYCLE once this fails
-    modules[PENDING_CYCLE[0]].discard(PENDING_CYCLE[1])
     assert graph.find_cycle(modules) is None, graph.find_cycle(modules)
     packages = {a: {b for b in bs if b.startswith("rockjoint")} for a, bs in graph.package_graph(mods).items()}
     assert graph.find_cycle(packages) is None, graph.find_cycle(packages)

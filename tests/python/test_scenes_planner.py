@@ -20,7 +20,7 @@ import re
 import pytest
 
 from rockjoint.scenes import SceneError, load_scene, make_plan, planner
-from rockjoint.scenes import ladder
+from rockjoint.scenes import ladder, stresses
 from fe_stack import require_fe
 from scene_cases import COLUMN, SCENES, SOURCE, cli, write
 
@@ -144,17 +144,17 @@ def test_slip_decision_uses_the_joints_own_strength():
     """Coulomb: c + σ_n tan φ; Barton: σ_n tan(φ_r + JRC log10(JCS/σ_n)) capped at the strength's
     maximum_friction_angle (50° here: at 0.1 MPa Barton's angle is 30 + 15·3 = 75°)."""
     coulomb = {"model": "coulomb", "friction_angle": math.radians(30), "cohesion": 1e5}
-    assert planner.shear_capacity(coulomb, 2e6) == pytest.approx(1e5 + 2e6 * math.tan(math.radians(30)), rel=1e-12)
+    assert stresses.shear_capacity(coulomb, 2e6) == pytest.approx(1e5 + 2e6 * math.tan(math.radians(30)), rel=1e-12)
     barton = {"model": "barton", "friction_angle": math.radians(30), "cohesion": 0.0, "jrc": 15.0, "jcs": 100e6,
               "maximum_friction_angle": math.radians(50)}
-    assert planner.shear_capacity(barton, 0.1e6) == pytest.approx(0.1e6 * math.tan(math.radians(50)), rel=1e-12)
+    assert stresses.shear_capacity(barton, 0.1e6) == pytest.approx(0.1e6 * math.tan(math.radians(50)), rel=1e-12)
     at_10 = math.radians(30 + 15 * math.log10(100 / 10))
-    assert planner.shear_capacity(barton, 10e6) == pytest.approx(10e6 * math.tan(at_10), rel=1e-12)
+    assert stresses.shear_capacity(barton, 10e6) == pytest.approx(10e6 * math.tan(at_10), rel=1e-12)
     # on a plane at 45° of a uniaxial 0.2 MPa stress: τ = σ_n = 0.1 MPa, so τ/τ_max = 1/tan 50°
     n = [math.sqrt(0.5), math.sqrt(0.5)]
     import numpy as np
     stress = np.array([[0.0, 0.0], [0.0, -0.2e6]])
-    assert planner.mobilised_friction(barton, np.array(n), stress) == pytest.approx(1 / math.tan(math.radians(50)))
+    assert stresses.mobilised_friction(barton, np.array(n), stress) == pytest.approx(1 / math.tan(math.radians(50)))
 
 
 @pytest.fixture

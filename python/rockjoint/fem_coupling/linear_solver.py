@@ -25,6 +25,8 @@ from __future__ import annotations
 import numpy as np
 from petsc4py import PETSc
 
+from .compat import la_petsc
+
 
 class LinearSolveError(RuntimeError):
     """A linear solve failed (singular or ill-posed system, Krylov divergence)."""
@@ -37,8 +39,6 @@ def rigid_body_modes(V):
     block gets that block's own rigid-body modes: this is the per-block rigid-body near-nullspace
     (one set of vectors per block instead would multiply the coarse dofs per aggregate by the
     number of blocks and raise the operator complexity for nothing: measured 3.4 vs 1.3)."""
-    from .compat import la_petsc
-
     gdim = V.mesh.geometry.dim
     imap = V.dofmap.index_map
     bs = V.dofmap.index_map_bs

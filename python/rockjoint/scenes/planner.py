@@ -20,12 +20,9 @@ import math
 
 import numpy as np
 
-from rockjoint.joint import make_strength
+from . import defaults, geometry, ladder, statics
+from .stresses import FACE_AXIS, mobilised_friction, stage_stresses, wall_mobilised_friction
 
-from . import defaults, ladder
-
-_AXIS = {"left": (0, -1), "right": (0, 1), "bottom": (1, -1), "top": (1, 1),
-         "front": (None, -1), "back": (None, 1)}
 
 
 @dataclasses.dataclass
@@ -62,32 +59,6 @@ class Plan:
         return "\n".join(rows)
 
 
-def stage_stresses(scene) -> list:
-    """Per stage, the homogeneous stress tensor (tension positive [Pa]) of in-situ + the loads
-    in force: a traction on an axis-aligned face gives σ·n = t there (the far field of the
-    section); pressures on an opening are counted in the normal-stress bound only."""
-    d = scene.data
-    dim = d["geometry"]["dimension"]
-    s0 = np.zeros((dim, dim))
-    if "in_situ" in d:
-        sv, k = d["in_situ"]["vertical"], d["in_situ"]["horizontal_ratio"]
-        s0 = -k * sv * np.eye(dim)
-        s0[dim - 1, dim - 1] = -sv
-    loads, out = {}, []
-    for stage in d["stages"]:
-        loads.update(stage["loads"])
-        s = s0.copy()
-        for face, load in loads.items():
-            if "traction" in load and face in _AXIS:
-                axis, sign = _AXIS[face]
-                axis = dim - 1 if face in ("bottom", "top") else (axis if axis is not None else 1)
-                s[:, axis] = sign * np.asarray(load["traction"])
-                s[axis, :] = s[:, axis]
-        pressure = max((abs(v["pressure"]) for v in loads.values() if "pressure" in v), default=0.0)
-        out.append((stage["name"], s, pressure))
-    return out
-
-
 def concentration(scene) -> tuple:
     """(factor, words): the stress-concentration bound of the scene's geometry: Kirsch's 3 at an
     opening, block corners where joint sets of different orientation cross, else 1."""
@@ -101,26 +72,18 @@ def concentration(scene) -> tuple:
     return 1.0, "no concentration: a homogeneous field"
 
 
-def _extent(g) -> np.ndarray:
-    if g["kind"] == "block":
-        return np.array(g["size"])
-    if g["kind"] == "column":
-        return np.array([g["width"]] * (g["dimension"] - 1) + [g["height"]])
-    return np.array([g["width"], g["height"]] + ([g["length"]] if "length" in g else []))
-
-
 def bending(scene) -> list:
     """Per stage, the bending stress [Pa] a shear traction on a face adds on a joint section:
     the moment τ W H of a shear τ on a face of width W at lever arm H, over the section modulus
     W²/6 (beam theory: 6 τ H/W), H the scene's extent normal to the face, W the smallest along it."""
     g = scene.data["geometry"]
-    ext, dim = _extent(g), g["dimension"]
+    ext, dim = geometry.extent(g), g["dimension"]
     out, loads = [], {}
     for stage in scene.data["stages"]:
         loads.update(stage["loads"])
         extra = 0.0
         for face, load in loads.items():
-            if "traction" not in load or face not in _AXIS:
+            if "traction" not in load or face not in FACE_AXIS:
                 continue
             axis = dim - 1 if face in ("bottom", "top") else (0 if face in ("left", "right") else 1)
             t = np.asarray(load["traction"], float)
@@ -149,52 +112,8 @@ def _largest_stress(scene) -> float:
     return top if top > 0 else 1e6
 
 
-def shear_capacity(strength: dict, normal_stress):
-    """τ_max [Pa] of a scene's strength description at `normal_stress` [Pa] (a number or an array;
-    compression +): the joint's own JointStrength.shear_strength (docs/joint-strength.md: Coulomb c + σ_n tan φ,
-    or Barton's angle capped at its maximum_friction_angle), not a copy of it."""
-    joint = make_strength(strength)
-    sn = np.asarray(normal_stress, dtype=float)
-    out = np.array([joint.shear_strength(float(v)) for v in sn.ravel()]).reshape(sn.shape)
-    return float(out) if out.ndim == 0 else out
-
-
-def mobilised_friction(strength: dict, normal: np.ndarray, stress: np.ndarray) -> float:
-    """τ / τ_max on the plane of unit `normal` under `stress` (tension positive)."""
-    t = stress @ normal
-    sn = -float(t @ normal)
-    tau = float(np.linalg.norm(t + sn * normal))
-    capacity = shear_capacity(strength, max(sn, 0.0))   # a tension bound counts as no compression
-    return math.inf if capacity <= 0 else tau / capacity
-
-
-def wall_mobilised_friction(strength: dict, hoop: float) -> float:
-    """The largest τ/(c + σ_n tan φ) over every plane through the uniaxial wall state σ_θ = hoop,
-    σ_r = 0 (a joint meets the wall at every angle): planes at angle α to the wall carry σ_n =
-    σ_θ sin²α, τ = σ_θ sinα cosα."""
-    alpha = np.linspace(1e-3, math.pi / 2, 400)
-    sn, tau = hoop * np.sin(alpha) ** 2, hoop * np.sin(alpha) * np.cos(alpha)
-    cap = shear_capacity(strength, sn)
-    return float(np.max(tau / np.maximum(cap, 1e-300)))
-
-
-def _normal(joint_set: dict, dim: int) -> np.ndarray:
-    dip, direction = joint_set["dip"], joint_set["dip_direction"]
-    if dim == 2:
-        return np.array([-math.sin(dip) * math.copysign(1.0, math.sin(direction)), math.cos(dip)])
-    return np.array([math.sin(dip) * math.sin(direction), math.sin(dip) * math.cos(direction),
-                     math.cos(dip)])
-
-
 def _ratio(r: float) -> str:
     return f"{r:.2f}" if r < 10 else "more than 10 (no cohesion: planes nearly along the wall)"
-
-
-def _joint_sets(scene) -> list:
-    g = scene.data["geometry"]
-    if g["kind"] == "column":
-        return [{"name": "joint", "dip": 0.0, "dip_direction": math.pi / 2}]
-    return g.get("joint_sets", [])
 
 
 def _joint_spacing(scene) -> float:
@@ -204,11 +123,11 @@ def _joint_spacing(scene) -> float:
     if g["kind"] == "column":
         z = sorted([0.0, g["height"]] + list(g["joint_heights"]))
         return min(b - a for a, b in zip(z, z[1:]) if b > a)
-    return min((s["spacing"] for s in g.get("joint_sets", [])), default=float(max(_extent(g))))
+    return min((s["spacing"] for s in g.get("joint_sets", [])), default=float(max(geometry.extent(g))))
 
 
 def _estimate_dofs(scene, dim, h, hj, ho) -> float:
-    extent = _extent(scene.data["geometry"])
+    extent = geometry.extent(scene.data["geometry"])
     # triangles ~ 2 A/h², tetrahedra ~ 6 V/h³; vertices ~ cells/2 (2D), cells/5 (3D); the refined
     # bands near joints and openings roughly double that at h/4 - h/8.
     cells = (2.0 if dim == 2 else 6.0) * float(np.prod(extent / h))
@@ -217,7 +136,6 @@ def _estimate_dofs(scene, dim, h, hj, ho) -> float:
 
 
 def make_plan(scene, reduced: bool = False) -> Plan:
-    from . import statics
     statics.check(scene)  # supports and excavations that leave no equilibrium: a bad scene
     d = scene.data
     over = d["plan"]
@@ -243,7 +161,7 @@ def make_plan(scene, reduced: bool = False) -> Plan:
 
     bound = normal_stress_bound(scene)
     opening = "opening" in g
-    sets = _joint_sets(scene)
+    sets = geometry.joint_sets(scene)
     # No compression anywhere (a scene pulled in tension): the joints open and the table is never
     # read past 0, but it must exist; it covers the largest stress magnitude instead of 0.
     cover = bound if bound > 0 else _largest_stress(scene)
@@ -327,7 +245,7 @@ def make_plan(scene, reduced: bool = False) -> Plan:
                        for _, t, _ in tensors)
             ratio, where = wall_mobilised_friction(strength, hoop), "at the opening's wall (σ_r = 0)"
         else:
-            n = _normal(s, dim)
+            n = geometry.set_normal(s, dim)
             ratio, where = max(mobilised_friction(strength, n, t) for _, t, _ in tensors), "on its plane"
         auto = ratio >= defaults.SLIP_MARGIN
         value = over.get("slip", auto)
@@ -398,7 +316,7 @@ def dominance(scene, sets, dim) -> dict:
         if strength is None:
             out[s["name"]] = 0.0
             continue
-        n = _normal(s, dim)
+        n = geometry.set_normal(s, dim)
         ratios = []
         for _, t, _ in stage_stresses(scene):
             if opening:
@@ -429,7 +347,7 @@ def _smeared_sets(scene, sets, budget, choices, mobilised) -> tuple:
                 scene.fail(("plan", "smeared"), f"no joint set '{name}'; joint sets: {', '.join(names)}")
     if g["kind"] == "column":
         return ()
-    size = g["opening"]["radius"] if "opening" in g else 0.5 * float(min(_extent(g)))
+    size = g["opening"]["radius"] if "opening" in g else 0.5 * float(min(geometry.extent(g)))
     dominant = max(names, key=lambda name: mobilised[name]) if names else None
     chosen = []
     for s in sets:

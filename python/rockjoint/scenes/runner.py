@@ -23,7 +23,7 @@ from ..joint import joint_behaviours
 from ..fem_coupling import (ConvergenceError, InSituStress, JointedRockModel, LinearSolveError, NewtonOptions,
                             ShearState, distribute)
 from ..meshes.joint_geometry import unit_normal
-from . import geometry, joint_laws, pictures, planner, statics
+from . import geometry, joint_laws, pictures, planner, statics, stresses
 
 log = logging.getLogger("rockjoint.scenes")
 
@@ -148,7 +148,7 @@ def smeared_state(scene, plan, model) -> dict:
             strength = scene.data["joints"][js.label].get("strength") if plan.slip.get(js.label) else None
             slipping = 0
             if strength is not None and sn.size:
-                cap = planner.shear_capacity(strength, np.maximum(sn, 0.0))
+                cap = stresses.shear_capacity(strength, np.maximum(sn, 0.0))
                 slipping = int(np.sum((cap > 0) & (tau >= (1.0 - 1e-6) * cap)))
             c0, s0, n0 = local.get(js.label, (-np.inf, -np.inf, 0))
             local[js.label] = (max(c0, float(closure.max(initial=-np.inf))),

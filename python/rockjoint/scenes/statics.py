@@ -5,7 +5,7 @@
   joints do), a load on the wall of an opening that a later stage excavates (its rock is still in
   place), an excavation without an in-situ stress (it releases nothing).
 - After a solve failed (`diagnose`, called by the runner; exit 1): on the homogeneous stress of the
-  failed stage (planner.stage_stresses), each discrete joint set that opens (σ_n <= 0, no residual
+  failed stage (stresses.stage_stresses), each discrete joint set that opens (σ_n <= 0, no residual
   stiffness), slides (τ >= c + σ_n tan φ) or carries no shear (k_s = 0, no strength); the blocks
   that are then joined to no support by a holding joint are free: no static equilibrium.
 """
@@ -15,7 +15,7 @@ import math
 
 import numpy as np
 
-from . import geometry, planner
+from . import geometry, stresses
 
 _FACE_AXIS = {"left": (0, 0), "right": (0, 1), "front": (1, 0), "back": (1, 1)}
 _COMPONENT = {"x": 0, "y": 1, "z": 2}
@@ -125,7 +125,7 @@ def check(scene) -> None:
 
 
 def _stage_stress(scene, stage: str) -> np.ndarray:
-    tensors = planner.stage_stresses(scene)
+    tensors = stresses.stage_stresses(scene)
     for name, s, _ in tensors:
         if name == stage:
             return s
@@ -161,7 +161,7 @@ def set_failures(scene, plan, stage: str) -> dict:
                          "no tension and it has no residual_stiffness)" if sn < 0 else
                          f"opens: stage '{stage}' puts no compression on it and it has no residual_stiffness")
         elif strength is not None and tau > 0.0:
-            capacity = planner.shear_capacity(strength, sn)
+            capacity = stresses.shear_capacity(strength, sn)
             if tau >= capacity:
                 phi_tan = (capacity - strength["cohesion"]) / sn   # sn > 0: a capacity above c
                 out[name] = (f"slides: stage '{stage}' mobilises τ/σ_n = {tau / sn:.3f} "
