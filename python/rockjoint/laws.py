@@ -24,6 +24,7 @@ from ._rockjoint.constitutive import AsperityParameters, ClosureLaw
 from . import law_registry
 from .law_registry import MM, MPA, MPA_PER_MM, REGISTRY, TOPOGRAPHY_LAWS, get
 from .tabulation import DEFAULT_MAXIMUM_KNOTS, DEFAULT_TOLERANCE
+from .topography import empirical_summits
 
 
 @dataclasses.dataclass(frozen=True)
@@ -176,7 +177,6 @@ def laws_from_topography(parameters: AsperityParameters, *, summits=None,
         seat = {}
     else:
         raise ValueError(f"seating {seating!r}: expected 'first_contact' or 'mean+3.5'")
-    from .topography import empirical_summits   # topography imports this module
     inputs = law_registry.TopographyInputs(
         parameters, seat, distribution, variant, substrate,
         summits=empirical_summits(summits) if summits is not None and empirical else None,
