@@ -28,6 +28,7 @@ DEMOS = ("demo_lab_closure_test", "demo_tunnel", "demo_blocky_rock_mass", "demo_
 #: numbers below this on both versions are zeros at round-off (a demo's self-checks print such
 #: differences); their relative difference means nothing
 ROUND_OFF = 1e-12
+PATH = re.compile(r"\S*/\S*")
 NUMBER = re.compile(r"[-+]?(?:\d+\.\d*|\.\d+|\d+)(?:[eE][-+]?\d+)?")
 
 
@@ -41,9 +42,11 @@ def run(demo: str, version: str, output: str) -> tuple[list[str], float]:
     wall = time.perf_counter() - t0
     if r.returncode != 0:
         raise SystemExit(f"{demo} on DOLFINx {version} failed ({r.returncode}):\n{r.stderr[-3000:]}")
-    lines = [ln.rstrip() for ln in (r.stdout + r.stderr).splitlines() if NUMBER.search(ln)]
+    # paths (the output folder names the version) are not results
+    lines = [PATH.sub("<path>", ln.rstrip()) for ln in (r.stdout + r.stderr).splitlines()]
+    lines = [ln for ln in lines if NUMBER.search(ln)]
     # progress lines (timings, Newton residual logs) are not results
-    return [ln for ln in lines if not re.search(r"\d s(\b|$)|elapsed|\|\|r\|\||^wrote ", ln)], wall
+    return [ln for ln in lines if not re.search(r"\d s(\b|$)|elapsed|\|\|r\|\||^wrote |wall time", ln)], wall
 
 
 def shape(line: str) -> str:
