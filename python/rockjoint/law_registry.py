@@ -459,7 +459,8 @@ RECOMMENDATION = (
     "Tang & Jiao I2 over GW, seated at the measured first contact: of the parametric laws "
     "rockjoint offers it has the smallest mean closure error against exact elastic contact (BEM) "
     "of the same walls on the project's synthetic joints (loads 1-30 MPa; the errors per joint "
-    "family and its cost are bench/results/accuracy_ladder.json, read by rockjoint.scenes.ladder).")
+    "family and its cost: bench/results/accuracy_ladder.md, and its JSON that rockjoint.scenes.ladder "
+    "reads).")
 #: the exact contact curve of the walls (BEM, rockjoint.contact), tabulated: the planner's rung
 #: that is no parametric law (built from the walls by scenes.joint_laws.law_of_walls)
 EXACT_CONTACT = "exact_contact"
