@@ -323,7 +323,7 @@ def _owners_error(owners, jm: JointedMesh, size: int) -> str | None:
     """Why `owners` cannot partition jm over `size` ranks, or None."""
     try:
         a = np.asarray(owners)
-    except Exception as exc:   # noqa: BLE001 - any unconvertible object is the caller's error
+    except Exception as exc:   # noqa: BLE001 - raised on rank 0 only, it would hang the others: report it
         return f"distribute: owners must be an integer array, got {type(owners).__name__} ({exc})"
     nc = jm.cells.shape[0]
     if a.ndim != 1 or a.shape[0] != nc or not np.issubdtype(a.dtype, np.integer):

@@ -9,6 +9,7 @@ import math
 import numpy as np
 
 from .. import meshes
+from ..meshes.joint_geometry import unit_normal
 
 
 def extent(g) -> np.ndarray:
@@ -33,12 +34,10 @@ def joint_sets(scene) -> list:
 
 
 def set_normal(joint_set: dict, dim: int) -> np.ndarray:
-    """Unit normal of a joint set from its dip and dip direction [rad] (2D: in the x-y section)."""
-    dip, direction = joint_set["dip"], joint_set["dip_direction"]
-    if dim == 2:
-        return np.array([-math.sin(dip) * math.copysign(1.0, math.sin(direction)), math.cos(dip)])
-    return np.array([math.sin(dip) * math.sin(direction), math.sin(dip) * math.cos(direction),
-                     math.cos(dip)])
+    """Upward unit normal of a joint set (dip and dip direction in radians): the mesh's own
+    (meshes.joint_geometry.unit_normal), so the planner and the statics checks see the planes
+    the mesh has."""
+    return unit_normal(math.degrees(joint_set["dip"]), math.degrees(joint_set["dip_direction"]), dim)
 
 
 def joint_objects(scene, exclude=()):

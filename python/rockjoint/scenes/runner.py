@@ -22,7 +22,6 @@ from ..continuum import EquivalentContinuum, JointSet
 from ..joint import joint_behaviours
 from ..fem_coupling import (ConvergenceError, InSituStress, JointedRockModel, LinearSolveError, NewtonOptions,
                             ShearState, distribute)
-from ..meshes.joint_geometry import unit_normal
 from . import geometry, joint_laws, pictures, planner, statics, stresses
 
 log = logging.getLogger("rockjoint.scenes")
@@ -115,7 +114,7 @@ def smeared_material(scene, plan, tables: dict, rocks: dict) -> dict:
                                      shear_stiffness_ratio=j["shear_stiffness_ratio"],
                                      residual_stiffness=j["residual_stiffness"],
                                      strength=_strength(j["strength"]) if plan.slip.get(s["name"]) else None)[0]
-        normal = unit_normal(math.degrees(s["dip"]), math.degrees(s["dip_direction"]), plan.dimension)
+        normal = geometry.set_normal(s, plan.dimension)
         sets.append(JointSet([float(x) for x in normal], s["spacing"], behaviour, label=s["name"]))
     return {b: EquivalentContinuum(plan.dimension, e, nu, sets) for b, (e, nu) in rocks.items()}
 

@@ -23,7 +23,7 @@ _COMPONENT = {"x": 0, "y": 1, "z": 2}
 
 def _face_points(g, face: str, dim: int) -> np.ndarray:
     """Corner points of a named boundary (an opening: points round its circle)."""
-    ext = _extent(g, dim)
+    ext = geometry.extent(g)
     if face == "opening":
         (cx, cy), r = g["opening"]["centre"][:2], g["opening"]["radius"]
         a = np.linspace(0.0, 2 * math.pi, 8, endpoint=False)
@@ -35,11 +35,6 @@ def _face_points(g, face: str, dim: int) -> np.ndarray:
     axis, side = (dim - 1, 0 if face == "bottom" else 1) if face in ("bottom", "top") else _FACE_AXIS[face]
     corners = np.array(np.meshgrid(*[[0.0, e] for e in ext], indexing="ij")).reshape(dim, -1).T
     return corners[np.isclose(corners[:, axis], side * ext[axis])]
-
-
-def _extent(g, dim: int) -> np.ndarray:
-    """The box the scene fills, axes x, y(, z); a 3D tunnel is (width, length, height)."""
-    return geometry.extent(g)[:dim]
 
 
 def _modes(x: np.ndarray, dim: int) -> np.ndarray:
@@ -64,7 +59,7 @@ def free_rigid_motions(scene) -> list:
     n = 3 if dim == 2 else 6
     a = np.array(rows).reshape(-1, n)
     _, s, vt = np.linalg.svd(a) if a.size else (None, np.zeros(0), np.eye(n))
-    scale = max(1.0, float(np.max(_extent(g, dim))))
+    scale = max(1.0, float(np.max(geometry.extent(g))))
     null = vt[int(np.sum(s > 1e-9 * scale * max(s.max(initial=0.0), 1.0))):]
     # Canonical basis: the free translations first, then rotations without translation parts
     # (an arbitrary SVD basis would mix them into rotations about arbitrary points).
