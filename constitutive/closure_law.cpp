@@ -1,6 +1,7 @@
 #include "closure_law.hpp"
 #include "root_finding.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -32,6 +33,21 @@ ClosureResponse ClosureLaw::evaluate(double closure) const
   if (closure <= 0.0)
     return evaluate_open(closure);
   return evaluate_contact(closure);
+}
+
+HistoryResponse ClosureLaw::evaluate_with_history(double closure, double maximum_closure) const
+{
+  HistoryResponse h;
+  if (std::isnan(closure) || std::isnan(maximum_closure))
+  {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    h.response = {nan, nan, nan, nan, Status::invalid_closure};
+    h.maximum_closure = h.permanent_closure = nan;
+    return h;
+  }
+  h.response = evaluate(closure);
+  h.maximum_closure = std::max({maximum_closure, closure, 0.0});
+  return h;
 }
 
 ClosureResponse ClosureLaw::beyond_maximum_closure(double contact_area_ratio)

@@ -42,6 +42,18 @@ struct ClosureResponse
   Status status = Status::open;
 };
 
+/// Response of a law at Δ given the largest closure Δ_m reached before: the history a joint
+/// point keeps (JointPointState::maximum_closure). For a law without history it is the loading
+/// curve and Δ_m simply follows; a law with history (NormalHysteresis) unloads and reloads on
+/// branches set by Δ_m.
+struct HistoryResponse
+{
+  ClosureResponse response;        ///< σ, k = ∂σ/∂Δ at the fixed converged Δ_m, A/A0
+  bool on_virgin_curve = true;     ///< Δ >= Δ_m (or no history yet): loading
+  double maximum_closure = 0.0;    ///< trial Δ_m = max(converged Δ_m, Δ) [m]
+  double permanent_closure = 0.0;  ///< Δ_p(Δ_m) of the branch in force (0 without history) [m]
+};
+
 /// A named parameter of a law, for self-describing output (tables, reports).
 struct Parameter
 {
@@ -78,8 +90,18 @@ public:
   /// Stress the underlying model carries at Δ = 0 [Pa] (subtracted so that σ(0) = 0).
   virtual double seating_stress() const { return 0.0; }
 
-  /// Response at one closure Δ [m]. Handles Δ <= 0 (open) and NaN; never throws.
+  /// Response at one closure Δ [m]. Handles Δ <= 0 (open) and NaN; never throws. For a law
+  /// with history: first loading of an untouched joint (its virgin curve).
   ClosureResponse evaluate(double closure) const;
+
+  /// True if the response depends on the largest closure reached (NormalHysteresis): the FE
+  /// joint then keeps Δ_m per point and calls evaluate_with_history.
+  virtual bool has_history() const { return false; }
+
+  /// Response at Δ [m] after a largest closure Δ_m [m] (>= 0, the converged history). Default
+  /// (no history): evaluate(Δ), with Δ_m = max(Δ_m, Δ) and no permanent closure. Never throws:
+  /// a NaN Δ or Δ_m gives status invalid_closure.
+  virtual HistoryResponse evaluate_with_history(double closure, double maximum_closure) const;
 
   /// Batch evaluation. Output spans must have the size of `closure`; `area_ratio` and
   /// `status` may be empty (not written).

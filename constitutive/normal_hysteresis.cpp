@@ -16,6 +16,9 @@ NormalHysteresis::NormalHysteresis(std::shared_ptr<const ClosureLaw> virgin,
 {
   if (!_virgin)
     throw std::invalid_argument("NormalHysteresis: no virgin closure law given");
+  if (_virgin->has_history())
+    throw std::invalid_argument("NormalHysteresis: the virgin law '" + _virgin->name()
+                                + "' has history itself; give its own virgin law");
   const std::string owner = "NormalHysteresis(" + _virgin->name() + ")";
   if (!(_r >= 0.0 && _r < 1.0))
     validation::fail(owner, "permanent_fraction", _r, "-", "in [0, 1)");
@@ -23,9 +26,10 @@ NormalHysteresis::NormalHysteresis(std::shared_ptr<const ClosureLaw> virgin,
     validation::fail(owner, "unloading_exponent", _m, "-", "finite and >= 1");
 }
 
-HysteresisResponse NormalHysteresis::evaluate(double closure, double maximum_closure) const
+HistoryResponse NormalHysteresis::evaluate_with_history(double closure,
+                                                       double maximum_closure) const
 {
-  HysteresisResponse h;
+  HistoryResponse h;
   if (std::isnan(closure) || std::isnan(maximum_closure))
   {
     const double nan = std::numeric_limits<double>::quiet_NaN();

@@ -24,27 +24,35 @@
 namespace rockjoint::constitutive
 {
 
-/// One evaluation of the hysteretic normal law.
-struct HysteresisResponse
-{
-  ClosureResponse response;        ///< σ, k = ∂σ/∂Δ at fixed converged Δ_m, A/A0 (virgin only)
-  bool on_virgin_curve = true;     ///< Δ >= Δ_m (or no history yet): loading on σ_v
-  double maximum_closure = 0.0;    ///< trial Δ_m = max(converged Δ_m, Δ) [m]
-  double permanent_closure = 0.0;  ///< Δ_p(Δ_m) of the branch in force [m]
-};
-
-/// A virgin closure law with Bandis-type unloading/reloading branches (H1-H4).
-class NormalHysteresis
+/// A virgin closure law with Bandis-type unloading/reloading branches (H1-H4): a closure law
+/// with history. As a ClosureLaw without history (evaluate(Δ), closure_at_stress, a joint's
+/// in-situ pre-closure) it is the virgin curve, the first loading of an untouched joint;
+/// evaluate_with_history(Δ, Δ_m) adds the branches. Its key is "normal_hysteresis".
+class NormalHysteresis final : public ClosureLaw
 {
 public:
-  /// `virgin`: the loading curve; `permanent_fraction` r in [0, 1); `unloading_exponent` m >= 1
-  /// (m = 1: straight unloading lines to Δ_p). Throws std::invalid_argument naming the bad one.
+  /// `virgin`: the loading curve (a law without history); `permanent_fraction` r in [0, 1);
+  /// `unloading_exponent` m >= 1 (m = 1: straight unloading lines to Δ_p). Throws
+  /// std::invalid_argument naming the bad one.
   NormalHysteresis(std::shared_ptr<const ClosureLaw> virgin, double permanent_fraction,
                    double unloading_exponent);
 
+  std::string name() const override { return "normal_hysteresis"; }
+  /// The virgin law's parameters followed by r [-] and m [-].
+  std::vector<Parameter> parameters() const override;
+  bool provides_contact_area() const override { return _virgin->provides_contact_area(); }
+  double maximum_closure() const override { return _virgin->maximum_closure(); }
+  double seating_stress() const override { return _virgin->seating_stress(); }
+  /// The virgin curve's inverse (first loading).
+  double closure_at_stress(double normal_stress) const override
+  {
+    return _virgin->closure_at_stress(normal_stress);
+  }
+
+  bool has_history() const override { return true; }
   /// Response at closure Δ [m] given the largest closure reached before, Δ_m [m] (>= 0; the
-  /// converged history). Never throws: a NaN Δ or Δ_m gives status invalid_closure.
-  HysteresisResponse evaluate(double closure, double maximum_closure) const;
+  /// converged history): (H1-H4). Never throws: a NaN Δ or Δ_m gives status invalid_closure.
+  HistoryResponse evaluate_with_history(double closure, double maximum_closure) const override;
 
   /// Closures [m] along a path of normal stresses σ_i >= 0 [Pa] (load cycles, stress-controlled
   /// as in the laboratory), starting with largest closure `maximum_closure`: above σ_v(Δ_m) the
@@ -61,8 +69,17 @@ public:
   const std::shared_ptr<const ClosureLaw>& virgin_law() const { return _virgin; }
   double permanent_fraction() const { return _r; }
   double unloading_exponent() const { return _m; }
-  /// The virgin law's parameters followed by r [-] and m [-].
-  std::vector<Parameter> parameters() const;
+
+protected:
+  /// First loading: the virgin curve (and its opening branch).
+  ClosureResponse evaluate_contact(double closure) const override
+  {
+    return _virgin->evaluate(closure);
+  }
+  ClosureResponse evaluate_open(double closure) const override
+  {
+    return _virgin->evaluate(closure);
+  }
 
 private:
   std::shared_ptr<const ClosureLaw> _virgin;

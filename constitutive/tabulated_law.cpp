@@ -11,10 +11,24 @@
 namespace rockjoint::constitutive
 {
 
+namespace
+{
+/// A table holds one curve: a law with history (NormalHysteresis) is tabulated through its
+/// virgin law, its branches kept around the table (rockjoint.tabulate does both).
+void refuse_history(const ClosureLaw& law)
+{
+  if (law.has_history())
+    throw std::invalid_argument("TabulatedLaw: law '" + law.name()
+                                + "' has history; a table holds one curve: tabulate its virgin "
+                                  "law and keep the branches (rockjoint.tabulate does both)");
+}
+} // namespace
+
 TabulatedLaw TabulatedLaw::over_closure_range(const ClosureLaw& law, double maximum_closure,
                                               const Options& options)
 {
   const std::string who = "TabulatedLaw";
+  refuse_history(law);
   validation::positive(who, "maximum_closure", maximum_closure, "m");
   if (!(maximum_closure < law.maximum_closure()))
   {
@@ -52,6 +66,7 @@ TabulatedLaw TabulatedLaw::over_closure_range(const ClosureLaw& law, double maxi
 TabulatedLaw TabulatedLaw::up_to_stress(const ClosureLaw& law, double maximum_stress,
                                         const Options& options)
 {
+  refuse_history(law);
   validation::positive("TabulatedLaw", "maximum_stress", maximum_stress, "Pa");
   double closure;
   try

@@ -21,19 +21,17 @@ void validate(const JointBehaviour& behaviour, const std::string& label)
   v::non_negative(owner, "shear_stiffness_ratio", behaviour.shear_stiffness_ratio, "-");
   v::non_negative(owner, "residual_stiffness", behaviour.residual_stiffness, "Pa/m");
   validate(behaviour.strength, owner);
-  if (behaviour.hysteresis && behaviour.hysteresis->virgin_law() != behaviour.law)
-    throw std::invalid_argument(owner + ": the hysteresis's virgin law is not the joint's law");
 }
 
 namespace
 {
-/// The law's response at Δ: the hysteretic one at the converged Δ_m if the joint has one.
+/// The law's response at Δ after the converged Δ_m (a law without history ignores Δ_m).
 constitutive::ClosureResponse law_response(const JointBehaviour& b, double closure,
                                            double maximum_closure, double* permanent = nullptr)
 {
-  if (!b.hysteresis)
+  if (!b.law->has_history())
     return b.law->evaluate(closure);
-  const constitutive::HysteresisResponse h = b.hysteresis->evaluate(closure, maximum_closure);
+  const constitutive::HistoryResponse h = b.law->evaluate_with_history(closure, maximum_closure);
   if (permanent)
     *permanent = h.on_virgin_curve ? 0.0 : h.permanent_closure;
   return h.response;

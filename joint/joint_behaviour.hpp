@@ -29,7 +29,6 @@
 #include "joint_strength.hpp"
 
 #include <rockjoint/constitutive/closure_law.hpp>
-#include <rockjoint/constitutive/normal_hysteresis.hpp>
 
 #include <array>
 #include <memory>
@@ -48,16 +47,16 @@ enum class ShearModel : int
 /// Everything needed to evaluate one joint family (one joint tag).
 struct JointBehaviour
 {
-  std::shared_ptr<const constitutive::ClosureLaw> law; ///< normal-closure law σ(Δ)
+  /// Normal-closure law σ(Δ). A law with history (has_history(): NormalHysteresis,
+  /// docs/hysteresis.md) unloads and reloads on branches set by the largest closure reached,
+  /// kept per point (JointPointState::maximum_closure); its in-situ pre-closure follows the
+  /// virgin curve.
+  std::shared_ptr<const constitutive::ClosureLaw> law;
   ShearModel shear_model = ShearModel::constant;
   double shear_stiffness = 0.0;       ///< k_s [Pa/m] (ShearModel::constant), >= 0
   double shear_stiffness_ratio = 0.0; ///< α [-] (ShearModel::proportional), >= 0
   double residual_stiffness = 0.0;    ///< k_r [Pa/m], >= 0
   JointStrength strength{};           ///< shear strength (default none: elastic joint)
-  /// Normal closure with history (docs/hysteresis.md): unloading/reloading branches set by the
-  /// largest closure reached (JointPointState::maximum_closure). Null: the law is elastic.
-  /// Its virgin law must be `law` (the in-situ pre-closure follows the virgin curve).
-  std::shared_ptr<const constitutive::NormalHysteresis> hysteresis;
 };
 
 /// Throw std::invalid_argument (naming the joint `label`, the parameter, value and range)
@@ -107,7 +106,7 @@ struct NormalResponse
 };
 
 /// Normal response at elastic closure Δ_e; `bonded`: the tensile bond is still intact;
-/// `maximum_closure`: the converged Δ_m of a hysteretic law (ignored without one). At
+/// `maximum_closure`: the converged Δ_m of a law with history (ignored without). At
 /// Δ_e = 0 exactly the tangent is the contact-side one, k(0+) (semismooth Newton from an
 /// untouched joint). A bonded joint (tensile strength T > 0) in tension is a spring of that
 /// contact-side stiffness until its tension reaches T; past it the bond fails and the joint

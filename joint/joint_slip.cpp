@@ -56,8 +56,8 @@ LocalResponse joint_response(const JointBehaviour& b, int gdim, const std::array
   bool bonded = !converged.bond_broken;
   const double trial_closure = r.closure + converged.dilation;
   NormalResponse normal = normal_response(b, trial_closure, bonded, converged.maximum_closure);
-  // Δ_m of a hysteretic normal law follows the closure (the slip branch below updates it again).
-  if (b.hysteresis)
+  // Δ_m of a normal law with history follows the closure (the slip branch below updates it again).
+  if (b.law->has_history())
     trial.maximum_closure = std::max(converged.maximum_closure, trial_closure);
   if (normal.bond_fails)
   {
@@ -158,7 +158,7 @@ LocalResponse joint_response(const JointBehaviour& b, int gdim, const std::array
     r.traction[i + 1] = shear * m[i];
   }
   trial.dilation = converged.dilation + s.dilation.opening;
-  if (b.hysteresis)
+  if (b.law->has_history())
     trial.maximum_closure = std::max(converged.maximum_closure, s.closure);
   trial.accumulated_slip = converged.accumulated_slip + increment;
 

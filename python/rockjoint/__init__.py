@@ -33,7 +33,7 @@ from ._rockjoint.constitutive import (  # noqa: F401  (Tang & Jiao 2018, theory 
     TangJiao,
     TangJiaoLimit,
 )
-from .tabulation import TabulatedLaw, plot_table, tabulate  # noqa: F401
+from .tabulation import TabulatedLaw, curve_table, plot_table, tabulate  # noqa: F401
 from . import laws  # noqa: F401,E402  (the law factory: rockjoint.laws.make_law, ...)
 from .calibration import (  # noqa: F401, E402  (fit a law to a measured closure curve)
     Calibration,

@@ -133,8 +133,8 @@ def joint_behaviours(joint_tags: Mapping[str, int], laws: Mapping[str, object], 
     """{joint tag: JointBehaviour} from a law per joint name.
 
     joint_tags: {joint name: tag} of every joint of the mesh. laws: {joint name: law} for every
-    joint; a law is a rockjoint closure law or table, a NormalHysteresis (a virgin law with
-    unloading branches: docs/hysteresis.md), the path of a .rjt table, or a JointBehaviour
+    joint; a law is a rockjoint closure law or table (a law with history too, NormalHysteresis:
+    a virgin law with unloading branches, docs/hysteresis.md), the path of a .rjt table, or a JointBehaviour
     (then used as it is). shear_stiffness k_s [Pa/m], shear_stiffness_ratio (k_s = ratio × k_n(Δ)
     instead) and residual_stiffness k_r [Pa/m]: a float or {joint name: float}. strength: joint
     shear strength, None, one description or {joint name: description} (docs/joint-strength.md).
@@ -167,9 +167,6 @@ def joint_behaviours(joint_tags: Mapping[str, int], laws: Mapping[str, object], 
                 if not os.path.isfile(law):
                     raise ValueError(f"{argument}[{name!r}]: no table file {os.fspath(law)!r}")
                 law = _constitutive.TabulatedLaw.load(os.fspath(law))
-        hysteresis = None
-        if isinstance(law, _constitutive.NormalHysteresis):  # history: virgin law + branches
-            hysteresis, law = law, law.virgin
         if not isinstance(law, _constitutive.ClosureLaw):
             kinds = "" if closure_laws_only else ", a .rjt path or a JointBehaviour"
             raise LawTypeError(f"{argument}[{name!r}] must be a rockjoint closure law or table{kinds}, "
@@ -177,10 +174,10 @@ def joint_behaviours(joint_tags: Mapping[str, int], laws: Mapping[str, object], 
         # JointBehaviour validates the stiffnesses (finite, >= 0) and names the bad one.
         if ratio is None:
             b = JointBehaviour(law, ShearModel.constant, shear_stiffness=ks[name], residual_stiffness=kr[name],
-                               strength=strengths[name], hysteresis=hysteresis)
+                               strength=strengths[name])
         else:
             b = JointBehaviour(law, ShearModel.proportional, shear_stiffness_ratio=ratio[name],
-                               residual_stiffness=kr[name], strength=strengths[name], hysteresis=hysteresis)
+                               residual_stiffness=kr[name], strength=strengths[name])
         out[int(joint_tags[name])] = b
     return out
 

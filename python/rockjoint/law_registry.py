@@ -29,7 +29,7 @@ from . import contact
 from .units import DIMENSIONS, LAW_UNIT_DIMENSION
 from ._rockjoint.constitutive import (AsperityParameters, BartonBandis, ClosureLaw,
                                       ExponentialLaw, GreenwoodWilliamson, LogarithmicLaw,
-                                      TangJiao, TangSubstrate, composite_modulus)
+                                      NormalHysteresis, TangJiao, TangSubstrate, composite_modulus)
 
 #: SI per user unit, for files and reports: entries of rockjoint.units (the one unit table)
 UNITS = {unit: DIMENSIONS[dimension][unit] for unit, dimension in LAW_UNIT_DIMENSION.items()}
@@ -91,6 +91,9 @@ class LawRecord:
     calibration: Optional[CalibrationSpec] = None
     parameters: Tuple[Quantity, ...] = ()       # SI keywords of a law built from its own values
     asperity: bool = False                      # built from AsperityParameters (E*, η, β, σ_s)
+    # a law with history over a virgin law (named by the key `virgin`, built from its own values
+    # and options): `parameters` are then the history's own, beside the virgin law's
+    history: bool = False
 
 
 REGISTRY: Dict[str, LawRecord] = {}
@@ -148,9 +151,13 @@ def docs_table() -> str:
     rows = ["| key | law | parameter-file keys | fitted by `calibrate` |", "|---|---|---|---|"]
     for r in REGISTRY.values():
         keys = ", ".join(f"`{k}`" for k in sorted(r.file_required))
+        if r.history:
+            keys += ", and the virgin law's keys"
         if r.asperity:
             keys += ", `composite_modulus_GPa` (or `young_modulus_GPa`, `poisson_ratio`)"
         fitted = ", ".join(q.symbol for q in r.calibration.unknowns) if r.calibration else "-"
+        if r.history:
+            fitted = ", ".join(q.symbol for q in r.parameters) + " and the virgin law's (`--cycles`)"
         rows.append(f"| `{r.key}` | {r.description} | {keys} | {fitted} |")
     return "\n".join(rows)
 
@@ -364,6 +371,53 @@ for _key, _label, _description, _build, _optional, _options in (
                                                       _gw_type_guess, needs=_GIVEN, options=_options,
                                                       fit_offset=True),
         asperity=True))
+
+
+# ---- a law with history: the hysteretic wrapper of any law above ------------------------------
+#: the history's own parameters (docs/hysteresis.md, H1-H2), beside its virgin law's
+HISTORY_PARAMETERS = (Quantity("permanent_fraction", "r", "-"), Quantity("unloading_exponent", "m", "-"))
+
+
+def _virgin_record(key) -> LawRecord:
+    """The record of a virgin law: registered, and without history itself."""
+    record = get(key) if isinstance(key, str) else None
+    if record is None or record.history:
+        raise ValueError(f"virgin = {key!r}: name a law without history, one of "
+                         f"{', '.join(sorted(k for k, r in REGISTRY.items() if not r.history))}")
+    return record
+
+
+def _history_build(parameters: Optional[AsperityParameters] = None, *, virgin=None,
+                   permanent_fraction=None, unloading_exponent=None, **options) -> ClosureLaw:
+    """NormalHysteresis over `virgin`: a ready law, or the key of a registered law built from
+    `parameters` and `options` (its own builder's)."""
+    if permanent_fraction is None or unloading_exponent is None or virgin is None:
+        raise ValueError("normal hysteresis: give virgin (a law or its key), permanent_fraction r "
+                         "and unloading_exponent m (docs/hysteresis.md)")
+    if isinstance(virgin, ClosureLaw):
+        if parameters is not None or options:
+            raise ValueError("normal hysteresis: a ready virgin law takes no further parameters, got "
+                             f"{', '.join(options) or 'AsperityParameters'}")
+    else:
+        virgin = _virgin_record(virgin).build(parameters, **options)
+    return NormalHysteresis(virgin, permanent_fraction, unloading_exponent)
+
+
+def _history_from_file(values: dict) -> ClosureLaw:
+    """From file keys: r and m, `virgin` (a key) and the virgin law's own keys (laws.read_law_file
+    checks them against the virgin's record)."""
+    rest = dict(values)
+    virgin = _virgin_record(rest.pop("virgin"))
+    r, m = (rest.pop(q.file_key) for q in HISTORY_PARAMETERS)
+    return NormalHysteresis(virgin.from_file_values(rest), r, m)
+
+
+register(LawRecord(
+    "normal_hysteresis", "hysteretic",
+    "any law above as the virgin curve, with unloading/reloading branches and a permanent "
+    "closure set by the largest closure reached (docs/hysteresis.md)",
+    _history_build, frozenset({"virgin"} | {q.file_key for q in HISTORY_PARAMETERS}), frozenset(),
+    _history_from_file, None, HISTORY_PARAMETERS, history=True))
 
 
 # ---- laws derived from a topography (laws.laws_from_topography, the planner's rungs) ------------

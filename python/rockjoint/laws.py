@@ -37,7 +37,7 @@ class NamedLaw:
     description: str   # what the law is, in one sentence
 
 
-_TEXT_KEYS = frozenset({"height_distribution", "variant"})
+_TEXT_KEYS = frozenset({"height_distribution", "variant", "virgin"})
 
 
 # ---- by name (SI) -----------------------------------------------------------------------------
@@ -81,22 +81,30 @@ def read_law_file(path: str | os.PathLike) -> Tuple[NamedLaw, dict]:
         raise ValueError(f"{path}: [law] model = {key!r}; expected one of "
                          f"{', '.join(sorted(REGISTRY))}")
     model = REGISTRY[key]
-    missing = sorted(model.file_required - values.keys())
-    if model.asperity and not ("composite_modulus_GPa" in values
-                                        or {"young_modulus_GPa", "poisson_ratio"} <= values.keys()):
+    required, optional, asperity = model.file_required, model.file_optional, model.asperity
+    if model.history:   # the history's keys beside its virgin law's own
+        virgin = REGISTRY.get(values.get("virgin"))
+        if virgin is None or virgin.history:
+            raise ValueError(f"{path}: [law] virgin = {values.get('virgin')!r}; expected one of "
+                             f"{', '.join(sorted(k for k, r in REGISTRY.items() if not r.history))}")
+        required, optional = required | virgin.file_required, optional | virgin.file_optional
+        asperity = virgin.asperity
+    missing = sorted(required - values.keys())
+    if asperity and not ("composite_modulus_GPa" in values
+                         or {"young_modulus_GPa", "poisson_ratio"} <= values.keys()):
         missing.append("composite_modulus_GPa (or young_modulus_GPa and poisson_ratio)")
     if missing:
         raise ValueError(f"{path}: [law] model {key} is missing {', '.join(missing)}")
-    unknown = sorted(values.keys() - model.file_required - model.file_optional)
+    unknown = sorted(values.keys() - required - optional)
     if unknown:
         raise ValueError(f"{path}: [law] unknown key(s) {', '.join(unknown)} for model {key}; "
-                         f"expected {', '.join(sorted(model.file_required | model.file_optional))}")
+                         f"expected {', '.join(sorted(required | optional))}")
     for k, v in values.items():
         if k not in _TEXT_KEYS and (isinstance(v, bool) or not isinstance(v, (int, float))):
             raise ValueError(f"{path}: [law] {k} = {v!r} must be a number")
     try:
         law = model.from_file_values(values)
-    except TypeError as err:
+    except (TypeError, ValueError) as err:
         raise ValueError(f"{path}: [law] model {key}: {err}") from err
     return NamedLaw(key, model.label, law, model.description), _table_options(path, doc)
 

@@ -12,9 +12,9 @@ from typing import Optional
 
 import numpy as np
 
-from ._rockjoint.constitutive import ClosureLaw, TabulatedLaw
+from ._rockjoint.constitutive import ClosureLaw, NormalHysteresis, TabulatedLaw
 
-__all__ = ["TabulatedLaw", "tabulate", "plot_table", "table_errors"]
+__all__ = ["TabulatedLaw", "tabulate", "curve_table", "plot_table", "table_errors"]
 
 
 #: the tabulation defaults: the C++ TabulatedLaw::Options' own (their one spelling)
@@ -25,8 +25,10 @@ DEFAULT_MAXIMUM_KNOTS = TabulatedLaw.default_maximum_knots
 def tabulate(law: ClosureLaw, *, max_stress: Optional[float] = None,
              max_closure: Optional[float] = None, tolerance: float = DEFAULT_TOLERANCE,
              residual_stiffness: Optional[float] = None,
-             maximum_knots: int = DEFAULT_MAXIMUM_KNOTS) -> TabulatedLaw:
-    """Tabulate ``law`` up to ``max_stress`` [Pa] or over [0, ``max_closure``] [m].
+             maximum_knots: int = DEFAULT_MAXIMUM_KNOTS) -> ClosureLaw:
+    """Tabulate ``law`` up to ``max_stress`` [Pa] or over [0, ``max_closure``] [m]: a TabulatedLaw,
+    or for a law with history (NormalHysteresis) the same law over its tabulated virgin curve
+    (a table holds one curve; the branches are closed forms of it, docs/hysteresis.md).
 
     ``tolerance`` bounds the relative error of σ and of k against ``law``;
     ``residual_stiffness`` k_res [Pa/m] applies for Δ <= 0 (None: 1e-6 σ_max/Δ_max; 0: the
@@ -35,11 +37,24 @@ def tabulate(law: ClosureLaw, *, max_stress: Optional[float] = None,
     """
     if (max_stress is None) == (max_closure is None):
         raise ValueError("tabulate: give exactly one of max_stress [Pa] or max_closure [m]")
+    if isinstance(law, NormalHysteresis):
+        virgin = tabulate(law.virgin, max_stress=max_stress, max_closure=max_closure, tolerance=tolerance,
+                          residual_stiffness=residual_stiffness, maximum_knots=maximum_knots)
+        return NormalHysteresis(virgin, law.permanent_fraction, law.unloading_exponent)
     if max_stress is not None:
         return TabulatedLaw.from_stress(law, float(max_stress), tolerance, residual_stiffness,
                                         int(maximum_knots))
     return TabulatedLaw.from_closure(law, float(max_closure), tolerance, residual_stiffness,
                                      int(maximum_knots))
+
+
+def curve_table(law: ClosureLaw) -> TabulatedLaw:
+    """The table holding a tabulated law's curve: the law itself, or for a law with history the
+    table of its virgin curve (what ``tabulate`` made of it). TypeError for an untabulated law."""
+    table = law.virgin if isinstance(law, NormalHysteresis) else law
+    if not isinstance(table, TabulatedLaw):
+        raise TypeError(f"curve_table: {law.name} is not tabulated (rockjoint.tabulate makes it a table)")
+    return table
 
 
 def _sample_closures(table: TabulatedLaw, per_interval: int = 16) -> np.ndarray:

@@ -83,7 +83,26 @@ void declare_laws(py::module_& m)
       .def("normal_stiffness", &evaluate_column<1, ClosureLaw>, py::arg("closure"), "k(Δ) = dσ/dΔ [Pa/m]")
       .def("contact_area_ratio", &evaluate_column<2, ClosureLaw>, py::arg("closure"), "A/A0(Δ) [-]")
       .def("closure_at_stress", &inverse_array, py::arg("normal_stress"),
-           "Inverse Δ(σ) [m] for σ >= 0 [Pa]");
+           "Inverse Δ(σ) [m] for σ >= 0 [Pa]")
+      .def_property_readonly("has_history", &ClosureLaw::has_history,
+                             "True if the response depends on the largest closure reached")
+      .def(
+          "evaluate_with_history",
+          [](const ClosureLaw& law, double closure, double maximum_closure)
+          {
+            const HistoryResponse r = law.evaluate_with_history(closure, maximum_closure);
+            py::dict d;
+            d["normal_stress"] = r.response.normal_stress;
+            d["normal_stiffness"] = r.response.normal_stiffness;
+            d["on_virgin_curve"] = r.on_virgin_curve;
+            d["maximum_closure"] = r.maximum_closure;
+            d["permanent_closure"] = r.permanent_closure;
+            d["status"] = std::string(to_string(r.response.status));
+            return d;
+          },
+          py::arg("closure"), py::arg("maximum_closure"),
+          "σ [Pa], k = ∂σ/∂Δ [Pa/m] at closure Δ [m] given the largest closure reached before "
+          "[m] (a law without history: its own curve)");
 
   py::class_<BartonBandis, ClosureLaw, std::shared_ptr<BartonBandis>>(
       m, "BartonBandis", "Barton-Bandis hyperbola σ = K_ni Δ / (1 - Δ/V_m)")
@@ -106,41 +125,19 @@ void declare_laws(py::module_& m)
       .def(py::init<double, double>(), py::arg("maximum_closure"),
            py::arg("characteristic_stress"));
 
-  py::class_<NormalHysteresis, std::shared_ptr<NormalHysteresis>>(
+  py::class_<NormalHysteresis, ClosureLaw, std::shared_ptr<NormalHysteresis>>(
       m, "NormalHysteresis",
       "Virgin closure law with Bandis-type unloading/reloading branches set by the largest "
-      "closure reached (docs/hysteresis.md, H1-H4)")
+      "closure reached (docs/hysteresis.md, H1-H4): a law with history; without history "
+      "(evaluate, closure_at_stress) it is the virgin curve")
       .def(py::init<std::shared_ptr<const ClosureLaw>, double, double>(), py::arg("virgin"),
            py::arg("permanent_fraction"), py::arg("unloading_exponent"))
       .def_property_readonly("virgin", [](const NormalHysteresis& h)
                              { return std::const_pointer_cast<ClosureLaw>(h.virgin_law()); })
       .def_property_readonly("permanent_fraction", &NormalHysteresis::permanent_fraction)
       .def_property_readonly("unloading_exponent", &NormalHysteresis::unloading_exponent)
-      .def("parameters", [](const NormalHysteresis& h)
-           {
-             py::dict d;
-             for (const Parameter& p : h.parameters())
-               d[py::str(p.name)] = p.value;
-             return d;
-           })
       .def("permanent_closure", &NormalHysteresis::permanent_closure, py::arg("maximum_closure"),
            "Δ_p = r Δ_m [m]")
-      .def(
-          "evaluate",
-          [](const NormalHysteresis& h, double closure, double maximum_closure)
-          {
-            const HysteresisResponse r = h.evaluate(closure, maximum_closure);
-            py::dict d;
-            d["normal_stress"] = r.response.normal_stress;
-            d["normal_stiffness"] = r.response.normal_stiffness;
-            d["on_virgin_curve"] = r.on_virgin_curve;
-            d["maximum_closure"] = r.maximum_closure;
-            d["permanent_closure"] = r.permanent_closure;
-            d["status"] = std::string(to_string(r.response.status));
-            return d;
-          },
-          py::arg("closure"), py::arg("maximum_closure"),
-          "σ [Pa], k = ∂σ/∂Δ [Pa/m] at closure Δ [m] given the largest closure reached before")
       .def(
           "closure_path",
           [](const NormalHysteresis& h, const DoubleArray& stress, double maximum_closure)

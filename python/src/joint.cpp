@@ -110,27 +110,20 @@ void declare_joint(py::module_& m)
       .def(py::init(
                [](std::shared_ptr<const rockjoint::constitutive::ClosureLaw> law,
                   ShearModel model, double ks, double ratio, double kr,
-                  std::optional<JointStrength> strength,
-                  std::shared_ptr<const rockjoint::constitutive::NormalHysteresis> hysteresis)
+                  std::optional<JointStrength> strength)
                {
-                 if (hysteresis && !law)
-                   law = hysteresis->virgin_law(); // the virgin curve is the joint's law
-                 JointBehaviour b{law, model, ks, ratio, kr, strength.value_or(JointStrength{}),
-                                  hysteresis};
+                 JointBehaviour b{law, model, ks, ratio, kr, strength.value_or(JointStrength{})};
                  validate(b, law ? law->name() : std::string("?"));
                  return b;
                }),
            py::arg("law"), py::arg("shear_model") = ShearModel::constant,
            py::arg("shear_stiffness") = 0.0, py::arg("shear_stiffness_ratio") = 0.0,
-           py::arg("residual_stiffness") = 0.0, py::arg("strength") = py::none(),
-           py::arg("hysteresis") = py::none())
+           py::arg("residual_stiffness") = 0.0, py::arg("strength") = py::none())
       .def_readonly("shear_model", &JointBehaviour::shear_model)
       .def_readonly("shear_stiffness", &JointBehaviour::shear_stiffness)
       .def_readonly("shear_stiffness_ratio", &JointBehaviour::shear_stiffness_ratio)
       .def_readonly("residual_stiffness", &JointBehaviour::residual_stiffness)
       .def_readonly("strength", &JointBehaviour::strength)
-      .def_property_readonly("hysteresis", [](const JointBehaviour& b)
-                             { return std::const_pointer_cast<rockjoint::constitutive::NormalHysteresis>(b.hysteresis); })
       .def_property_readonly("law", [](const JointBehaviour& b)
                              { return std::const_pointer_cast<rockjoint::constitutive::ClosureLaw>(b.law); });
 

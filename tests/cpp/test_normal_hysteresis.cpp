@@ -30,8 +30,8 @@ TEST(NormalHysteresis, LoadingPastTheMaximumIsTheVirginCurve)
   const NormalHysteresis h = make();
   for (double d : {1e-6, 0.1e-3, 0.3e-3, 0.45e-3})
   {
-    const HysteresisResponse a = h.evaluate(d, 0.0);         // virgin joint
-    const HysteresisResponse b = h.evaluate(d, 0.5 * d);     // past an earlier, smaller maximum
+    const HistoryResponse a = h.evaluate_with_history(d, 0.0);         // virgin joint
+    const HistoryResponse b = h.evaluate_with_history(d, 0.5 * d);     // past an earlier, smaller maximum
     EXPECT_TRUE(a.on_virgin_curve && b.on_virgin_curve);
     EXPECT_NEAR(a.response.normal_stress, virgin(d), 1e-13 * virgin(d));
     EXPECT_EQ(b.response.normal_stress, a.response.normal_stress);
@@ -47,7 +47,7 @@ TEST(NormalHysteresis, UnloadingBranchClosedForm)
   for (double d : {0.08e-3, 0.1e-3, 0.2e-3, 0.29e-3})
   {
     const double x = (d - dp) / (dm - dp);
-    const HysteresisResponse u = h.evaluate(d, dm);
+    const HistoryResponse u = h.evaluate_with_history(d, dm);
     EXPECT_FALSE(u.on_virgin_curve);
     EXPECT_EQ(u.maximum_closure, dm);
     EXPECT_NEAR(u.response.normal_stress, top * std::pow(x, m), 1e-13 * top);
@@ -56,15 +56,15 @@ TEST(NormalHysteresis, UnloadingBranchClosedForm)
     EXPECT_LT(u.response.normal_stress, virgin(d)) << "unloading lies below the virgin curve in σ";
   }
   // Open below the permanent closure (H3), zero at it.
-  EXPECT_EQ(h.evaluate(dp, dm).response.normal_stress, 0.0);
-  EXPECT_EQ(h.evaluate(0.5 * dp, dm).response.normal_stress, 0.0);
-  EXPECT_EQ(h.evaluate(0.5 * dp, dm).response.status, Status::open);
+  EXPECT_EQ(h.evaluate_with_history(dp, dm).response.normal_stress, 0.0);
+  EXPECT_EQ(h.evaluate_with_history(0.5 * dp, dm).response.normal_stress, 0.0);
+  EXPECT_EQ(h.evaluate_with_history(0.5 * dp, dm).response.status, Status::open);
   // Continuous at Δ_m, and stiffer there than loading by (H4): m σ_m / ((1 - r) Δ_m k_v).
-  const double below = h.evaluate(dm * (1 - 1e-12), dm).response.normal_stress;
+  const double below = h.evaluate_with_history(dm * (1 - 1e-12), dm).response.normal_stress;
   EXPECT_NEAR(below, top, 1e-9 * top);
   const double kv = kni / std::pow(1 - dm / vm, 2);
   const double ratio = m * top / ((1 - r) * dm) / kv;
-  EXPECT_NEAR(h.evaluate(dm * (1 - 1e-9), dm).response.normal_stiffness / kv, ratio, 1e-6);
+  EXPECT_NEAR(h.evaluate_with_history(dm * (1 - 1e-9), dm).response.normal_stiffness / kv, ratio, 1e-6);
 }
 
 TEST(NormalHysteresis, TangentIsTheDerivativeOnEachBranch)
@@ -73,23 +73,23 @@ TEST(NormalHysteresis, TangentIsTheDerivativeOnEachBranch)
   const double dm = 0.3e-3;
   auto fd = [&](double d, double e)
   {
-    return (h.evaluate(d + e, dm).response.normal_stress
-            - h.evaluate(d - e, dm).response.normal_stress) / (2 * e);
+    return (h.evaluate_with_history(d + e, dm).response.normal_stress
+            - h.evaluate_with_history(d - e, dm).response.normal_stress) / (2 * e);
   };
   for (double d : {0.1e-3, 0.2e-3, 0.28e-3, 0.35e-3, 0.45e-3}) // branch and virgin
   {
     // Past Δ_m the converged maximum is exceeded: the tangent is the virgin one.
-    const double k = h.evaluate(d, dm).response.normal_stiffness;
+    const double k = h.evaluate_with_history(d, dm).response.normal_stiffness;
     EXPECT_NEAR(fd(d, 1e-9), k, 1e-6 * k) << "closure " << d;
   }
   // Across the switch at Δ_m: one-sided differences give the branch tangent below and the
   // virgin tangent above; the consistent tangent on each side is the matching one.
   const double e = 1e-10;
-  const double s0 = h.evaluate(dm, dm).response.normal_stress;
-  const double below = (s0 - h.evaluate(dm - e, dm).response.normal_stress) / e;
-  const double above = (h.evaluate(dm + e, dm).response.normal_stress - s0) / e;
-  EXPECT_NEAR(below, h.evaluate(dm - e, dm).response.normal_stiffness, 1e-5 * below);
-  EXPECT_NEAR(above, h.evaluate(dm + e, dm).response.normal_stiffness, 1e-5 * above);
+  const double s0 = h.evaluate_with_history(dm, dm).response.normal_stress;
+  const double below = (s0 - h.evaluate_with_history(dm - e, dm).response.normal_stress) / e;
+  const double above = (h.evaluate_with_history(dm + e, dm).response.normal_stress - s0) / e;
+  EXPECT_NEAR(below, h.evaluate_with_history(dm - e, dm).response.normal_stiffness, 1e-5 * below);
+  EXPECT_NEAR(above, h.evaluate_with_history(dm + e, dm).response.normal_stiffness, 1e-5 * above);
   EXPECT_GT(below, above); // unloading is the stiffer side here (ratio (H4) > 1)
 }
 
@@ -108,7 +108,7 @@ TEST(NormalHysteresis, StressPathFollowsTheCycle)
   double dm = 0.0;
   for (std::size_t i = 0; i < s.size(); ++i)
   {
-    EXPECT_NEAR(h.evaluate(c[i], dm).response.normal_stress, s[i], 1e-9 * 10e6) << i;
+    EXPECT_NEAR(h.evaluate_with_history(c[i], dm).response.normal_stress, s[i], 1e-9 * 10e6) << i;
     dm = std::max(dm, c[i]);
   }
   EXPECT_THROW(h.closure_path(std::vector<double>{1e6, -1.0}), std::invalid_argument);
@@ -124,6 +124,38 @@ TEST(NormalHysteresis, BadParametersAndInput)
                                 "unloading_exponent");
   rockjoint::testing::expect_error([&] { NormalHysteresis(nullptr, 0.2, 2.0); }, "virgin");
   const NormalHysteresis h(bb, r, m);
-  EXPECT_EQ(h.evaluate(std::nan(""), 1e-4).response.status, Status::invalid_closure);
-  EXPECT_EQ(h.evaluate(1e-4, std::nan("")).response.status, Status::invalid_closure);
+  EXPECT_EQ(h.evaluate_with_history(std::nan(""), 1e-4).response.status, Status::invalid_closure);
+  EXPECT_EQ(h.evaluate_with_history(1e-4, std::nan("")).response.status, Status::invalid_closure);
+}
+
+// A law with history through the ClosureLaw interface: without history it is the virgin curve
+// (the closed form above), its inverse is the virgin inverse, and it carries the branches only
+// through evaluate_with_history; an elastic law's evaluate_with_history is its own curve.
+TEST(NormalHysteresis, IsALawWithHistory)
+{
+  auto bb = std::make_shared<BartonBandis>(kni, vm);
+  const std::shared_ptr<const ClosureLaw> law = std::make_shared<NormalHysteresis>(bb, r, m);
+  EXPECT_TRUE(law->has_history());
+  EXPECT_FALSE(bb->has_history());
+  EXPECT_EQ(law->name(), "normal_hysteresis");
+  EXPECT_EQ(law->maximum_closure(), vm);
+  for (double d : {0.02e-3, 0.1e-3, 0.3e-3})
+  {
+    EXPECT_NEAR(law->normal_stress(d), virgin(d), 1e-12 * virgin(d)) << d;
+    EXPECT_NEAR(law->closure_at_stress(virgin(d)), d, 1e-12 * d) << d;
+    const HistoryResponse plain = bb->evaluate_with_history(d, 0.3e-3);
+    EXPECT_NEAR(plain.response.normal_stress, virgin(d), 1e-12 * virgin(d));
+    EXPECT_EQ(plain.maximum_closure, std::max(d, 0.3e-3));
+    EXPECT_EQ(plain.permanent_closure, 0.0);
+  }
+  EXPECT_EQ(law->normal_stress(-1e-5), 0.0); // open: the virgin law's opening branch
+  const std::vector<Parameter> p = law->parameters();
+  ASSERT_EQ(p.size(), bb->parameters().size() + 2);
+  EXPECT_EQ(p[p.size() - 2].name, "permanent_fraction");
+  EXPECT_EQ(p.back().value, m);
+  // Unloading from Δ_m = 0.3 mm to half of it: the branch (H2), not the virgin curve.
+  const double dm = 0.3e-3, d = 0.15e-3, dp = r * dm;
+  const double branch = virgin(dm) * std::pow((d - dp) / (dm - dp), m);
+  EXPECT_NEAR(law->evaluate_with_history(d, dm).response.normal_stress, branch, 1e-12 * branch);
+  rockjoint::testing::expect_error([&] { NormalHysteresis(law, 0.2, 2.0); }, "has history");
 }

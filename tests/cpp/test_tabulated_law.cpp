@@ -5,6 +5,7 @@
 // finite differences; nothing is taken from the table under test.
 #include <rockjoint/constitutive/barton_bandis.hpp>
 #include <rockjoint/constitutive/empirical_laws.hpp>
+#include <rockjoint/constitutive/normal_hysteresis.hpp>
 #include <rockjoint/constitutive/tabulated_law.hpp>
 
 #include <gtest/gtest.h>
@@ -387,6 +388,13 @@ TEST(TabulatedLaw, RejectsBadRangesAndReportsRunaway)
   rockjoint::testing::expect_error<std::runtime_error>(
       [&] { TabulatedLaw::up_to_stress(bb, 30e6, tiny); },
       {"maximum_knots = 40", "worst interval"});
+
+  // A law with history holds more than one curve: refused, naming what to do instead.
+  const NormalHysteresis history(std::make_shared<BartonBandis>(bb), 0.25, 3.0);
+  rockjoint::testing::expect_error([&] { TabulatedLaw::up_to_stress(history, 30e6); },
+                                   {"normal_hysteresis", "has history", "virgin"});
+  rockjoint::testing::expect_error([&] { TabulatedLaw::over_closure_range(history, 0.1e-3); },
+                                   "has history");
 }
 
 TEST(TabulatedLaw, IndexFindsTheSegmentEvenInCrowdedCells)

@@ -45,6 +45,10 @@ def run(args) -> int:
 
     named, options = read_law_file(args.parameters)
     law = named.law
+    if law.has_history:
+        raise ValueError(f"{args.parameters}: a law with history ({named.key}) is a virgin curve and its "
+                         "branches, not one table: tabulate its virgin law (the same [law] keys without "
+                         "the history's, model = its virgin)")
     if args.tolerance is not None:
         options["tolerance"] = args.tolerance
     try:

@@ -1,11 +1,12 @@
 """The scene's joint laws, through the law factory (rockjoint.laws), the topography chain, the
-calibration (rockjoint.calibration) or a saved table, each tabulated over the plan's range."""
+calibration to a closure curve (rockjoint.calibration) or to load cycles (a law with history,
+rockjoint.cycle_calibration) or a saved table, each tabulated over the plan's range."""
 from __future__ import annotations
 
 import logging
 
 import rockjoint
-from rockjoint import calibration, law_registry, laws
+from rockjoint import calibration, cycle_calibration, law_registry, laws
 from rockjoint import topography as topo
 
 from . import ladder
@@ -17,15 +18,17 @@ def source_law(scene, set_name: str, plan, reduced: bool = False):
     """The closure law of a joint set (before tabulation; a saved table is returned as it is)."""
     spec = scene.data["joints"][set_name]["law"]
     rock = scene.data["rock"]
-    if "model" in spec and law_registry.get(spec["model"]).asperity:
-        p = spec["parameters"]
-        stats = rockjoint.AsperityParameters(
-            composite_modulus=rockjoint.composite_modulus(rock["young"], rock["poisson"]),
-            summit_density=p["summit_density"], summit_radius=p["summit_radius"],
-            summit_height_std=p["summit_height_std"])
-        return laws.make_law(spec["model"], stats)
     if "model" in spec:
-        return laws.make_law(spec["model"], **spec["parameters"])
+        record, params, history = law_registry.get(spec["model"]), dict(spec["parameters"]), {}
+        if record.history:   # the history's own parameters, and the virgin law it is built over
+            history = {q.name: params.pop(q.name) for q in record.parameters}
+            history["virgin"] = spec["virgin"]
+            record = law_registry.get(spec["virgin"])
+        if record.asperity:
+            stats = rockjoint.AsperityParameters(
+                composite_modulus=rockjoint.composite_modulus(rock["young"], rock["poisson"]), **params)
+            return laws.make_law(spec["model"], stats, **history)
+        return laws.make_law(spec["model"], **params, **history)
     if "table" in spec:
         return rockjoint.TabulatedLaw.load(spec["table"])
     if "curve" in spec:
@@ -33,6 +36,11 @@ def source_law(scene, set_name: str, plan, reduced: bool = False):
                                                young_modulus=rock["young"] if "intact_length" in spec else None)
         fit = calibration.calibrate(curve, spec["fit"])
         log.info("joint set %s: %s calibrated to %s", set_name, spec["fit"], spec["curve"])
+        return fit.law
+    if "cycles" in spec:   # a law with history: the virgin law `fit` and its branches
+        fit = cycle_calibration.calibrate_cycles(cycle_calibration.read_load_cycles(spec["cycles"]), spec["fit"])
+        log.info("joint set %s: %s with unloading branches calibrated to the cycles of %s", set_name,
+                 spec["fit"], spec["cycles"])
         return fit.law
     t = spec["topography"]
     n = scene.data["reduced"].get("topography_points", t["points"]) if reduced else t["points"]
@@ -85,6 +93,6 @@ def tables(scene, plan, reduced: bool = False) -> dict:
         # laws over measured summits: a kink per summit, tabulated no tighter than the bench could
         tolerance = max(plan.table_tolerance, rung.tightest_tolerance if rung else 0.0)
         out[name] = rockjoint.tabulate(law, max_stress=plan.table_max_stress, tolerance=tolerance)
-        log.info("joint set %s: table of %d knots up to %.3g MPa", name, out[name].knot_count,
+        log.info("joint set %s: table of %d knots up to %.3g MPa", name, rockjoint.curve_table(out[name]).knot_count,
                  plan.table_max_stress * 1e-6)
     return out

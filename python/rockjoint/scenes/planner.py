@@ -227,7 +227,7 @@ def make_plan(scene, reduced: bool = False) -> Plan:
                           f"; this scan is coarser ({spacing * 1e3:g} mm): its resolution error is not measured"))))
             laws[s["name"]] = key
         else:
-            how = next(k for k in ("model", "curve", "table") if k in law)
+            how = next(k for k in ("model", "curve", "cycles", "table") if k in law)
             laws[s["name"]] = "given"
             choices.append(Choice(f"law of {s['name']}", f"the scene's {how}",
                                   why="a law given by the user is kept", cost="tabulated once",

@@ -19,6 +19,7 @@ import numpy as np
 from mpi4py import MPI
 
 from ..continuum import EquivalentContinuum, JointSet
+from .. import curve_table
 from ..joint import joint_behaviours
 from ..fem_coupling import (ConvergenceError, InSituStress, JointedRockModel, LinearSolveError, NewtonOptions,
                             ShearState, distribute)
@@ -199,7 +200,7 @@ def beyond_tables(rows, tables: dict) -> list:
     out = []
     for row in rows:
         for name, (_, sn) in row.per_set.items():
-            top = tables[name].table_maximum_stress
+            top = curve_table(tables[name]).table_maximum_stress
             if sn > top * (1.0 + 1e-9):
                 kind = "smeared joint set" if name in row.smeared else "joint set"
                 out.append(f"{kind} {name}: σ_n reaches {sn * 1e-6:.4g} MPa in stage '{row.stage}', beyond "

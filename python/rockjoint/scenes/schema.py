@@ -120,52 +120,75 @@ _ASPERITY_STATISTICS = (law_registry.Quantity("summit_density", "η", "1/mm²"),
                         law_registry.Quantity("summit_height_std", "σ_s", "mm"))
 
 
+def _law_parameters(law, path, c):
+    """A registered law's parameters (converted to SI): its own, or for an asperity law the summit
+    statistics (E* comes from the rock); a law with history takes the history's (r, m) beside those
+    of the registered law its `virgin` names."""
+    record = law_registry.REGISTRY.get(law["model"])
+    if record is None or not (record.parameters or record.asperity):
+        c.fail(path + ("model",), f"{law['model']!r} is not a registered law; one of "
+               f"{', '.join(sorted(law_registry.REGISTRY))}")
+    names, ranges = {}, {}
+    if record.history:
+        virgin = law_registry.REGISTRY.get(law.get("virgin"))
+        if virgin is None or virgin.history or not (virgin.parameters or virgin.asperity):
+            c.fail(path + ("virgin",), f"a law with history needs virgin: a registered law without history, "
+                   f"one of {', '.join(sorted(k for k, r in law_registry.REGISTRY.items() if not r.history))}; "
+                   f"got {law.get('virgin')!r}")
+        permanent, exponent = record.parameters   # r in [0, 1), m >= 1 (docs/hysteresis.md, H1-H2)
+        names.update({permanent.name: permanent, exponent.name: exponent})
+        ranges = {permanent.name: (lambda v: 0 <= v < 1, "must be in [0, 1)"),
+                  exponent.name: (lambda v: v >= 1, "must be >= 1")}
+        record = virgin
+    elif "virgin" in law:
+        c.fail(path + ("virgin",), f"goes with a law with history, not {record.key}")
+    names.update({q.name: q for q in (_ASPERITY_STATISTICS if record.asperity else record.parameters)})
+    params = law.get("parameters") or {}
+    for key in params:
+        if key not in names:
+            c.fail(path + ("parameters", key), f"unknown parameter {key!r} of {law['model']}; "
+                   f"expected {', '.join(names)}")
+    out = {}
+    for key, q in names.items():
+        if key not in params:
+            c.fail(path + ("parameters",), f"missing parameter {key!r} ({q.symbol}, {q.unit})")
+        try:
+            out[key] = parse_quantity(params[key], LAW_UNIT_DIMENSION[q.unit])
+        except ValueError as err:
+            c.fail(path + ("parameters", key), str(err))
+        inside, text = ranges.get(key, (lambda v: v > 0, "must be > 0"))
+        if not inside(out[key]):
+            c.fail(path + ("parameters", key), f"{params[key]!r} is out of range: {text}")
+    law["parameters"] = out
+
+
 def _law_rule(law, path, c):
-    given = [k for k in ("model", "topography", "curve", "table") if k in law]
+    given = [k for k in ("model", "topography", "curve", "cycles", "table") if k in law]
     if len(given) != 1:
-        c.fail(path, "give exactly one of model (with parameters), topography, curve or table; "
+        c.fail(path, "give exactly one of model (with parameters), topography, curve, cycles or table; "
                      f"got {', '.join(given) or 'none'}")
     if "model" in law:
-        record = law_registry.REGISTRY.get(law["model"])
-        if record is None or not (record.parameters or record.asperity):
-            c.fail(path + ("model",), f"{law['model']!r} is not a registered law; one of "
-                   f"{', '.join(sorted(law_registry.REGISTRY))}")
-        params = law.get("parameters") or {}
-        # asperity laws: the summit statistics (E* comes from the rock)
-        names = {q.name: q for q in (_ASPERITY_STATISTICS if record.asperity else record.parameters)}
-        for key in params:
-            if key not in names:
-                c.fail(path + ("parameters", key), f"unknown parameter {key!r} of {record.key}; "
-                       f"expected {', '.join(names)}")
-        out = {}
-        for key, q in names.items():
-            if key not in params:
-                c.fail(path + ("parameters",), f"missing parameter {key!r} ({q.symbol}, {q.unit})")
-            try:
-                out[key] = parse_quantity(params[key], LAW_UNIT_DIMENSION[q.unit])
-            except ValueError as err:
-                c.fail(path + ("parameters", key), str(err))
-            if out[key] <= 0:
-                c.fail(path + ("parameters", key), f"{params[key]!r} is out of range: must be > 0")
-        law["parameters"] = out
-    elif "parameters" in law:
-        c.fail(path + ("parameters",), "parameters go with model")
-    for key in ("curve", "table"):
+        _law_parameters(law, path, c)
+    elif "parameters" in law or "virgin" in law:
+        c.fail(path + ("parameters" if "parameters" in law else "virgin",), "goes with model")
+    for key in ("curve", "cycles", "table"):
         if key in law:
             law[key] = os.path.join(c.base, law[key])
             if not os.path.isfile(law[key]):
                 c.fail(path + (key,), f"no file {law[key]}")
-    for key in ("fit", "intact_length"):
-        if key in law and "curve" not in law:
-            c.fail(path + (key,), "goes with curve (a measured curve to calibrate)")
-    if "curve" in law and "fit" not in law:
-        c.fail(path, "a curve needs fit: the law to calibrate (e.g. barton_bandis)")
+    if "fit" in law and not ("curve" in law or "cycles" in law):
+        c.fail(path + ("fit",), "goes with curve or cycles (measured data to calibrate)")
+    if "intact_length" in law and "curve" not in law:
+        c.fail(path + ("intact_length",), "goes with curve (a measured curve to calibrate)")
+    for key, what in (("curve", "e.g. barton_bandis"), ("cycles", "the virgin law, e.g. barton_bandis")):
+        if key in law and "fit" not in law:
+            c.fail(path, f"{key} needs fit: the law to calibrate ({what})")
 
 
 LAW = Mapping({
-    "model": Text(required=False), "parameters": Anything(required=False),
+    "model": Text(required=False), "parameters": Anything(required=False), "virgin": Text(required=False),
     "topography": Mapping(TOPOGRAPHY.fields, required=False),
-    "curve": Text(required=False), "fit": Text(required=False),
+    "curve": Text(required=False), "cycles": Text(required=False), "fit": Text(required=False),
     "intact_length": Quantity("length", required=False, **POSITIVE),
     "table": Text(required=False)}, rule=_law_rule)
 
