@@ -237,8 +237,8 @@ def _cubic_law(initial_aperture: float) -> TransmissivityLaw:
 
 def _barton_jrc(initial_aperture: float, jrc: float) -> TransmissivityLaw:
     """e_h = e²/JRC^2.5 with e, e_h in µm (Barton, Bandis & Bakhtar 1985, stated for e >= e_h):
-    below e = JRC^2.5 µm the conversion would give e_h > e; e_h = e is kept there (the hydraulic
-    aperture of a rough joint does not exceed its mechanical aperture)."""
+    above e = JRC^2.5 µm (316 µm for JRC 10) the conversion would give e_h > e; e_h = e is kept
+    there (the walls far apart: parallel plates)."""
     e0 = _positive("barton_jrc", "initial_aperture", initial_aperture, "m")
     jrc = _positive("barton_jrc", "jrc", jrc, "")
     e = _mechanical(e0)
