@@ -46,7 +46,7 @@ rj_build_dir="${ROCKJOINT_BUILD_DIR:-$rj_repo/$rj_build_name}"
 # Compilers, libraries, and what the tests, demos and scenes use (unpinned: any version of the suite).
 rj_packages=(
   build-essential cmake pkg-config libgtest-dev
-  libeigen3-dev libgsl-dev libfftw3-dev pybind11-dev
+  libeigen3-dev libgsl-dev libfftw3-dev libsuitesparse-dev pybind11-dev
   python3-dev python3-numpy python3-scipy python3-matplotlib python3-pytest python3-h5py
   python3-meshio python3-yaml python3-mpi4py openmpi-bin
   "${rj_pins[@]}"

@@ -8,6 +8,10 @@ sequence of nominal stresses (Polonsky-Keer constrained conjugate gradients on a
 warm-started from load to load) and :func:`exact_elastic_law` turns the curve into a
 :class:`rockjoint.TabulatedLaw` that the FE coupling uses like any other table.
 
+With ``flow=True`` each load also gives the transmissivity of its gap field (the mechanical
+aperture under load; rockjoint.flow, docs/flow.md): the columns transmissivity_xx/yy/xy and
+hydraulic_aperture, and ``flow.transmissivity_law("walls", curve=curve)`` tabulates T(Δ).
+
 SI units: Pa, m. Closure is measured from first contact, net of the bulk deformation of the
 blocks (theory §0; periodic kernel: mean displacement 0; non-periodic: the mean displacement of
 the patch under uniform σ is subtracted, the raw rigid approach is kept as ``approach``).
@@ -21,6 +25,7 @@ from typing import List, Optional, Sequence
 import numpy as np
 
 from ._rockjoint import contact as _cpp
+from .flow import ApertureFlow, Transmissivity
 from ._rockjoint.topography import Surface
 
 log = logging.getLogger(__name__)
@@ -51,12 +56,22 @@ class ClosureCurve:
     unloaded_closure: float = 0.0   # closure [m] with the load removed after the path (permanent)
     pressure: Optional[List[np.ndarray]] = None   # p [Pa] per load (keep_fields=True)
     gap: Optional[List[np.ndarray]] = None        # g [m] per load: the mechanical aperture
+    # flow=True (rockjoint.flow): per load, T [m³] of the gap field (q̄ = -(T/μ) ∇p̄), the
+    # symmetric part's off-diagonal, e_h = (12 (T_xx + T_yy)/2)^(1/3) and the mean gap [m]
+    transmissivity_xx: Optional[np.ndarray] = None
+    transmissivity_yy: Optional[np.ndarray] = None
+    transmissivity_xy: Optional[np.ndarray] = None
+    hydraulic_aperture: Optional[np.ndarray] = None
+    mechanical_aperture: Optional[np.ndarray] = None
+    initial_flow: Optional[Transmissivity] = None         # of the aperture at first contact (Δ = 0)
+    flow_results: Optional[List[Transmissivity]] = None   # the whole flow answer per load
     _states: list = dataclasses.field(default_factory=list, repr=False)
 
 
 def closure_curve(aperture: Surface, composite_modulus: float, stresses: Sequence[float], *,
                   periodic: bool = True, tolerance: float = 1e-8, maximum_iterations: int = 2000,
-                  keep_fields: bool = False, hardness: float = float("inf")) -> ClosureCurve:
+                  keep_fields: bool = False, hardness: float = float("inf"), flow: bool = False,
+                  flow_solver: Optional[str] = None) -> ClosureCurve:
     """Solve the contact of `aperture` (e [m], NaN = masked, min e is taken as first contact)
     against a half-space of modulus E* [Pa] at each nominal stress in `stresses` [Pa] (> 0;
     increasing order warm-starts best). `periodic`: the grid is one period of a periodic
@@ -65,6 +80,9 @@ def closure_curve(aperture: Surface, composite_modulus: float, stresses: Sequenc
     indentation hardness; the stresses are then a load path (load cycles: up and down in any
     order), plastic flattening persists from load to load, and `unloaded_closure` is the
     permanent closure when the load is removed at the end (docs/contact.md).
+    `flow`: also the transmissivity of the gap field at each load and at first contact (elastic
+    walls; the same boundary as the kernel: periodic, or sealed sides for an isolated scan;
+    `flow_solver` as rockjoint.flow.transmissivity's `solver`; docs/flow.md).
     Raises ValueError for bad input, RuntimeError if a load does not converge."""
     stresses = np.asarray(stresses, dtype=float).ravel()
     if stresses.size == 0 or not np.all(np.isfinite(stresses)) or np.any(stresses <= 0):
@@ -74,13 +92,20 @@ def closure_curve(aperture: Surface, composite_modulus: float, stresses: Sequenc
         raise ValueError(f"closure_curve: hardness = {hardness} Pa must be > 0 (inf: elastic walls)")
     rows, cols = aperture.shape
     options = _cpp.ContactOptions(tolerance, maximum_iterations)
+    if flow and np.isfinite(hardness):
+        raise ValueError("closure_curve: flow=True is for elastic walls (hardness = inf): the "
+                         "elastic-plastic solver does not return the gap field")
+    # one flow problem for every load: its symbolic factorisation is made once
+    flow_of = ApertureFlow((rows, cols), (aperture.spacing_x, aperture.spacing_y),
+                           periodic=periodic, **({} if flow_solver is None else {"solver": flow_solver})
+                           ) if flow else None
     if np.isfinite(hardness):
         return _plastic_curve(aperture, composite_modulus, stresses, kernel, float(hardness), options,
                               keep_fields, periodic, tolerance)
     solver = _cpp.ElasticContact(aperture, float(composite_modulus), kernel, options)
-    states, pressure, gap = [], [], []
+    states, pressure, gap, flows = [], [], [], []
     for i, s in enumerate(stresses):
-        st, p, g = solver.solve(float(s), keep_fields, rows, cols)
+        st, p, g = solver.solve(float(s), keep_fields or flow, rows, cols)
         if not st.converged:
             raise RuntimeError(f"closure_curve: load {i} (σ = {s:g} Pa) did not converge in "
                                f"{maximum_iterations} iterations (last change "
@@ -91,9 +116,24 @@ def closure_curve(aperture: Surface, composite_modulus: float, stresses: Sequenc
         if keep_fields:
             pressure.append(p)
             gap.append(g)
+        if flow:
+            flows.append(flow_of(g))
 
     def column(name):
         return np.array([getattr(st, name) for st in states])
+
+    flow_columns = {}
+    if flow:
+        first = aperture.heights
+        first = first - np.nanmin(first)  # the closure's datum: first contact, min e = 0
+        tensors = np.array([f.tensor for f in flows])
+        flow_columns = dict(
+            transmissivity_xx=tensors[:, 0, 0], transmissivity_yy=tensors[:, 1, 1],
+            transmissivity_xy=0.5 * (tensors[:, 0, 1] + tensors[:, 1, 0]),
+            hydraulic_aperture=np.array([f.hydraulic_aperture for f in flows]),
+            mechanical_aperture=np.array([f.mechanical_aperture for f in flows]),
+            initial_flow=flow_of(first),
+            flow_results=flows)
 
     return ClosureCurve(stress=stresses, closure=column("closure"), approach=column("approach"),
                         contact_area_ratio=column("contact_area_ratio"),
@@ -108,7 +148,7 @@ def closure_curve(aperture: Surface, composite_modulus: float, stresses: Sequenc
                         shape=(rows, cols), periodic=periodic, tolerance=tolerance,
                         hardness=float(hardness), unloaded_closure=0.0,
                         pressure=pressure if keep_fields else None,
-                        gap=gap if keep_fields else None, _states=states)
+                        gap=gap if keep_fields else None, _states=states, **flow_columns)
 
 
 def _plastic_curve(aperture, composite_modulus, stresses, kernel, hardness, options, keep_fields,

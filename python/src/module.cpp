@@ -9,6 +9,7 @@ void declare_constitutive(py::module_& m);
 void declare_topography(py::module_& m);
 void declare_calibration(py::module_& m);
 void declare_contact(py::module_& m);
+void declare_flow(py::module_& m);
 void declare_joint(py::module_& m);
 void declare_continuum(py::module_& m);
 } // namespace rockjoint::python
@@ -27,6 +28,9 @@ PYBIND11_MODULE(_rockjoint, m)
   py::module_ contact = m.def_submodule(
       "contact", "Boundary-element contact reference of the composite topography (SI units)");
   rockjoint::python::declare_contact(contact);
+  py::module_ flow = m.def_submodule(
+      "flow", "Flow through the aperture field: transmissivity, hydraulic aperture (SI units)");
+  rockjoint::python::declare_flow(flow);
   py::module_ joint = m.def_submodule(
       "joint", "Per-point joint behaviour: normal law, shear stiffness, strength, slip (SI units)");
   rockjoint::python::declare_joint(joint);

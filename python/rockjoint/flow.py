@@ -1,0 +1,311 @@
+"""Flow along a joint: transmissivity and hydraulic aperture of an aperture field, and the joint's
+transmissivity as a function of its normal closure (docs/flow.md).
+
+:func:`transmissivity` solves the Reynolds (local cubic law) equation ∇·(e³/12 ∇p) = 0 on an
+aperture field (the gap field of the contact solution under load: ``contact.closure_curve(...,
+flow=True)`` does it at every load) under a unit mean pressure gradient along x and along y, and
+returns the effective transmissivity tensor T and the hydraulic apertures e_h = (12 T)^(1/3).
+Convention: mean flux per unit width q̄ = -(T/μ) ∇p̄, so T [m³] is e³/12 for parallel plates.
+
+A transmissivity law gives T(Δ) at a closure Δ [m]. Its records (one per law, keys spelled here
+only) are in :data:`TRANSMISSIVITY_LAWS`; :func:`transmissivity_law` builds one by key:
+
+* ``walls``: tabulated from the same walls' contact and flow solutions (a closure curve computed
+  with ``flow=True``): (0, T at first contact) and (Δ_i, T_i) at each load;
+* ``cubic_law``: parallel plates at the mechanical aperture e = e0 - Δ, T = e³/12;
+* ``barton_jrc``: e = e0 - Δ and Barton's conversion e_h = e²/JRC^2.5 (e, e_h in µm; Barton,
+  Bandis & Bakhtar 1985), T = e_h³/12.
+
+T follows Δ only: with a law with history (``NormalHysteresis``) the closure on its branches
+(``closure_path``) gives T along load cycles.
+
+SI units: m, m³.
+"""
+from __future__ import annotations
+
+import dataclasses
+from typing import Callable, Dict, Sequence, Tuple, Union
+
+import numpy as np
+
+from ._rockjoint import flow as _cpp
+from ._rockjoint.topography import Surface
+
+Boundary = _cpp.Boundary
+LinearSolver = _cpp.LinearSolver
+#: the pressure solver unless one is named: sparse LDLᵀ (bench/results/flow.md measured it against
+#: conjugate gradients with incomplete Cholesky on the 512² bench joint)
+DEFAULT_SOLVER = "cholesky"
+
+
+def hydraulic_aperture(transmissivity) -> Union[float, np.ndarray]:
+    """e_h = (12 T)^(1/3) [m] of a transmissivity T [m³] (parallel plates: their spacing)."""
+    return np.cbrt(12.0 * np.asarray(transmissivity, dtype=float))
+
+
+@dataclasses.dataclass(frozen=True)
+class Transmissivity:
+    """The flow answer for one aperture field (SI)."""
+
+    tensor: np.ndarray           # T [m³], 2 x 2: q̄ = -(T/μ) ∇p̄ (x, y)
+    mechanical_aperture: float   # mean aperture over the scanned points, contact spots as 0 [m]
+    open_fraction: float         # scanned points with e > 0 [-]
+    percolates: Tuple[bool, bool]  # an open path carries flow along x, y
+    iterations: Tuple[int, int]  # CG iterations per gradient (0: direct solver)
+    relative_residual: float     # largest |A p - b|/|b| of the pressure systems
+    periodic: bool
+
+    @property
+    def mean(self) -> float:
+        """The mean of the principal transmissivities, (T_xx + T_yy)/2 [m³]."""
+        return 0.5 * float(self.tensor[0, 0] + self.tensor[1, 1])
+
+    @property
+    def principal(self) -> np.ndarray:
+        """Principal transmissivities [m³], largest first, of the symmetric part of T (periodic: T
+        is symmetric; sealed sides: its off-diagonal terms are not, docs/flow.md)."""
+        return np.linalg.eigvalsh(0.5 * (self.tensor + self.tensor.T))[::-1]
+
+    @property
+    def hydraulic_aperture(self) -> float:
+        """e_h of the mean transmissivity [m]."""
+        return float(hydraulic_aperture(self.mean))
+
+    @property
+    def principal_hydraulic_apertures(self) -> np.ndarray:
+        """e_h [m] along the principal directions, largest first."""
+        return hydraulic_aperture(np.maximum(self.principal, 0.0))
+
+
+class ApertureFlow:
+    """The flow problem of one grid: `shape` (rows along y, cols along x), `spacing` h or (h_x, h_y)
+    [m], `periodic` (one period of a periodic joint, the periodic BEM kernel) or not (an isolated
+    scan: fixed pressures on the faces normal to the gradient, sealed sides parallel to it),
+    `solver` "cholesky" (supernodal, CHOLMOD), "simplicial_cholesky" (Eigen's LDLᵀ) or
+    "conjugate_gradient" (incomplete-Cholesky CG to `tolerance`). Its symbolic factorisation is
+    made once and serves every field (the loads of a closure curve). Call it on an aperture field
+    [m] (NaN = masked, not scanned, impermeable; 0 = closed, a contact spot): a Transmissivity.
+    Raises ValueError for bad input (naming it), RuntimeError if a pressure system was not
+    solved."""
+
+    def __init__(self, shape: Tuple[int, int], spacing: Union[float, Tuple[float, float]], *,
+                 periodic: bool = True, solver: str = DEFAULT_SOLVER, tolerance: float = 1e-10,
+                 maximum_iterations: int = 10000):
+        hx, hy = (spacing, spacing) if np.isscalar(spacing) else tuple(spacing)
+        if solver not in LinearSolver.__members__:
+            raise ValueError(f"transmissivity: solver {solver!r}; expected one of "
+                             f"{', '.join(LinearSolver.__members__)}")
+        rows, cols = (int(x) for x in shape)
+        if rows < 2 or cols < 2:
+            raise ValueError(f"transmissivity: the aperture grid is {rows} x {cols}; it needs at "
+                             "least 2 rows and 2 columns")
+        self.periodic, self.solver, self.tolerance = periodic, solver, tolerance
+        self._cpp = _cpp.ReynoldsFlow(rows, cols, float(hx), float(hy),
+                                      Boundary.periodic if periodic else Boundary.sealed_sides,
+                                      LinearSolver.__members__[solver], float(tolerance),
+                                      int(maximum_iterations))
+
+    def __call__(self, aperture) -> Transmissivity:
+        r = self._cpp.transmissivity(np.asarray(aperture, dtype=float))
+        if not r.converged:
+            raise RuntimeError(f"transmissivity: the pressure system was not solved to the "
+                               f"tolerance ({self.solver}: relative residual "
+                               f"{r.relative_residual:.2e}, tolerance {self.tolerance:g}, "
+                               f"iterations {tuple(r.iterations)})")
+        return Transmissivity(tensor=np.array(r.transmissivity),
+                              mechanical_aperture=r.mechanical_aperture,
+                              open_fraction=r.open_fraction, percolates=tuple(r.percolates),
+                              iterations=tuple(r.iterations),
+                              relative_residual=r.relative_residual, periodic=self.periodic)
+
+
+def transmissivity(gap_field, spacing: Union[None, float, Tuple[float, float]] = None, *,
+                   periodic: bool = True, solver: str = DEFAULT_SOLVER, tolerance: float = 1e-10,
+                   maximum_iterations: int = 10000) -> Transmissivity:
+    """Transmissivity of one aperture field [m]: a 2-D array with `spacing` h or (h_x, h_y) [m],
+    or a topography.Surface (its own spacing); the rest as ApertureFlow."""
+    if isinstance(gap_field, Surface):
+        if spacing is not None:
+            raise ValueError("transmissivity: a Surface carries its own spacing; give no spacing")
+        spacing = (gap_field.spacing_x, gap_field.spacing_y)
+        field = gap_field.heights
+    else:
+        if spacing is None:
+            raise ValueError("transmissivity: give the grid spacing [m] of the aperture array")
+        field = np.asarray(gap_field, dtype=float)
+        if field.ndim != 2:
+            raise ValueError(f"transmissivity: the aperture field must be 2-D (rows, cols); got "
+                             f"shape {field.shape}")
+    return ApertureFlow(field.shape, spacing, periodic=periodic, solver=solver,
+                        tolerance=tolerance, maximum_iterations=maximum_iterations)(field)
+
+
+# ---- transmissivity laws: T as a function of closure ---------------------------------------------
+class TransmissivityLaw:
+    """T(Δ) [m³] of a joint at normal closure Δ [m] (arrays or scalars), with the hydraulic
+    aperture e_h(Δ) and the mechanical aperture e(Δ) it comes with."""
+
+    def __init__(self, key: str, transmissivity: Callable[[np.ndarray], np.ndarray],
+                 mechanical_aperture: Callable[[np.ndarray], np.ndarray], parameters: dict):
+        self.key = key
+        self.parameters = dict(parameters)
+        self._transmissivity = transmissivity
+        self._mechanical = mechanical_aperture
+
+    @staticmethod
+    def _closure(closure) -> np.ndarray:
+        d = np.asarray(closure, dtype=float)
+        if np.any(np.isnan(d)):
+            raise ValueError("transmissivity law: closure contains NaN")
+        return d
+
+    def transmissivity(self, closure):
+        """T [m³] at closure(s) Δ [m]."""
+        out = self._transmissivity(self._closure(closure))
+        return float(out) if np.ndim(out) == 0 else out
+
+    def hydraulic_aperture(self, closure):
+        """e_h = (12 T)^(1/3) [m] at closure(s) Δ [m]."""
+        out = hydraulic_aperture(self._transmissivity(self._closure(closure)))
+        return float(out) if np.ndim(out) == 0 else out
+
+    def mechanical_aperture(self, closure):
+        """Mean mechanical aperture e [m] at closure(s) Δ [m] (0 once closed)."""
+        out = self._mechanical(self._closure(closure))
+        return float(out) if np.ndim(out) == 0 else out
+
+    def __repr__(self) -> str:
+        shown = {k: v for k, v in self.parameters.items() if np.isscalar(v)}
+        return f"TransmissivityLaw({self.key!r}, {shown})"
+
+
+@dataclasses.dataclass(frozen=True)
+class TransmissivityRecord:
+    """One transmissivity law: its key, words, its SI parameters (name -> what it is, with its
+    unit) and its builder build(**parameters) -> TransmissivityLaw."""
+
+    key: str
+    label: str
+    description: str
+    parameters: Dict[str, str]
+    build: Callable[..., TransmissivityLaw]
+
+
+TRANSMISSIVITY_LAWS: Dict[str, TransmissivityRecord] = {}
+#: one micrometre [m]: the unit of Barton's conversion
+MICROMETRE = 1e-6
+
+
+def _register(record: TransmissivityRecord) -> None:
+    TRANSMISSIVITY_LAWS[record.key] = record
+
+
+def transmissivity_law(key: str, **parameters) -> TransmissivityLaw:
+    """The transmissivity law `key` of TRANSMISSIVITY_LAWS built from its SI parameters (ValueError
+    naming an unknown key, a missing or unknown parameter)."""
+    if key not in TRANSMISSIVITY_LAWS:
+        raise ValueError(f"unknown transmissivity law {key!r}; expected one of "
+                         f"{', '.join(sorted(TRANSMISSIVITY_LAWS))}")
+    record = TRANSMISSIVITY_LAWS[key]
+    required = {k for k, v in record.parameters.items() if not v.startswith("optional")}
+    missing, unknown = sorted(required - set(parameters)), sorted(set(parameters) - set(record.parameters))
+    if missing or unknown:
+        raise ValueError(f"transmissivity law {key!r}: " + "; ".join(
+            ([f"missing {', '.join(missing)}"] if missing else []) +
+            ([f"unknown {', '.join(unknown)}"] if unknown else [])) +
+            f" (parameters: {', '.join(f'{k} ({v})' for k, v in record.parameters.items())})")
+    return record.build(**parameters)
+
+
+def _positive(key: str, name: str, value: float, unit: str) -> float:
+    value = float(value)
+    if not (np.isfinite(value) and value > 0):
+        raise ValueError(f"transmissivity law {key!r}: {name} = {value} {unit} must be finite and > 0")
+    return value
+
+
+def _mechanical(e0: float) -> Callable[[np.ndarray], np.ndarray]:
+    """e = e0 - Δ, 0 once closed [m]."""
+    return lambda d: np.maximum(e0 - d, 0.0)
+
+
+def _cubic_law(initial_aperture: float) -> TransmissivityLaw:
+    e0 = _positive("cubic_law", "initial_aperture", initial_aperture, "m")
+    e = _mechanical(e0)
+    return TransmissivityLaw("cubic_law", lambda d: e(d) ** 3 / 12.0, e, {"initial_aperture": e0})
+
+
+def _barton_jrc(initial_aperture: float, jrc: float) -> TransmissivityLaw:
+    """e_h = e²/JRC^2.5 with e, e_h in µm (Barton, Bandis & Bakhtar 1985, stated for e >= e_h):
+    above e = JRC^2.5 µm (316 µm for JRC 10) the conversion would give e_h > e; e_h = e is kept
+    there (the walls far apart: parallel plates)."""
+    e0 = _positive("barton_jrc", "initial_aperture", initial_aperture, "m")
+    jrc = _positive("barton_jrc", "jrc", jrc, "")
+    e = _mechanical(e0)
+
+    def t(d):
+        e_um = e(d) / MICROMETRE
+        e_h = np.minimum(e_um * e_um / jrc ** 2.5, e_um) * MICROMETRE
+        return e_h ** 3 / 12.0
+
+    return TransmissivityLaw("barton_jrc", t, e, {"initial_aperture": e0, "jrc": jrc})
+
+
+#: the transmissivity component a "walls" law tabulates by default: the mean of the principal
+#: values (T_xx + T_yy)/2
+WALLS_COMPONENTS = ("mean", "xx", "yy")
+
+
+def _walls(curve, component: str = "mean") -> TransmissivityLaw:
+    """Tabulated from a closure curve computed with flow=True (contact.closure_curve): knots
+    (0, T at first contact) and (Δ_i, T_i); the mean mechanical aperture is mean(e) - Δ (the
+    closure's datum, docs/contact.md)."""
+    if getattr(curve, "transmissivity_xx", None) is None:
+        raise ValueError("transmissivity law 'walls': the closure curve carries no flow; compute it "
+                         "with contact.closure_curve(..., flow=True)")
+    if component not in WALLS_COMPONENTS:
+        raise ValueError(f"transmissivity law 'walls': component {component!r}; expected one of "
+                         f"{', '.join(WALLS_COMPONENTS)}")
+
+    def pick(tensor_xx, tensor_yy):
+        return {"mean": 0.5 * (tensor_xx + tensor_yy), "xx": tensor_xx, "yy": tensor_yy}[component]
+
+    first = curve.initial_flow.tensor
+    closure = np.concatenate([[0.0], curve.closure])
+    t = np.concatenate([[pick(first[0, 0], first[1, 1])],
+                        pick(curve.transmissivity_xx, curve.transmissivity_yy)])
+    table = _cpp.TransmissivityTable(closure, t)
+    e0 = curve.initial_flow.mechanical_aperture
+    return TransmissivityLaw("walls", table.transmissivity, _mechanical(e0),
+                             {"component": component, "initial_aperture": e0,
+                              "closure": closure, "transmissivity": t})
+
+
+for _record in (
+        TransmissivityRecord(
+            "walls", "the walls' own flow (BEM + Reynolds), tabulated",
+            "T(Δ) through the transmissivity of the walls' gap field at first contact and at each "
+            "load of their contact solution (monotone Hermite in -ln T)",
+            {"curve": "a contact.ClosureCurve computed with flow=True",
+             "component": "optional: 'mean' (default), 'xx' or 'yy'"}, _walls),
+        TransmissivityRecord(
+            "cubic_law", "cubic law on the mechanical aperture",
+            "parallel plates at e = e0 - Δ: T = e³/12", {"initial_aperture": "e0 [m]"}, _cubic_law),
+        TransmissivityRecord(
+            "barton_jrc", "Barton's JRC conversion",
+            "e = e0 - Δ, e_h = e²/JRC^2.5 (µm; Barton, Bandis & Bakhtar 1985), T = e_h³/12",
+            {"initial_aperture": "e0 [m]", "jrc": "JRC [-]"}, _barton_jrc)):
+    _register(_record)
+
+
+def transmissivity_along(law: TransmissivityLaw, closure_law, stresses: Sequence[float],
+                         maximum_closure: float = 0.0) -> np.ndarray:
+    """T [m³] along a path of normal stresses [Pa] (load cycles): the closures of `closure_law`
+    on that path (a law with history, NormalHysteresis: on its branches, from the largest closure
+    `maximum_closure` [m] reached before; a law without history: its curve), then T(Δ)."""
+    stresses = np.asarray(stresses, dtype=float)
+    if getattr(closure_law, "has_history", False):
+        closure = closure_law.closure_path(stresses, maximum_closure)
+    else:
+        closure = closure_law.closure_at_stress(stresses)
+    return np.asarray(law.transmissivity(closure))
