@@ -30,6 +30,8 @@ set-up + solve, the peak reset (/proc/self/clear_refs) before it, so the baselin
 Usage:
   /usr/bin/python3 bench/bench_fem.py                      # full: ratios 1 and 2 ranks, scaling
   /usr/bin/python3 bench/bench_fem.py --quick              # ~50k dofs, 2 runs, no scaling
+  /usr/bin/python3 bench/bench_fem.py --repeat 3 --ratio-size 0.0137 --scaling-sizes --no-variants \
+      --mesh-dir .scratch/fem_1m --output bench/results/fem_1m.md   # ~1M dofs (issue 31)
 Options: --ratio-size H (column mesh size, 0.0235 = 203k dofs), --scaling-sizes H..., --repeat N,
 --ranks 1 2, --scaling-repeat N (3), --scaling-ranks k (1), --build DIR. Every worker runs under `mpirun -n k --bind-to core`.
 Writes bench/results/fem.md and bench/results/fem_scaling.png.
@@ -455,6 +457,9 @@ def main() -> None:
     ap.add_argument("--scaling-repeat", type=int, default=3, help="runs per size of the scaling table")
     ap.add_argument("--scaling-ranks", type=int, default=1)
     ap.add_argument("--quick", action="store_true", help="~50k dofs, 2 runs, no scaling, no variants")
+    ap.add_argument("--no-variants", action="store_true",
+                    help="leave out the 'what each measure buys' runs (at 1M dofs the one without "
+                         "Eisenstat-Walker alone takes minutes)")
     ap.add_argument("--output", default=os.path.join(HERE, "results", "fem.md"))
     ap.add_argument("--mesh-dir", default=None,
                     help="keep the ratio rows' meshes and partitions here and reuse them: a run on "
@@ -485,7 +490,7 @@ def main() -> None:
             _REUSED[case] = os.path.exists(cache)
             for n in args.ranks:
                 variants = ("fixed_forcing", "no_reuse", "smoothed_aggregation") \
-                    if (case == "column" and n == 1 and not args.quick) else ()
+                    if (case == "column" and n == 1 and not (args.quick or args.no_variants)) else ()
                 res = launch(env, n, case, args.ratio_size, args.repeat, os.path.join(tmp, "out.json"), cache,
                              variants)
                 s = summary(res)
