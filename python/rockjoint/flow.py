@@ -298,6 +298,20 @@ for _record in (
     _register(_record)
 
 
+def built_from_walls(key: str) -> bool:
+    """Whether the transmissivity law `key` is built from the joint's own walls (its closure curve
+    with flow), not from parameters a user gives."""
+    return "curve" in TRANSMISSIVITY_LAWS[key].parameters
+
+
+def user_parameters(key: str, required: bool = False) -> list:
+    """The parameters of law `key` a user gives (its walls' curve excluded), or only the
+    required ones."""
+    record = TRANSMISSIVITY_LAWS[key]
+    return [k for k, v in record.parameters.items()
+            if k != "curve" and not (required and v.startswith("optional"))]
+
+
 def transmissivity_along(law: TransmissivityLaw, closure_law, stresses: Sequence[float],
                          maximum_closure: float = 0.0) -> np.ndarray:
     """T [m³] along a path of normal stresses [Pa] (load cycles): the closures of `closure_law`

@@ -18,6 +18,8 @@ DIMENSIONS = {
     "stiffness": {"Pa/m": 1.0, "MPa/m": 1e6, "GPa/m": 1e9, "MPa/mm": 1e9},   # k_n, k_s
     "density": {"kg/m3": 1.0, "kg/m³": 1.0, "t/m3": 1e3},
     "per_area": {"1/m2": 1.0, "1/mm2": 1e6, "1/mm²": 1e6},                  # summit density η
+    # intrinsic permeability k of rock (1 darcy = 9.869233e-13 m², by its definition)
+    "permeability": {"m2": 1.0, "m²": 1.0, "D": 9.869233e-13, "mD": 9.869233e-16},
     "fraction": {"%": 1e-2, "-": 1.0},
     "number": {"-": 1.0},
 }

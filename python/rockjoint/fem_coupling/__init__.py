@@ -17,6 +17,8 @@ from ..joint import joint_behaviours  # noqa: F401  (no FE stack; here for FE us
 _HAS_FE = find_spec("rockjoint._rockjoint_fem_coupling") is not None
 if _HAS_FE or fe_required():
     from .coupling import JointCoupling, JointedNonlinearProblem, supported_dofs  # noqa: F401
+    from .darcy import DarcyFlow, darcy_flow, equivalent_permeability  # noqa: F401
+    from .joint_flow import Fluid, NetworkFlow, network_flow  # noqa: F401
     from .interface import JointInterface, QuadratureRule  # noqa: F401
     from .linear_solver import LinearSolveError  # noqa: F401
     from .in_situ import InSituStress  # noqa: F401
@@ -33,7 +35,8 @@ else:
     _FE_NAMES = {"JointCoupling", "JointedNonlinearProblem", "supported_dofs",
                  "JointInterface", "QuadratureRule", "LinearSolveError", "InSituStress", "Load",
                  "Support", "JointedRockModel", "JointedProblem", "Stage", "StageResult",
-                 "ConvergenceError", "NewtonOptions"}
+                 "ConvergenceError", "NewtonOptions", "DarcyFlow", "darcy_flow",
+                 "equivalent_permeability", "Fluid", "NetworkFlow", "network_flow"}
 
     def __getattr__(name):
         if name in _FE_NAMES:

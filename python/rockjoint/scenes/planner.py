@@ -347,6 +347,16 @@ def _smeared_sets(scene, sets, budget, choices, mobilised) -> tuple:
                 scene.fail(("plan", "smeared"), f"no joint set '{name}'; joint sets: {', '.join(names)}")
     if g["kind"] == "column":
         return ()
+    if "flow" in scene.data["outputs"]:   # the flow runs along the joint network (docs/flow.md)
+        if over:
+            scene.fail(("plan", "smeared"), "the scene asks for flow, which runs along the joint network: "
+                       "flow through smeared sets and the rock around them is not modelled; keep the sets discrete")
+        for s in sets:
+            choices.append(Choice(f"joints of {s['name']}", "discrete (joint elements)",
+                                  why="the scene asks for flow, which runs along the joint network",
+                                  cost="joint elements on every joint of the set",
+                                  error="none from the choice: the joints are meshed"))
+        return ()
     size = g["opening"]["radius"] if "opening" in g else 0.5 * float(min(geometry.extent(g)))
     dominant = max(names, key=lambda name: mobilised[name]) if names else None
     chosen = []

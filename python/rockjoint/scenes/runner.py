@@ -23,6 +23,7 @@ from .. import curve_table
 from ..joint import joint_behaviours
 from ..fem_coupling import (ConvergenceError, InSituStress, JointedRockModel, LinearSolveError, NewtonOptions,
                             ShearState, distribute)
+from . import flow as scene_flow
 from . import geometry, joint_laws, pictures, planner, statics, stresses
 
 log = logging.getLogger("rockjoint.scenes")
@@ -43,6 +44,10 @@ class StageRow:
     per_set: dict = dataclasses.field(default_factory=dict)  # set -> (max closure [m], max σ_n [Pa])
     slipping_per_set: dict = dataclasses.field(default_factory=dict)  # set -> slipping points
     smeared: tuple = ()            # the sets of per_set that are smeared (equivalent continuum)
+    #: outputs.flow: {boundary with a head: flow into the rock there [m³/s; m²/s per metre in 2D]};
+    #: None: no flow asked for, or the intact rock has no permeability
+    flow_rates: dict | None = None
+    network: object = dataclasses.field(default=None, repr=False)   # the jointed model's NetworkFlow
 
 
 class NoEquilibrium(RuntimeError):
@@ -162,7 +167,7 @@ def smeared_state(scene, plan, model) -> dict:
     return out
 
 
-def _record(scene, plan, model, label, stage, solution) -> StageRow:
+def _record(scene, plan, model, label, stage, solution, transmissivity=None) -> StageRow:
     monitors = {b: np.r_[model.boundary_mean_displacement(b), model.mean_normal_displacement(b)]
                 for b in scene.data["outputs"]["monitor"]}
     u = model.u.x.array.reshape(-1, model.gdim)
@@ -191,6 +196,8 @@ def _record(scene, plan, model, label, stage, solution) -> StageRow:
         row.max_closure = max(c for c, _ in row.per_set.values())
         row.max_normal_stress = max(s for _, s in row.per_set.values())
     row.smeared = tuple(smeared)
+    if scene_flow.requested(scene):
+        row.flow_rates, row.network = scene_flow.stage_flow(scene, model, solution, transmissivity)
     return row
 
 
@@ -213,14 +220,15 @@ def _max():
     return MPI.MAX
 
 
-def run_stages(scene, plan, model, label: str, current: list | None = None) -> list:
+def run_stages(scene, plan, model, label: str, current: list | None = None, transmissivity=None) -> list:
     """In-situ (when given), then every stage; a StageRow after each. current[0]: the stage
-    being solved (for the caller's message when a solve fails)."""
+    being solved (for the caller's message when a solve fails). transmissivity: {joint set:
+    TransmissivityLaw} of the jointed model when the scene asks for flow."""
     current = current if current is not None else [None]
     rows = []
     if "in_situ" in scene.data:
         current[0] = "in-situ"
-        rows.append(_record(scene, plan, model, label, "in-situ", model.solve(name="in-situ")))
+        rows.append(_record(scene, plan, model, label, "in-situ", model.solve(name="in-situ"), transmissivity))
     handles = {}
     for stage in scene.data["stages"]:
         t0 = time.perf_counter()
@@ -237,7 +245,7 @@ def run_stages(scene, plan, model, label: str, current: list | None = None) -> l
                 handles[face, kind] = add(face, value)
         steps = plan.load_steps if plan.reduced else stage.get("steps", plan.load_steps)
         solution = model.solve(load_steps=steps, name=stage["name"])
-        rows.append(_record(scene, plan, model, label, stage["name"], solution))
+        rows.append(_record(scene, plan, model, label, stage["name"], solution, transmissivity))
         log.info("%s: stage %s, %d load step(s), %d Newton iterations (%.1f s)", label, stage["name"],
                  steps, solution.newton_iterations, time.perf_counter() - t0)
     return rows
@@ -248,6 +256,7 @@ def run_scene(scene, plan, output: str, comm=None, reduced: bool = False) -> Sce
     comm = comm or MPI.COMM_WORLD
     t0 = time.perf_counter()
     tables = joint_laws.tables(scene, plan, reduced)
+    transmissivity = scene_flow.transmissivity_laws(scene, plan, reduced) if scene_flow.requested(scene) else None
     jm = geometry.jointed_mesh(scene, plan, comm)
     meshes = {"jointed": distribute(jm, comm)}
     if plan.intact:
@@ -262,13 +271,16 @@ def run_scene(scene, plan, output: str, comm=None, reduced: bool = False) -> Sce
         rows, files, models = [], [], {}
         for label, dmesh in meshes.items():
             model = build_model(scene, plan, dmesh, tables if label == "jointed" else None)
-            rows += _run_explained(scene, plan, model, label, jm, comm)
+            rows += _run_explained(scene, plan, model, label, jm, comm,
+                                   transmissivity if label == "jointed" else None)
             models[label] = model
             if label == "jointed" and comm.rank == 0:
                 for words in beyond_tables(rows, tables):
                     log.warning("warning: %s", words)
             if scene.data["outputs"]["xdmf"]:
                 files += model.write_xdmf(os.path.join(tmp, f"{label}.xdmf"))
+                if rows[-1].network is not None:   # the joint network after the last stage
+                    files.append(rows[-1].network.write(os.path.join(tmp, f"{label}_flow.xdmf"), comm))
         if scene.data["outputs"]["pictures"]:
             files += pictures.draw(models, scene, os.path.join(tmp, "scene.png"))
         result = SceneResult(plan, rows, tables, [], time.perf_counter() - t0,
@@ -289,12 +301,12 @@ def run_scene(scene, plan, output: str, comm=None, reduced: bool = False) -> Sce
             shutil.rmtree(tmp, ignore_errors=True)
 
 
-def _run_explained(scene, plan, model, label, jm, comm) -> list:
+def _run_explained(scene, plan, model, label, jm, comm, transmissivity=None) -> list:
     """run_stages; a failed solve of the jointed model that statics.diagnose explains (a joint
     set that opens, slides or carries no shear and frees a block) becomes NoEquilibrium."""
     current = [None]
     try:
-        return run_stages(scene, plan, model, label, current)
+        return run_stages(scene, plan, model, label, current, transmissivity)
     except (ConvergenceError, LinearSolveError) as err:
         words = statics.diagnose(scene, plan, jm, current[0]) if (comm.rank == 0 and label == "jointed") else None
         words = comm.bcast(words)
@@ -329,4 +341,9 @@ def summary_table(result: SceneResult) -> str:
             lines.append(f"{stage:{w}}{'  ' + kind + ': max closure [mm]':{q}}{closure * 1e3:14.5g}")
             lines.append(f"{stage:{w}}{'  ' + kind + ': max σ_n [MPa]':{q}}{sn * 1e-6:14.5g}")
             lines.append(f"{stage:{w}}{'  ' + kind + ': slipping points':{q}}{j.slipping_per_set.get(name, 0):14d}")
+        for b, rate in (j.flow_rates or {}).items():   # L/min (per metre out of plane in 2D)
+            other = i.flow_rates.get(b) if i is not None and i.flow_rates else None
+            unit = "L/min/m" if result.gdim == 2 else "L/min"
+            lines.append(f"{stage:{w}}{f'flow in at {b} [{unit}]':{q}}{rate * 6e4:14.5g}"
+                         + (f"{other * 6e4:14.5g}" if other is not None else f"{'-':>14}"))
     return "\n".join(lines)

@@ -10,7 +10,7 @@ import dataclasses
 import math
 import os
 
-from .. import law_registry
+from .. import flow, law_registry
 from .fields import (Anything, Checker, Flag, Integer, ListOf, Mapping, NamedMapping, Quantity,
                      Text)
 from .units import LAW_UNIT_DIMENSION, parse_quantity
@@ -86,7 +86,8 @@ GEOMETRY = Mapping({
 ELASTIC = Mapping({"young": Quantity("stress", **POSITIVE),
                    "poisson": Quantity("number", low=-0.99, high=0.499),
                    "density": Quantity("density", required=False, **POSITIVE)})
-ROCK = Mapping({**ELASTIC.fields, "blocks": NamedMapping(ELASTIC, required=False)})
+ROCK = Mapping({**ELASTIC.fields, "blocks": NamedMapping(ELASTIC, required=False),
+               "permeability": Quantity("permeability", low=0.0, required=False)})
 
 TOPOGRAPHY = Mapping({
     "hurst": Quantity("number", low=0.0, high=1.0, open_low=True),
@@ -192,8 +193,28 @@ LAW = Mapping({
     "intact_length": Quantity("length", required=False, **POSITIVE),
     "table": Text(required=False)}, rule=_law_rule)
 
+def _flow_law_rule(v, path, c):
+    """A transmissivity law of rockjoint.flow with its parameters (docs/flow.md); one built from the
+    walls takes the set's own (checked against its law in _cross_checks)."""
+    if v.get("law") not in flow.TRANSMISSIVITY_LAWS:
+        c.fail(path + ("law",), f"{v.get('law')!r} is not a transmissivity law; one of "
+               f"{', '.join(sorted(flow.TRANSMISSIVITY_LAWS))}")
+    record = flow.TRANSMISSIVITY_LAWS[v["law"]]
+    for key in sorted(set(v) - {"law"}):
+        if key not in record.parameters:
+            c.fail(path + (key,), f"not a parameter of {v['law']} ({', '.join(flow.user_parameters(v['law'])) or 'none'})")
+    for key in flow.user_parameters(v["law"], required=True):
+        if key not in v:
+            c.fail(path, f"{v['law']} needs {key} ({record.parameters[key]})")
+
+
+FLOW_LAW = Mapping({"law": Text(), "initial_aperture": Quantity("length", required=False, **POSITIVE),
+                    "jrc": Quantity("number", required=False, low=0.0, open_low=True),
+                    "component": Text(required=False)}, required=False, rule=_flow_law_rule)
+
 JOINT = Mapping({
     "law": LAW,
+    "flow": FLOW_LAW,
     "shear_stiffness_ratio": Quantity("number", low=0.0, required=False, default=0.1),
     "residual_stiffness": Quantity("stiffness", low=0.0, required=False, default=0.0),
     "strength": Mapping(STRENGTH.fields, required=False, rule=_strength_rule)})
@@ -227,7 +248,8 @@ PLAN = Mapping({"dimension": Integer(low=2, high=3, required=False),
                default={})
 
 OUTPUTS = Mapping({"pictures": Flag(default=True), "xdmf": Flag(default=True),
-                   "monitor": ListOf(Text(), required=False, default=[])},
+                   "monitor": ListOf(Text(), required=False, default=[]),
+                   "flow": Mapping({"heads": NamedMapping(Quantity("length"))}, required=False)},
                   required=False, default={"pictures": True, "xdmf": True, "monitor": []})
 
 REDUCED = Mapping({"mesh_size": Quantity("length", required=False, **POSITIVE),
@@ -291,6 +313,15 @@ def _cross_checks(d: dict, c: Checker) -> None:
                 c.fail(("stages", i, "loads", k, "traction"),
                        f"{len(load['traction'])} components in a {g['dimension']}D scene")
     where += [(("outputs", "monitor", i), face) for i, face in enumerate(d["outputs"]["monitor"])]
+    if "flow" in d["outputs"]:
+        where += [(("outputs", "flow", "heads", k), k) for k in d["outputs"]["flow"]["heads"]]
+        for name, joint in d["joints"].items():
+            if "flow" not in joint:
+                c.fail(("joints", name), "the scene asks for flow: give the set's transmissivity "
+                                         "(flow: {law: ...}, docs/flow.md)")
+            if flow.built_from_walls(joint["flow"]["law"]) and "topography" not in joint["law"]:
+                c.fail(("joints", name, "flow", "law"), f"{joint['flow']['law']} needs the set's walls: "
+                       "its law must be a topography")
     for path, face in where:
         if face not in faces:
             c.fail(path, f"no boundary {face!r}; one of {', '.join(faces)}")
