@@ -16,7 +16,9 @@ Outputs (in DIR, default the working directory): lab_closure_test.png (the curve
 lab_closure_test_table.txt (the numbers), granite_joint.rjt (the tabulated law),
 jointed_cube.xdmf / intact_cube.xdmf (+ joint state) for ParaView, and the load cycle:
 lab_closure_cycle.png / lab_closure_cycle.txt (load to 30 MPa, unload, reload: the walls'
-elastic-plastic contact beside the FE cube whose joint follows a hysteretic law).
+elastic-plastic contact beside the FE cube whose joint follows a hysteretic law), and the flow along
+the joint through that cycle: lab_flow_cycle.png / lab_flow_cycle.txt (transmissivity from the walls'
+own gap field, and the flow through the FE cube's joint between two heads).
 Units in print: mm, MPa.
 """
 import argparse
@@ -28,9 +30,9 @@ from mpi4py import MPI
 
 import rockjoint
 from rockjoint.console import quiet_compiler_logging, say
-from rockjoint import contact, meshes
+from rockjoint import contact, flow, meshes
 from rockjoint import topography as topo
-from rockjoint.fem_coupling import JointedRockModel, NewtonOptions, distribute
+from rockjoint.fem_coupling import Fluid, JointedRockModel, NewtonOptions, distribute, network_flow
 from rockjoint.scenes import load_scene, make_plan
 from rockjoint.scenes.joint_laws import topography_law
 
@@ -64,6 +66,9 @@ TABLE_STRESS = PLAN.table_max_stress   # [Pa]
 # 0.5 MPa, back up to 30 MPa.
 HARDNESS = 5e9   # [Pa]
 CYCLE = np.r_[STRESS_LEVELS, np.array([20, 10, 5, 2, 1, 0.5, 1, 5, 10, 20, 30]) * 1e6]   # [Pa]
+# The flow along the joint (section 5): water between heads of 1 m and 0 m on the cube's left and
+# right faces.
+FLOW_HEADS = {"left": 1.0, "right": 0.0}   # [m]
 
 
 def joint_law():
@@ -85,8 +90,9 @@ def joint_law():
     laws = rockjoint.laws.laws_from_topography(params, summits=analysis, empirical=False)
     # The yardstick: exact elastic contact of the same walls (boundary elements, periodic: the
     # synthetic walls are one period), the reference every law is measured against.
-    bem = contact.closure_curve(joint.aperture, params.composite_modulus, STRESS_LEVELS)
-    return laws, params, bem.closure, joint.aperture
+    # With flow=True it also solves the Reynolds flow on the gap field at each load (docs/flow.md).
+    bem = contact.closure_curve(joint.aperture, params.composite_modulus, STRESS_LEVELS, flow=True)
+    return laws, params, bem, joint.aperture
 
 
 def tabulated(law, path):
@@ -138,7 +144,8 @@ def main():
     out = lambda name: os.path.join(args.output, name)  # noqa: E731
 
     # %% 1. Micro: the joint's roughness gives its closure law ------------------------------
-    laws, params, closure_bem, aperture = joint_law()
+    laws, params, bem, aperture = joint_law()
+    closure_bem = bem.closure
     # The planner's pick within the scene's error budget, of least total cost: a law of the
     # family above, or the exact contact curve of the walls (BEM) as a table.
     say(f"planner: {PLAN_LAW.choice}; {PLAN_LAW.why}; cost {PLAN_LAW.cost}")
@@ -187,7 +194,10 @@ def main():
         f"{out('jointed_cube.xdmf')}, {out('intact_cube.xdmf')}")
 
     # %% 4. Load and unload: the joint that does not spring back -----------------------------
-    load_cycle(aperture, params, table, jointed_mesh, intact_mesh, out)
+    cycle = load_cycle(aperture, params, table, jointed_mesh, intact_mesh, out)
+
+    # %% 5. Flow: the joint's transmissivity through the load cycle --------------------------
+    flow_cycle(bem, cycle, out)
 
 
 def load_cycle(aperture, params, table, jointed_mesh, intact_mesh, out):
@@ -218,10 +228,10 @@ def load_cycle(aperture, params, table, jointed_mesh, intact_mesh, out):
         jointed.fix(face, c)
     jointed.add_traction("top", (0.0, 0.0, -MAX_STRESS))
     u_intact_max = top_displacement(intact_mesh, None, MAX_STRESS)[0]
-    rows = []
+    rows, solutions = [], []
     expected = law.closure_path(CYCLE)
     for stress, target, measured in zip(CYCLE, expected, bem.closure):
-        jointed.advance(stress / MAX_STRESS, load_steps=1)
+        solutions.append(jointed.advance(stress / MAX_STRESS, load_steps=1))
         u = -jointed.boundary_mean_displacement("top")[2]
         rows.append((stress, u - u_intact_max * stress / MAX_STRESS, target, measured))
     rows = np.array(rows)
@@ -251,6 +261,61 @@ def load_cycle(aperture, params, table, jointed_mesh, intact_mesh, out):
         fig.tight_layout()
         fig.savefig(out("lab_closure_cycle.png"), dpi=120)
         plt.close(fig)
+    return law, solutions
+
+
+def flow_cycle(bem, cycle, out):
+    """The transmissivity of the joint along the load cycle, and the flow through the FE cube's
+    joint between heads on two opposite faces. T(Δ) comes from the walls themselves: the Reynolds
+    (local cubic law) flow on their gap field at each load of the exact elastic contact (BEM),
+    tabulated against closure (docs/flow.md); along the cycle T follows the closure of the
+    hysteretic law. The FE cube: each joint point's T from its closure, flow along the joint
+    (rockjoint.fem_coupling.network_flow); closed form for the uniform joint spanning the cube:
+    Q = (ρ g / μ) T Δh (the joint is as wide as it is long)."""
+    law, solutions = cycle
+    walls = flow.transmissivity_law("walls", curve=bem)
+    fluid = Fluid()
+    rows = []
+    for stress, solution, t in zip(CYCLE, solutions, flow.transmissivity_along(walls, law, CYCLE)):
+        q = network_flow(solution, {"joint": walls.transmissivity}, FLOW_HEADS, fluid).flow_rates["left"]
+        rows.append((stress, t, q, fluid.conductivity_factor * t * (FLOW_HEADS["left"] - FLOW_HEADS["right"])))
+    rows = np.array(rows)
+    closure = law.closure_path(CYCLE)
+    e_h, e = flow.hydraulic_aperture(rows[:, 1]), walls.mechanical_aperture(closure)
+    error = np.abs(rows[:, 2] - rows[:, 3]) / rows[:, 3]
+    lines = ["σ [MPa]  closure [mm]  T [m³]      e_h [µm]  e [µm]  e_h/e   Q FE [mL/min]  Q closed form [mL/min]"] + [
+        f"{r[0] * 1e-6:7.2f}  {d * 1e3:12.5f}  {r[1]:10.3e}  {h * 1e6:8.2f}  {m * 1e6:6.1f}  {h / m:5.3f}  "
+        f"{r[2] * 6e7:13.9g}  {r[3] * 6e7:22.9g}" for r, d, h, m in zip(rows, closure, e_h, e)]
+    say("\nflow along the joint, heads 1 m and 0 m on two opposite faces of the cube (water, 20 °C):\n"
+        + "\n".join(lines))
+    first = np.argmax(CYCLE >= 30e6)
+    say(f"transmissivity 0.05 -> 30 MPa: x{rows[first, 1] / rows[0, 1]:.3g}; after unloading to 0.5 MPa it is "
+        f"x{rows[np.argmin(CYCLE[first:]) + first, 1] / rows[0, 1]:.3g} of the first-loading value at 0.05 MPa; "
+        f"e_h/e {np.min(e_h / e):.2f}-{np.max(e_h / e):.2f}")
+    say(f"flow: max relative difference FE vs closed form {error.max():.2e}")
+    if COMM.rank == 0:
+        with open(out("lab_flow_cycle.txt"), "w") as f:
+            f.write("# rockjoint lab closure test, flow along the joint through the load cycle: T(Δ) from the "
+                    "walls (BEM + Reynolds), the closure of the hysteretic law; heads 1 m / 0 m on the cube's "
+                    "left / right faces\n# " + "\n".join(lines) + "\n")
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        fig, ax = plt.subplots(figsize=(6, 4.5))
+        top = int(first)
+        low = int(np.argmin(CYCLE[top:]) + top)
+        for part, style, label in ((slice(0, top + 1), "o-", "first loading"),
+                                   (slice(top, low + 1), "s--", "unloading"),
+                                   (slice(low, None), "^:", "reloading")):
+            ax.semilogy(rows[part, 0] * 1e-6, rows[part, 1], style, mfc="none", label=label)
+        ax.set_xlabel("normal stress σ [MPa]")
+        ax.set_ylabel("transmissivity T = e_h³/12 [m³]")
+        ax.set_title("the joint's transmissivity through the load cycle")
+        ax.legend()
+        fig.tight_layout()
+        fig.savefig(out("lab_flow_cycle.png"), dpi=120)
+        plt.close(fig)
+    say(f"wrote {out('lab_flow_cycle.png')}, {out('lab_flow_cycle.txt')}")
 
 
 def plot(rows, laws, table_law, path):
