@@ -46,7 +46,9 @@ import rockjoint
 from rockjoint.console import quiet_compiler_logging
 from rockjoint import meshes
 from rockjoint import topography as topo
-from rockjoint.fem_coupling import InSituStress, JointedRockModel, NewtonOptions, ShearState, distribute
+from rockjoint import contact, flow
+from rockjoint.fem_coupling import (InSituStress, JointedRockModel, NewtonOptions, ShearState, darcy_flow,
+                                    distribute, network_flow)
 from rockjoint.fem_coupling.output import gather_triangles, write_functions
 from rockjoint.fem_coupling.probe import probe
 from rockjoint.reference import KirschSolution
@@ -113,7 +115,8 @@ CROSS = [j for j in _SETS if j.name.startswith("cross_")]
 
 
 def joint_laws():
-    """Bedding: Tang & Jiao from a synthetic mated granite joint; cross set: Barton-Bandis (JRC/JCS)."""
+    """Bedding: Tang & Jiao from a synthetic mated granite joint; cross set: Barton-Bandis (JRC/JCS).
+    Returns the tables and the bedding's walls (upper, lower, their closure parameters)."""
     scan = SCENE["joints"]["bedding"]["law"]["topography"]  # a 64 mm scan at 0.5 mm
     n, spacing = scan["points"], scan["spacing"]
     spec = topo.SelfAffineSpec(hurst_exponent=scan["hurst"], rms_height=scan["rms_height"])
@@ -122,7 +125,7 @@ def joint_laws():
     params = topo.closure_parameters(analysis, young=YOUNG, poisson=POISSON)
     bedding = rockjoint.laws.laws_from_topography(params, summits=analysis, empirical=False)
     bedding = bedding[rockjoint.laws.RECOMMENDED].law
-    cross = rockjoint.BartonBandis.from_joint_properties(jrc=8.0, jcs=80e6, initial_aperture=0.4e-3)
+    cross = rockjoint.BartonBandis.from_joint_properties(jrc=CROSS_JRC, jcs=80e6, initial_aperture=CROSS_APERTURE)
     log.info("bedding (Tang & Jiao from the topography): η = %.3f /mm², β = %.3f mm, σ_s = %.4f mm",
              params.summit_density * 1e-6, params.summit_radius * 1e3, params.summit_height_std * 1e3)
     log.info("cross set (Bandis 1983): K_ni = %.2f MPa/mm, V_m = %.3f mm",
@@ -130,7 +133,62 @@ def joint_laws():
     # Tables cover the stresses the scene can reach (the sidewall hoop stress is 2.5 σ_v).
     top = 4.0 * SIGMA_V
     return {"bedding": rockjoint.tabulate(bedding, max_stress=top, tolerance=1e-6),
-            "cross": rockjoint.tabulate(cross, max_stress=top, tolerance=1e-6)}
+            "cross": rockjoint.tabulate(cross, max_stress=top, tolerance=1e-6)}, (upper, lower, params)
+
+
+# Flow (docs/flow.md): water drains into the tunnel from the rock around it. Heads: the far field
+# keeps the hydrostatic head of a water table at the surface, 300 m above the axis; the tunnel is
+# drained (h = 0); elevation differences across the section (±40 m) are left out: the heads are
+# pressure heads at the axis. Transmissivity: the bedding joint's from its own walls (BEM contact
+# and Reynolds flow on its gap field); the cross set's by Barton's JRC conversion of its mechanical
+# aperture (the same JRC and aperture as its closure law). Intact granite: k = 1e-19 m², within
+# what Brace (1980, IJRMMS 17, 241-251) gives for intact crystalline rock at depth (1e-21 to 1e-18 m²).
+FLOW_HEADS = {"left": DEPTH, "right": DEPTH, "bottom": DEPTH, "top": DEPTH, "opening": 0.0}   # [m]
+ROCK_PERMEABILITY = 1e-19   # [m²]
+CROSS_JRC, CROSS_APERTURE = 8.0, 0.4e-3
+
+
+def transmissivity_laws(bedding_walls):
+    """{set: TransmissivityLaw}: the bedding's from its walls' closure curve with flow, up to the
+    tables' top stress; the cross set's Barton conversion."""
+    upper, lower, params = bedding_walls
+    aperture = topo.composite_topography(upper, lower, offset=(0, 0)).aperture
+    curve = contact.closure_curve(aperture, params.composite_modulus,
+                                  np.geomspace(0.05e6, 4.0 * SIGMA_V, 16), flow=True)
+    return {"bedding": flow.transmissivity_law("walls", curve=curve),
+            "cross": flow.transmissivity_law("barton_jrc", initial_aperture=CROSS_APERTURE, jrc=CROSS_JRC)}
+
+
+def flow_lines(state, dist, theta, model, intact_dmesh, laws, names, out):
+    """The joints' transmissivity before and after excavation (elastic joints) and the inflow into
+    the drained tunnel: along the joint network with the in-situ and the excavated closures, and
+    through the intact rock (Darcy) beside them."""
+    sets = joint_set_of(state["in-situ"], names)
+    t = {}
+    for stage in ("in-situ", "excavation"):
+        closure = np.asarray(state[stage]["closure"])
+        t[stage] = np.zeros(closure.size)
+        for name, law in laws.items():
+            t[stage][sets == name] = law.transmissivity(closure[sets == name])
+    ratio = t["excavation"] / t["in-situ"]
+    near = dist < 0.5
+    crown = near & (np.abs(np.sin(theta)) > 0.9) & (sets == "bedding")
+    side = near & (np.abs(np.cos(theta)) > 0.9) & (sets == "bedding")
+    per_joint = {n: laws[n.rsplit("_", 1)[0]].transmissivity for n in names.values()}
+    rates = {stage: network_flow(model.stages[i], per_joint, FLOW_HEADS).flow_rates["opening"]
+             for i, stage in ((0, "in-situ"), (1, "excavation"))}
+    network_flow(model.stages[1], per_joint, FLOW_HEADS).write(out("tunnel_flow.xdmf"), COMM)
+    intact = darcy_flow(intact_dmesh, ROCK_PERMEABILITY * np.eye(2), FLOW_HEADS).flow_rates["opening"]
+    lmin = 6e4   # m²/s -> L/min per metre of tunnel
+    return [
+        "flow (water; far-field head 300 m, tunnel drained; docs/flow.md):",
+        f"joint transmissivity after / before excavation, within 0.5 a of the wall: bedding at the crown "
+        f"and invert median x{np.median(ratio[crown]):.3g} (radial stress released: they open), at the "
+        f"sidewalls median x{np.median(ratio[side]):.3g} (hoop stress: they close); all joints "
+        f"x{ratio[near].min():.3g} to x{ratio[near].max():.3g}",
+        f"inflow into the tunnel [L/min per m]: intact rock (k = {ROCK_PERMEABILITY:g} m²) "
+        f"{-intact * lmin:.4g}; joints at their in-situ closure {-rates['in-situ'] * lmin:.4g}, "
+        f"after excavation {-rates['excavation'] * lmin:.4g} (x{rates['excavation'] / rates['in-situ']:.3g})"]
 
 
 def section(mesh_size, intact):
@@ -240,7 +298,7 @@ def main():
     steps = 2 if args.quick else 4
 
     # %% 1. Joint laws, tabulated once ----------------------------------------------------------
-    tables = joint_laws()
+    tables, bedding_walls = joint_laws()
 
     # %% 2. Meshes: jointed and intact on the same triangles ------------------------------------
     jointed = distribute(section(h, intact=False), COMM)
@@ -331,6 +389,10 @@ def main():
         f"{MODELS[label]} " + ", ".join(str(s.newton_iterations) for s in models[label].stages) for label in MODELS))
     lines.append("Newton iterations, hysteretic joints: " + ", ".join(str(s.newton_iterations)
                                                                       for s in models["hyst"].stages))
+    xy0 = np.asarray(state["in-situ"]["coordinates"]).reshape(-1, 2)
+    theta = np.arctan2(xy0[:, 1] - CENTRE[1], xy0[:, 0] - CENTRE[0])
+    lines += flow_lines(state, dist, theta, models["jointed"], intact, transmissivity_laws(bedding_walls),
+                        jointed.names["joints"], out)
     elapsed = time.perf_counter() - t_start
     lines.append(f"demo wall time [s]: {COMM.allreduce(elapsed, op=MPI.MAX):.1f} on {COMM.size} rank(s)")
     if COMM.rank == 0:

@@ -35,7 +35,8 @@ def run_demo(out, ranks):
     r = demo_runner.run_demo("demo_tunnel.py", out, ranks, ("--quick",))
     for name in ("tunnel.png", "tunnel_joint_slip.png", "tunnel.txt", "tunnel_intact.xdmf", "tunnel_jointed.xdmf",
                  "tunnel_jointed_joints.xdmf", "tunnel_slip.xdmf", "tunnel_slip_joints.xdmf",
-                 "tunnel_intact_stress.xdmf", "tunnel_jointed_stress.xdmf", "tunnel_slip_stress.xdmf"):
+                 "tunnel_intact_stress.xdmf", "tunnel_jointed_stress.xdmf", "tunnel_slip_stress.xdmf",
+                 "tunnel_flow.xdmf"):
         assert (out / name).exists(), name
     text = (out / "tunnel.txt").read_text()
     rows = {}
@@ -59,6 +60,14 @@ def run_demo(out, ranks):
     m = re.search(r"^hysteretic opened joint points .*: (\d+) of (\d+);.*\(elastic joints: (\d+),", text, re.M)
     assert m, text
     rows["opened hysteretic"] = tuple(float(v) for v in m.groups())
+    m = re.search(r"^joint transmissivity after / before.*crown and invert median x(\S+) .*sidewalls median "
+                  r"x(\S+) .*all joints x(\S+) to x(\S+)$", text, re.M)
+    assert m, text
+    rows["transmissivity"] = tuple(float(v) for v in m.groups())
+    m = re.search(r"^inflow into the tunnel .*intact rock \(k = (\S+) m²\) (\S+); joints at their in-situ "
+                  r"closure (\S+), after excavation (\S+) ", text, re.M)
+    assert m, text
+    rows["inflow"] = tuple(float(v) for v in m.groups())
     assert "demo wall time" in r.stdout
     return rows
 
@@ -126,6 +135,26 @@ def test_stiff_unloading_reduces_crown_and_invert_convergence_and_the_opened_zon
             assert intact < serial["hysteretic"][k] < elastic, name
     opened, total, opened_elastic = serial["opened hysteretic"]
     assert opened < opened_elastic
+
+
+def test_excavation_opens_bedding_at_the_crown_and_closes_it_at_the_sidewalls(serial):
+    """Kirsch: at the crown and invert excavation releases σ_rr, which is the bedding joints'
+    normal stress there: they open and pass more water; at the sidewalls the hoop stress, normal
+    to the bedding there, rises to ~2.5 σ_v: they close and pass less."""
+    crown, side, low, high = serial["transmissivity"]
+    assert crown > 1.0 > side and low < 1.0 < high
+
+
+def test_intact_inflow_lies_between_the_radial_flow_bounds(serial):
+    """Darcy through the intact square section (side W = 80 m) into the drained tunnel (a = 4 m),
+    far-field head 300 m: the radial-flow closed form Q = 2π K Δh / ln(R/a), K = k ρ g / μ, bounds
+    it between the inscribed (R = W/2) and circumscribed (R = W/√2) circles (a larger domain
+    passes less); in L/min per metre."""
+    k, q = serial["inflow"][:2]
+    conductivity = k * 998.2 * 9.80665 / 1.002e-3
+    bound = [2 * math.pi * conductivity * 300.0 / math.log(r / 4.0) * 6e4 for r in (40.0 * math.sqrt(2), 40.0)]
+    assert bound[0] < q < bound[1]
+    assert serial["inflow"][2] > 1e3 * q     # the joints carry the flow
 
 
 def test_two_ranks_print_the_serial_figures(serial, tmp_path):
