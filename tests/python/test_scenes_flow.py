@@ -65,3 +65,29 @@ def test_jointed_and_intact_flow_against_closed_forms(tmp_path):
 def test_bad_flow_entries_are_named(tmp_path, edit, words):
     with pytest.raises(SceneError, match=words):
         load_scene(write(tmp_path, scene_text().replace(*edit)))
+
+
+def test_a_set_from_its_walls_carries_their_transmissivity(tmp_path):
+    """law: topography with flow: {law: walls}: the jointed column's flow equals (ρ g / μ) T Δh / W
+    with T of the same walls (built here from the scene's scan: BEM contact and Reynolds flow at the
+    loads of the exact contact curve up to the plan's table stress) at the joint's FE closure."""
+    import numpy as np
+    from rockjoint import composite_modulus, contact, flow
+    from rockjoint import topography as topo
+    from rockjoint.scenes import ladder
+    topo_text = ("      topography: {hurst: 0.8, rms_height: 0.2 mm, points: 64, spacing: 0.5 mm, "
+                 "matedness: 2.5 mm, seed: 3}\n    flow: {law: walls}\n")
+    scene = load_scene(write(tmp_path, scene_text(flow_entry=topo_text)))
+    plan = make_plan(scene)
+    result = run_scene(scene, plan, str(tmp_path / "out"))
+    j = result.row("jointed", "load")
+    closure = j.per_set["joint"][0]                      # uniform: the column carries σ everywhere
+    spec = topo.SelfAffineSpec(hurst_exponent=0.8, rms_height=0.2e-3)
+    upper, lower = topo.mated_pair(spec, (64, 64), 0.5e-3, 2.5e-3, seed=3)
+    aperture = topo.composite_topography(upper, lower, offset=(0, 0)).aperture
+    curve = contact.closure_curve(aperture, composite_modulus(50e9, 0.25),
+                                  ladder.contact_stresses(plan.table_max_stress), flow=True)
+    t = flow.transmissivity_law("walls", curve=curve).transmissivity(closure)
+    expected = RHO_G_MU * t * (H_LEFT - H_RIGHT) / WIDTH
+    assert np.isfinite(expected) and expected > 0
+    assert j.flow_rates["left"] == pytest.approx(expected, rel=1e-6)
