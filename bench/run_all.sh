@@ -17,6 +17,7 @@ echo "== direct vs iterative"; /usr/bin/python3 bench/bench_direct_vs_iterative.
 echo "== Kirsch"; /usr/bin/python3 bench/bench_kirsch.py
 echo "== FE speed against error"; /usr/bin/python3 bench/bench_fe_speed_vs_error.py
 echo "== exact contact (BEM)"; /usr/bin/python3 bench/bench_contact.py --repeat 5
+echo "== flow along the joint"; /usr/bin/python3 bench/bench_flow.py --repeat 3
 echo "== accuracy ladder"; /usr/bin/python3 bench/bench_accuracy_ladder.py
 echo "== equivalent continuum"; /usr/bin/python3 bench/bench_continuum.py
 echo "== slipping-joint profile"; /usr/bin/python3 bench/bench_tunnel_profile.py --repeat 3

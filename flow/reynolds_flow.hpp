@@ -32,9 +32,9 @@
 /// or pinned. It is stored on the whole grid, a cell outside the system as an identity row, so
 /// that one symbolic analysis serves every system of a grid (both gradients, sealed sides). The
 /// default is CHOLMOD's supernodal Cholesky (one factorisation for both gradients of a periodic
-/// grid): on the 512² bench joint it factors in a fifth of the time of Eigen's simplicial LDLᵀ,
-/// and incomplete-Cholesky CG needs 1300-2100 iterations there (measured in
-/// bench/results/flow.md).
+/// grid): on the 512² bench joint it is several times faster than Eigen's simplicial LDLᵀ, and
+/// incomplete-Cholesky CG needs over a thousand iterations per gradient there
+/// (bench/results/flow.md).
 
 #include <array>
 #include <cmath>

@@ -30,6 +30,7 @@ import numpy as np
 
 from ._rockjoint import flow as _cpp
 from ._rockjoint.topography import Surface
+from .units import DIMENSIONS
 
 Boundary = _cpp.Boundary
 LinearSolver = _cpp.LinearSolver
@@ -192,8 +193,8 @@ class TransmissivityRecord:
 
 
 TRANSMISSIVITY_LAWS: Dict[str, TransmissivityRecord] = {}
-#: one micrometre [m]: the unit of Barton's conversion
-MICROMETRE = 1e-6
+#: one micrometre [m]: the unit of Barton's conversion (rockjoint.units, the one unit table)
+MICROMETRE = DIMENSIONS["length"]["µm"]
 
 
 def _register(record: TransmissivityRecord) -> None:
