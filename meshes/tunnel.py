@@ -31,7 +31,7 @@ from typing import Iterable
 import numpy as np
 
 from .builders import (BOUNDARY_TAGS, _add_trace, _block_face, _distance_threshold, _generate, _gmsh_model,
-                       _graded_size, _joint_names, _normalise_joints, _resolve_bounds)
+                       _graded_size, _joint_names, _normalise_joints, _one_element_curves, _resolve_bounds)
 from .joint_geometry import _positive, joint_trace, unit_normal
 from .jointed_mesh import JointedMesh
 
@@ -366,6 +366,15 @@ def _build(gmsh, size, opening, joints, segments, mesh_size, opening_mesh_size, 
     field.setNumbers(finest, "FieldsList", fields)
     field.setAsBackgroundMesh(finest)
     _graded_size(gmsh, mesh_size)
+    if dim == 2 and (joint_mesh_size is None or not joint_facets):
+        # Far from the opening the size is mesh_size all along a joint piece (the opening's field
+        # is at its SizeMax beyond DistMax = size_min / 2 + refine_distance, builders._distance_threshold).
+        reach = 0.5 * opening_mesh_size + opening_refine_distance
+        x0, y0, x1, y1 = opening.bounds()
+        big = 2.0 * extent
+        _one_element_curves(gmsh, joint_facets, mesh_size,
+                            [(-big, -big, x0 - reach, big), (x1 + reach, -big, big, big),
+                             (-big, -big, big, y0 - reach), (-big, y1 + reach, big, big)])
 
     boundary_tags = {**SECTION_BOUNDARY_TAGS, "front": BOUNDARY_TAGS["front"], "back": BOUNDARY_TAGS["back"]}
     if intact:  # the same fragments and mesh lines, one block, no joints
