@@ -366,15 +366,16 @@ def _build(gmsh, size, opening, joints, segments, mesh_size, opening_mesh_size, 
     field.setNumbers(finest, "FieldsList", fields)
     field.setAsBackgroundMesh(finest)
     _graded_size(gmsh, mesh_size)
-    if dim == 2 and (joint_mesh_size is None or not joint_facets):
-        # Far from the opening the size is mesh_size all along a joint piece (the opening's field
-        # is at its SizeMax beyond DistMax = size_min / 2 + refine_distance, builders._distance_threshold).
+    if dim == 2:
+        # Far from the opening (beyond the DistMax = size_min / 2 + refine_distance of its
+        # Threshold field, builders._distance_threshold) the size is mesh_size, unless the joints
+        # have a field of their own.
         reach = 0.5 * opening_mesh_size + opening_refine_distance
         x0, y0, x1, y1 = opening.bounds()
         big = 2.0 * extent
-        _one_element_curves(gmsh, joint_facets, mesh_size,
-                            [(-big, -big, x0 - reach, big), (x1 + reach, -big, big, big),
-                             (-big, -big, big, y0 - reach), (-big, y1 + reach, big, big)])
+        far = [] if len(fields) > 1 else [(-big, -big, x0 - reach, big), (x1 + reach, -big, big, big),
+                                          (-big, -big, big, y0 - reach), (-big, y1 + reach, big, big)]
+        _one_element_curves(gmsh, joint_facets, min(opening_mesh_size, joint_mesh_size or mesh_size), mesh_size, far)
 
     boundary_tags = {**SECTION_BOUNDARY_TAGS, "front": BOUNDARY_TAGS["front"], "back": BOUNDARY_TAGS["back"]}
     if intact:  # the same fragments and mesh lines, one block, no joints
