@@ -18,20 +18,28 @@ from __future__ import annotations
 
 import atexit
 import contextlib
+import logging
 import math
 from typing import Iterable, Sequence
 
 import numpy as np
+import scipy.sparse as sp
+from scipy.sparse.csgraph import connected_components
 
 from .joint_geometry import Joint, joint_trace, _positive
 from .jointed_mesh import JointedMesh
-from .node_splitting import build_jointed_mesh
+from .node_splitting import build_jointed_mesh, cell_facets, common_facet_keys
+
+log = logging.getLogger(__name__)
 
 JOINT_TAG_OFFSET = 100
 BOUNDARY_TAGS = {"bottom": 1, "top": 2, "left": 3, "right": 4, "front": 5, "back": 6}
 _GMSH_CELL = {2: (2, "triangle"), 3: (4, "tetrahedron")}  # dim -> (gmsh element type, cell type)
 _GMSH_FACET = {2: 1, 3: 2}  # dim -> gmsh facet element type (line, triangle)
+_GMSH_POINT = 15  # gmsh's point element (the mesh node on a model point)
 _ALGORITHMS_3D = {"delaunay": 1, "hxt": 10}  # gmsh Mesh.Algorithm3D codes
+_DANGLING = ("part of it ends inside a block (dangling tip) — joints must end on other joints or on the block "
+             "boundary (use bounded_by with joints that reach it)")
 
 
 def column(width: float, height: float, joint_heights: Sequence[float], dim: int = 2, mesh_size: float = None,
@@ -106,7 +114,7 @@ def jointed_block(size: Sequence[float], joints: Iterable, dim: int | None = Non
 
 _OPTIONS = ("General.Terminal", "Mesh.MeshSizeExtendFromBoundary", "Mesh.MeshSizeFromPoints",
             "Mesh.MeshSizeFromCurvature", "Mesh.MeshSizeMin", "Mesh.MeshSizeMax", "Mesh.ElementOrder",
-            "Mesh.Algorithm3D")
+            "Mesh.Algorithm3D", "Mesh.RecombineAll")
 
 
 @contextlib.contextmanager
@@ -117,6 +125,7 @@ def _gmsh_model(name: str):
     _ensure_gmsh(gmsh)
     saved = {o: gmsh.option.getNumber(o) for o in _OPTIONS}  # gmsh options are global: restore them
     gmsh.option.setNumber("General.Terminal", 0)
+    gmsh.option.setNumber("Mesh.RecombineAll", 0)  # simplices, whatever the caller's model asked for
     gmsh.model.add(name)
     try:
         yield gmsh
@@ -215,13 +224,7 @@ def _build(gmsh, size, dim, joints, traces, mesh_size, joint_mesh_size, refine_d
             if p in seen:
                 raise ValueError(f"joints {seen[p]!r} and {j.name!r} overlap")
             seen[p] = j.name
-            up = set(gmsh.model.getAdjacencies(fd, p)[0].tolist())
-            if len(up) != 2:
-                raise ValueError(f"joint {j.name!r} does not separate two blocks everywhere: part of it ends "
-                                 "inside a block (dangling tip) — joints must end on other joints or on the "
-                                 "block boundary (use bounded_by with joints that reach it)")
-
-    ordered, names = _block_and_joint_groups(gmsh, dim, volumes, joints, size.max())
+    names = _joint_names(joints)
 
     # Boundaries: exterior faces of the union, classified by the block face they lie on.
     groups = {}
@@ -239,7 +242,7 @@ def _build(gmsh, size, dim, joints, traces, mesh_size, joint_mesh_size, refine_d
                                     size.max())
         gmsh.model.mesh.field.setAsBackgroundMesh(field)
         _graded_size(gmsh, mesh_size)
-    return _generate(gmsh, dim, ordered, pieces, groups, BOUNDARY_TAGS, names)
+    return _generate(gmsh, dim, pieces, groups, BOUNDARY_TAGS, names, dangling=_DANGLING)
 
 
 def _block_face(gmsh, fdim: int, entity: int, size) -> str | None:
@@ -262,22 +265,13 @@ def _block_face(gmsh, fdim: int, entity: int, size) -> str | None:
     return None
 
 
-def _block_and_joint_groups(gmsh, dim: int, volumes, joints, extent: float):
-    """The groups of the blocks (``block_<k>``, ordered by centre of mass, vertical coordinate
-    first) and of the joints (tags JOINT_TAG_OFFSET + i). Returns (ordered volumes, names)."""
-    occ = gmsh.model.occ
-    com = {v: occ.getCenterOfMass(dim, v) for v in volumes}
-    ordered = sorted(volumes, key=lambda v: tuple(round(c / extent, 9) for c in
-                                                  (com[v][dim - 1],) + tuple(com[v][:dim - 1][::-1])))
-    names = {"blocks": {}, "joints": {}, "boundaries": {}}
-    # The groups live in `names` only: the gmsh model is removed after meshing, and gmsh physical
-    # groups (one addPhysicalGroup + setPhysicalName per block) cost 1.2 s of CPU time for the
-    # 11k blocks of the continuum bench's discrete tunnel, for nothing read afterwards.
-    for k, v in enumerate(ordered, start=1):
-        names["blocks"][k] = f"block_{k}"
-    for i, j in enumerate(joints):
-        names["joints"][JOINT_TAG_OFFSET + i] = j.name
-    return ordered, names
+def _joint_names(joints) -> dict:
+    """The names of the groups: joints by name (tags JOINT_TAG_OFFSET + i); _generate adds the
+    blocks and the boundaries. The groups live in `names` only: the gmsh model is removed after
+    meshing, and gmsh physical groups (one addPhysicalGroup + setPhysicalName per block) cost 1.2 s
+    of CPU time for the 11k blocks of the continuum bench's discrete tunnel, for nothing read
+    afterwards."""
+    return {"blocks": {}, "joints": {JOINT_TAG_OFFSET + i: j.name for i, j in enumerate(joints)}, "boundaries": {}}
 
 
 def _uniform_size(gmsh, mesh_size: float) -> None:
@@ -320,11 +314,50 @@ def _distance_threshold(gmsh, dim: int, entities, size_min: float, size_max: flo
     return thr
 
 
-def _generate(gmsh, dim: int, ordered, pieces, groups: dict, boundary_tags: dict, names: dict) -> JointedMesh:
+def _one_element_curves(gmsh, lines, smallest: float, size: float | None = None, boxes=()) -> int:
+    """Give the straight curves `lines` (2D) that gmsh would mesh as one element that element up
+    front, as a transfinite count of 2 nodes: those shorter than `smallest`, the smallest mesh size
+    anywhere, and those shorter than `size` inside one of `boxes` ((x0, y0, x1, y1)), where the
+    mesh size is `size` everywhere. gmsh meshes a curve in N = max(2, int(L / h + 1)) nodes (h the
+    size along it; Mesh.MinimumLineNodes = 2), and finds L / h by integrating the size field over
+    at least 64 intervals, a transfinite count by integrating the curve's speed only. The
+    continuum bench's discrete tunnel: 16k of its 22k joint pieces, 1D meshing 2.3 -> 1.2 s for
+    0.2 s of queries, the same mesh node for node. Returns the number of curves so set."""
+    try:
+        if gmsh.option.getNumber("Mesh.MinimumLineNodes") > 2:
+            return 0
+    except Exception:  # a gmsh without the option: lines get at least one element
+        pass
+    factor = 0.99 * gmsh.option.getNumber("Mesh.MeshSizeFactor")  # 1 % from the rounding
+    inside = set()
+    for x0, y0, x1, y1 in boxes:
+        inside.update(int(t) for _, t in gmsh.model.getEntitiesInBoundingBox(x0, y0, -1.0, x1, y1, 1.0, 1))
+    count = 0
+    for c in sorted(int(t) for t in lines):
+        length = gmsh.model.occ.getMass(1, c)
+        if length < factor * smallest or (c in inside and length < factor * size):
+            gmsh.model.mesh.setTransfiniteCurve(c, 2)
+            count += 1
+    return count
+
+
+def _generate(gmsh, dim: int, pieces, groups: dict, boundary_tags: dict, names: dict, *,
+              one_block: bool = False, dangling: str = "") -> JointedMesh:
     """Mesh the model (linear simplices), then split it by block and pair the joint facets.
 
-    ordered: block volumes (block k = ordered[k-1], a tag or a list of tags); pieces: joint entities per joint (tags
-    JOINT_TAG_OFFSET + i); groups: {boundary name: entities}, tagged boundary_tags[name].
+    Blocks: every volume (surface in 2D) of the model is a block, ``block_<k>`` with k = 1, 2, ... in
+    order of the centre of mass (vertical coordinate first, then y, then x; _block_labels), or
+    one_block: the whole model is block 1. pieces: joint entities per joint (tags
+    JOINT_TAG_OFFSET + i, names in names["joints"]); groups: {boundary name: entities}, tagged
+    boundary_tags[name]. A joint facet without a different block on each side raises ValueError
+    naming the joint, followed by `dangling` (what to do).
+
+    The cells and the facets come from one gmsh call each, not one per entity: the continuum bench's
+    discrete tunnel has 33k entities (11k blocks, 22k joint pieces), and one call per entity, with
+    the centres of mass the blocks were numbered by and the adjacencies the joints were checked
+    with, took 1.3 s of its 10.1 s (0.2 s now: bench/results/tunnel_profile.md). The blocks are
+    found on the mesh instead (_block_labels), the facets' entities from the order gmsh lists them
+    in (_facet_entities), and a joint that does not separate two blocks from its facets' cells.
     """
     fd = dim - 1
     for name in groups:
@@ -334,43 +367,157 @@ def _generate(gmsh, dim: int, ordered, pieces, groups: dict, boundary_tags: dict
     gmsh.model.mesh.renumberNodes()
 
     tags, coords, _ = gmsh.model.mesh.getNodes()
-    points = np.empty((tags.size, 3))
+    n_nodes = tags.size
+    points = np.empty((n_nodes, 3))
     points[tags.astype(np.int64) - 1] = coords.reshape(-1, 3)
     points = points[:, :dim]
     cell_etype, cell_type = _GMSH_CELL[dim]
     _check_element_types(gmsh, dim, cell_etype)
     _check_element_types(gmsh, fd, _GMSH_FACET[dim])
-    cells, blocks = [], []
-    for k, entities in enumerate(ordered, start=1):
-        for v in np.atleast_1d(entities):
-            c = _elements(gmsh, dim, int(v), cell_etype)
-            cells.append(c)
-            blocks.append(np.full(c.shape[0], k, dtype=np.int32))
-    jel, jtag = [], []
+    cells = _elements(gmsh, dim, -1, cell_etype)                 # every volume's, volume by volume
+    facet_tags, facets = _elements(gmsh, fd, -1, _GMSH_FACET[dim], with_tags=True)
+    facet_cells, joined = _adjacency(cells, facets, n_nodes)
+
+    if one_block:
+        blocks = np.ones(cells.shape[0], dtype=np.int32)
+    else:
+        blocks = _block_labels(cells, points, joined)
+        volumes = len(gmsh.model.getEntities(dim))
+        if int(blocks.max()) != volumes:
+            raise RuntimeError(f"internal: the mesh splits into {int(blocks.max())} blocks, the model has "
+                               f"{volumes} volumes")
+    for k in range(1, int(blocks.max()) + 1):
+        names["blocks"][k] = f"block_{k}"
+
+    # The joint and the boundary of every facet element, through its entity (-1: none).
+    entity = _facet_entities(gmsh, fd, facets, facet_tags, n_nodes)
+    listed = [(boundary_tags[name], int(f)) for name, ents in groups.items() for f in ents]
+    n_entities = 1 + max([int(entity.max(initial=0))] + [f for _, f in listed] + [int(p) for ps in pieces for p in ps])
+    joint_of_entity = np.full(n_entities, -1, dtype=np.int64)
     for i, ps in enumerate(pieces):
-        for p in ps:
-            e = _elements(gmsh, fd, p, _GMSH_FACET[dim])
-            jel.append(e)
-            jtag.append(np.full(e.shape[0], JOINT_TAG_OFFSET + i, dtype=np.int32))
-    bel, btag = [], []
-    for name, ents in groups.items():
-        for f in ents:
-            e = _elements(gmsh, fd, f, _GMSH_FACET[dim])
-            bel.append(e)
-            btag.append(np.full(e.shape[0], boundary_tags[name], dtype=np.int32))
-    empty = np.empty((0, dim), dtype=np.int64)
-    return build_jointed_mesh(points, np.concatenate(cells), cell_type, np.concatenate(blocks),
-                              np.concatenate(jel) if jel else empty,
-                              np.concatenate(jtag) if jtag else np.empty(0, np.int32),
-                              np.concatenate(bel), np.concatenate(btag), names)
+        joint_of_entity[np.asarray(ps, dtype=np.int64)] = i
+    joint_of = joint_of_entity[entity]
+    on_joint = np.flatnonzero(joint_of >= 0)
+    sides = np.where(facet_cells[on_joint] >= 0, blocks[np.maximum(facet_cells[on_joint], 0)], -1)
+    bad = (sides[:, 0] < 0) | (sides[:, 1] < 0) | (sides[:, 0] == sides[:, 1])
+    if bad.any():
+        name = names["joints"][JOINT_TAG_OFFSET + int(joint_of[on_joint[np.argmax(bad)]])]
+        raise ValueError(f"joint {name!r} does not separate two blocks everywhere: {dangling}")
+    jorder = on_joint[np.argsort(joint_of[on_joint], kind="stable")]
+    # Boundary facets group by group, entity by entity, in the order of `groups`.
+    rank_of_entity = np.full(n_entities, -1, dtype=np.int64)
+    rank_of_entity[np.array([f for _, f in listed], dtype=np.int64)] = np.arange(len(listed))
+    rank = rank_of_entity[entity]
+    border = np.flatnonzero(rank >= 0)
+    border = border[np.argsort(rank[border], kind="stable")]
+    border_tags = np.array([t for t, _ in listed], dtype=np.int32)[rank[border]]
+
+    corder = np.argsort(blocks, kind="stable")  # cells block by block, as a per-block extraction gives
+    return build_jointed_mesh(points, cells[corder], cell_type, blocks[corder], facets[jorder],
+                              (JOINT_TAG_OFFSET + joint_of[jorder]).astype(np.int32), facets[border], border_tags,
+                              names)
 
 
-def _elements(gmsh, dim: int, tag: int, etype: int) -> np.ndarray:
-    """0-based node ids (m, nodes per element) of the elements of type etype on entity (dim, tag).
-    By type: half the cost of getElements, which the 33k entities of the continuum bench's discrete
-    tunnel call (0.9 s); _check_element_types makes sure no other type is there."""
-    nodes = gmsh.model.mesh.getElementsByType(etype, tag)[1]
-    return np.asarray(nodes, dtype=np.int64).reshape(-1, dim + 1) - 1
+def _adjacency(elements: np.ndarray, separators: np.ndarray, n_nodes: int) -> tuple[np.ndarray, np.ndarray]:
+    """Simplices (m, k) of one dimension and separators (s, k-1), elements of the dimension below:
+    ((s, 2) the elements on either side of each separator, -1 where none; (p, 2) the pairs of
+    elements that share a face carrying no separator)."""
+    k = elements.shape[1]
+    faces = np.sort(cell_facets(elements).reshape(-1, k - 1), axis=1)
+    keys, skeys = common_facet_keys([faces, np.sort(separators, axis=1)], n_nodes)
+    srt = np.argsort(keys, kind="stable")
+    ks = keys[srt]
+    same = np.flatnonzero(ks[1:] == ks[:-1])
+    pairs = np.stack([srt[same], srt[same + 1]], axis=1) // k   # elements sharing a face
+    # The elements of each separator: its first and (an inner face) second occurrence among the faces.
+    pos = np.searchsorted(ks, skeys)
+    first = (pos < ks.size) & (ks[np.minimum(pos, ks.size - 1)] == skeys)
+    second = first & (pos + 1 < ks.size) & (ks[np.minimum(pos + 1, ks.size - 1)] == skeys)
+    sides = np.full((skeys.size, 2), -1, dtype=np.int64)
+    sides[first, 0] = srt[pos[first]] // k
+    sides[second, 1] = srt[pos[second] + 1] // k
+    return sides, pairs[~np.isin(ks[same], skeys)]
+
+
+def _components(pairs: np.ndarray, count: int) -> np.ndarray:
+    """Label (0, 1, ...) of each of `count` items joined by `pairs` (p, 2) into connected sets,
+    numbered in order of their first item."""
+    graph = sp.coo_matrix((np.ones(pairs.shape[0]), (pairs[:, 0], pairs[:, 1])), shape=(count, count))
+    n, label = connected_components(graph, directed=False)
+    first = np.full(n, count, dtype=np.int64)
+    np.minimum.at(first, label, np.arange(count))
+    rank = np.empty(n, dtype=np.int64)
+    rank[np.argsort(first)] = np.arange(n)
+    return rank[label]
+
+
+def _block_labels(cells: np.ndarray, points: np.ndarray, joined: np.ndarray) -> np.ndarray:
+    """Block tag (1, 2, ...) of every cell: the connected sets of cells through the facets of
+    `joined` (the model's volumes: cells are joined across every facet but those on a curve in
+    2D, a surface in 3D), numbered by centre of mass: vertical coordinate first, then y, then x,
+    each rounded to 1e-9 of the model's extent, so that the blocks of a layer are numbered along
+    it."""
+    nc, dim = cells.shape[0], points.shape[1]
+    label = _components(joined, nc)
+    count = int(label.max()) + 1
+    x = points[cells]
+    d = x[:, 1:] - x[:, :1]
+    measure = np.abs(d[:, 0, 0] * d[:, 1, 1] - d[:, 0, 1] * d[:, 1, 0]) if dim == 2 else \
+        np.abs(np.einsum("ij,ij->i", d[:, 0], np.cross(d[:, 1], d[:, 2])))
+    mass = np.bincount(label, measure, minlength=count)
+    centre = np.stack([np.bincount(label, measure * x[:, :, k].mean(axis=1), minlength=count)
+                       for k in range(dim)], axis=1) / mass[:, None]
+    rounded = np.round(centre / float(np.ptp(points, axis=0).max()), 9)
+    rank = np.empty(count, dtype=np.int32)
+    rank[np.lexsort(rounded.T)] = np.arange(1, count + 1, dtype=np.int32)  # the last key sorts first
+    return rank[label]
+
+
+def _facet_entities(gmsh, fd: int, facets: np.ndarray, facet_tags: np.ndarray, n_nodes: int) -> np.ndarray:
+    """The entity (curve in 2D, surface in 3D) of each facet element of the one-call extraction.
+
+    gmsh lists the elements of all entities entity by entity, in the order of getEntities: so the
+    facets of one entity, a connected set through the faces (nodes in 2D, edges in 3D) that carry
+    no lower-dimensional element, are one run of the list, and the k-th run is the k-th entity.
+    Checked: as many runs as entities, each set one run, and the first, middle and last entities'
+    own elements those of their runs. Should gmsh list them otherwise, every entity is asked for
+    its elements (one call each, _facet_entities_one_by_one) instead."""
+    entities = np.array([t for _, t in gmsh.model.getEntities(fd)], dtype=np.int64)
+    etype = _GMSH_FACET[fd + 1]
+    if fd == 1:
+        separators = _elements(gmsh, 0, -1, _GMSH_POINT)
+    else:
+        separators = _elements(gmsh, 1, -1, _GMSH_FACET[2])
+    run = _components(_adjacency(facets, separators, n_nodes)[1], facets.shape[0])
+    step = np.diff(run)
+    if run.size and run[-1] + 1 == entities.size and np.all((step == 0) | (step == 1)):
+        start = np.flatnonzero(np.r_[True, step != 0])
+        end = np.r_[start[1:], run.size]
+        if all(np.array_equal(facet_tags[start[k]:end[k]], gmsh.model.mesh.getElementsByType(etype, entities[k])[0])
+               for k in sorted({0, entities.size // 2, entities.size - 1})):
+            return entities[run]
+    log.warning("gmsh did not list the %dD elements entity by entity: reading them entity by entity "
+                "(one call each, slower)", fd)
+    return _facet_entities_one_by_one(gmsh, fd, entities, facet_tags)
+
+
+def _facet_entities_one_by_one(gmsh, fd: int, entities: np.ndarray, facet_tags: np.ndarray) -> np.ndarray:
+    """The entity of each facet element (tags facet_tags), asking every entity for its elements."""
+    order = np.argsort(facet_tags)
+    entity = np.full(facet_tags.size, -1, dtype=np.int64)
+    for e in entities:
+        tags = gmsh.model.mesh.getElementsByType(_GMSH_FACET[fd + 1], int(e))[0]
+        entity[order[np.searchsorted(facet_tags[order], tags)]] = e
+    return entity
+
+
+def _elements(gmsh, dim: int, tag: int, etype: int, with_tags: bool = False):
+    """0-based node ids (m, nodes per element) of the elements of type etype on entity (dim, tag),
+    or on every dimension-dim entity (tag -1), and with_tags: their element tags first. By type:
+    half the cost of getElements; _check_element_types makes sure no other type is there."""
+    tags, nodes = gmsh.model.mesh.getElementsByType(etype, tag)
+    nodes = np.asarray(nodes, dtype=np.int64).reshape(-1, dim + 1) - 1
+    return (np.asarray(tags, dtype=np.int64), nodes) if with_tags else nodes
 
 
 def _check_element_types(gmsh, dim: int, etype: int) -> None:

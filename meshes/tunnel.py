@@ -30,13 +30,15 @@ from typing import Iterable
 
 import numpy as np
 
-from .builders import (BOUNDARY_TAGS, _add_trace, _block_and_joint_groups, _block_face, _distance_threshold,
-                       _generate, _gmsh_model, _graded_size, _normalise_joints, _resolve_bounds)
+from .builders import (BOUNDARY_TAGS, _add_trace, _block_face, _distance_threshold, _generate, _gmsh_model,
+                       _graded_size, _joint_names, _normalise_joints, _one_element_curves, _resolve_bounds)
 from .joint_geometry import _positive, joint_trace, unit_normal
 from .jointed_mesh import JointedMesh
 
 OPENING = "opening"
 OPENING_TAG = 7  # after builders.BOUNDARY_TAGS (1..6)
+#: what to do about a joint that does not separate two blocks (the end of its error message)
+_DANGLING = "part of it runs along the opening's boundary or ends inside a block (dangling tip)"
 SECTION_BOUNDARY_TAGS = {**{k: BOUNDARY_TAGS[k] for k in ("bottom", "top", "left", "right")}, OPENING: OPENING_TAG}
 
 
@@ -334,9 +336,6 @@ def _build(gmsh, size, opening, joints, segments, mesh_size, opening_mesh_size, 
         for p in ps:
             if seen.setdefault(p, j.name) != j.name:
                 raise ValueError(f"joints {seen[p]!r} and {j.name!r} overlap")
-            if len(set(gmsh.model.getAdjacencies(1, p)[0].tolist())) != 2:
-                raise ValueError(f"joint {j.name!r} does not separate two blocks everywhere: part of it runs along "
-                                 "the opening's boundary or ends inside a block (dangling tip)")
     pieces = [sorted(ps) for ps in pieces]
 
     dim = 2
@@ -350,6 +349,10 @@ def _build(gmsh, size, opening, joints, segments, mesh_size, opening_mesh_size, 
         name = _block_face(gmsh, d, abs(f), size) or OPENING
         groups.setdefault(name, []).append(abs(f))
     joint_facets = [p for ps in pieces for p in ps]
+    exterior = {f for fs in groups.values() for f in fs}
+    for j, ps in zip(joints, pieces):  # a joint piece inside a block is found on the mesh (_generate)
+        if exterior.intersection(ps):
+            raise ValueError(f"joint {j.name!r} does not separate two blocks everywhere: {_DANGLING}")
 
     # Sizes: the finer of the opening's and the joints' Threshold fields.
     extent = float(size.max())
@@ -363,13 +366,21 @@ def _build(gmsh, size, opening, joints, segments, mesh_size, opening_mesh_size, 
     field.setNumbers(finest, "FieldsList", fields)
     field.setAsBackgroundMesh(finest)
     _graded_size(gmsh, mesh_size)
+    if dim == 2:
+        # Far from the opening (beyond the DistMax = size_min / 2 + refine_distance of its
+        # Threshold field, builders._distance_threshold) the size is mesh_size, unless the joints
+        # have a field of their own.
+        reach = 0.5 * opening_mesh_size + opening_refine_distance
+        x0, y0, x1, y1 = opening.bounds()
+        big = 2.0 * extent
+        far = [] if len(fields) > 1 else [(-big, -big, x0 - reach, big), (x1 + reach, -big, big, big),
+                                          (-big, -big, big, y0 - reach), (-big, y1 + reach, big, big)]
+        _one_element_curves(gmsh, joint_facets, min(opening_mesh_size, joint_mesh_size or mesh_size), mesh_size, far)
 
     boundary_tags = {**SECTION_BOUNDARY_TAGS, "front": BOUNDARY_TAGS["front"], "back": BOUNDARY_TAGS["back"]}
     if intact:  # the same fragments and mesh lines, one block, no joints
-        names = {"blocks": {1: "block_1"}, "joints": {}, "boundaries": {}}
-        return _generate(gmsh, dim, [volumes], [], groups, boundary_tags, names)
-    ordered, names = _block_and_joint_groups(gmsh, dim, volumes, joints, extent)
-    return _generate(gmsh, dim, ordered, pieces, groups, boundary_tags, names)
+        return _generate(gmsh, dim, [], groups, boundary_tags, _joint_names([]), one_block=True)
+    return _generate(gmsh, dim, pieces, groups, boundary_tags, _joint_names(joints), dangling=_DANGLING)
 
 
 def _extrude(gmsh, surfaces, joints, size, length):

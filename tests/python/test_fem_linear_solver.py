@@ -121,13 +121,18 @@ def test_auto_picks_mumps_only_below_the_measured_crossover():
 
 def test_auto_keeps_a_nonsymmetric_2d_jacobian_on_mumps_further():
     """bench/results/tunnel_profile.md: on the 90k-dof slipping tunnel (a non-symmetric Jacobian)
-    MUMPS LU took 0.22 s CPU per solve against 1.04 s for GMRES + GAMG."""
+    MUMPS LU took 0.22 s CPU per solve against 1.04 s for GMRES + GAMG; kept over several Newton
+    iterations (lagged) from 60k dofs on, 8 factorisations did the work of 18 at the same answer."""
     from rockjoint.fem_coupling.linear_solver import (DIRECT_DOF_LIMIT, DIRECT_DOF_LIMIT_NONSYMMETRIC,
                                                       resolve_kind)
 
     assert resolve_kind("auto", 90_052, 2, symmetric=True) == "iterative"
-    assert resolve_kind("auto", 90_052, 2, symmetric=False) == "direct"
+    assert resolve_kind("auto", 90_052, 2, symmetric=False) == "lagged"
+    assert resolve_kind("auto", DIRECT_DOF_LIMIT[2], 2, symmetric=False) == "direct"
+    assert resolve_kind("auto", DIRECT_DOF_LIMIT[2] + 1, 2, symmetric=False) == "lagged"
+    assert resolve_kind("auto", DIRECT_DOF_LIMIT_NONSYMMETRIC[2], 2, symmetric=False) == "lagged"
     assert resolve_kind("auto", DIRECT_DOF_LIMIT_NONSYMMETRIC[2] + 1, 2, symmetric=False) == "iterative"
+    assert resolve_kind("auto", DIRECT_DOF_LIMIT[3], 3, symmetric=False) == "direct"
     assert resolve_kind("auto", DIRECT_DOF_LIMIT[3] + 1, 3, symmetric=False) == "iterative"
 
 
@@ -247,3 +252,14 @@ def test_mumps_reports_the_null_pivot_of_a_singular_matrix():
     assert "rockjoint_mumps_test_mat_mumps_icntl_24" not in options
     assert options.get("rockjoint_mumps_test_mat_mumps_icntl_14") == "50"
     PETSc.Options().delValue("rockjoint_mumps_test_mat_mumps_icntl_14")
+
+
+def test_a_kept_factorisation_is_rebuilt_sooner_than_a_gamg_hierarchy():
+    """LAGGED_REBUILD_FACTOR (bench/results/tunnel_profile.md, the discrete tunnel's solvers): a
+    factorisation is rebuilt from 1.5 Krylov iterations per decade on, GAMG from 2; an explicit
+    rebuild_factor wins."""
+    from rockjoint.fem_coupling.linear_solver import LAGGED_REBUILD_FACTOR
+    assert LAGGED_REBUILD_FACTOR == 1.5
+    assert LinearSolver(PETSc.COMM_SELF, "lagged", symmetric=False).rebuild_factor == 1.5
+    assert LinearSolver(PETSc.COMM_SELF, "iterative").rebuild_factor == 2.0
+    assert LinearSolver(PETSc.COMM_SELF, "lagged", symmetric=False, rebuild_factor=3.0).rebuild_factor == 3.0

@@ -27,6 +27,7 @@ def gmsh_model():
     yield
     while len(gmsh.model.list()) > before:  # the models this test added
         gmsh.model.remove()
+    gmsh.option.setNumber("Mesh.RecombineAll", 0)  # gmsh options are global: quadrangles end here
 
 
 def facet_measure(x):

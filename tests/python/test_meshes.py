@@ -341,3 +341,66 @@ def test_laboratory_scale_cube_is_meshed_with_its_boundaries(jointed):
     assert set(m.names["boundaries"].values()) == {"left", "right", "front", "back", "bottom", "top"}
     assert sum(m.block_measures().values()) == pytest.approx(side**3, rel=1e-12)
     assert (m.joint_tags.size > 0) == jointed
+
+
+# ---- elements of all entities in one gmsh call -----------------------------------------------------
+def two_crossing_joints(dim):
+    centre = (0.5,) * (dim - 1)
+    return [Joint(centre + (0.4,), 0.0, 90.0, "flat"), Joint((0.45,) + centre, 60.0, 90.0, "dipping")]
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_facets_get_the_entities_gmsh_gives_them(dim, monkeypatch):
+    """The builders read every facet in one gmsh call and find its entity (a joint piece, a
+    boundary face) from the order gmsh lists them in: the entities that asking each entity for
+    its elements, one call each, gives."""
+    from rockjoint.meshes import builders
+    counts = []
+    found = builders._facet_entities
+
+    def compare(gmsh, fd, facets, facet_tags, n_nodes):
+        entity = found(gmsh, fd, facets, facet_tags, n_nodes)
+        entities = np.array([t for _, t in gmsh.model.getEntities(fd)])
+        assert np.array_equal(entity, builders._facet_entities_one_by_one(gmsh, fd, entities, facet_tags))
+        counts.append((np.unique(entity).size, entities.size))
+        return entity
+
+    monkeypatch.setattr(builders, "_facet_entities", compare)
+    m = jointed_block((1.0,) * dim, two_crossing_joints(dim), mesh_size=0.25)
+    check_split_invariants(m)
+    assert len(counts) == 1 and counts[0][0] == counts[0][1] > 8   # joint pieces and boundary faces
+
+
+def test_facets_are_read_one_entity_at_a_time_when_gmsh_lists_them_otherwise(monkeypatch, caplog):
+    """Should gmsh list the elements in another order than its entities, the builders notice it
+    and ask every entity for its elements: the same mesh, a warning."""
+    import gmsh
+    expected = jointed_block((1.0, 1.0), two_crossing_joints(2), mesh_size=0.25)
+    entities = gmsh.model.getEntities
+
+    def reversed_curves(dim=-1):
+        out = entities(dim)
+        return out[::-1] if dim == 1 else out
+
+    monkeypatch.setattr(gmsh.model, "getEntities", reversed_curves)
+    with caplog.at_level("WARNING", logger="rockjoint.meshes.builders"):
+        m = jointed_block((1.0, 1.0), two_crossing_joints(2), mesh_size=0.25)
+    assert "did not list the 1D elements entity by entity" in caplog.text
+    for name in ("points", "cells", "cell_blocks", "joint_facets_minus", "joint_facets_plus", "joint_tags",
+                 "boundary_facets", "boundary_tags"):
+        assert np.array_equal(getattr(m, name), getattr(expected, name)), name
+
+
+def test_builders_mesh_simplices_whatever_the_callers_recombination_option():
+    """gmsh options are global: a caller's Mesh.RecombineAll = 1 (quadrangles for its own model)
+    neither reaches the builders' meshes nor is lost."""
+    import gmsh
+    from rockjoint.meshes.builders import _ensure_gmsh
+    _ensure_gmsh(gmsh)
+    gmsh.option.setNumber("Mesh.RecombineAll", 1)
+    try:
+        m = column(1.0, 1.0, [0.5], mesh_size=0.25)
+        assert gmsh.option.getNumber("Mesh.RecombineAll") == 1
+    finally:
+        gmsh.option.setNumber("Mesh.RecombineAll", 0)
+    assert m.cell_type == "triangle" and m.block_measures() == pytest.approx({1: 0.5, 2: 0.5}, rel=1e-12)

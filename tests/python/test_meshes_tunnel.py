@@ -364,3 +364,32 @@ def test_3d_extrusion_volumes_joint_areas_and_faces():
         n = facet_normal(m.points[fm[sel]])
         d = math.radians(joint.dip)
         assert np.allclose(np.abs(n), [math.sin(d), 0.0, math.cos(d)], atol=1e-9)
+
+
+@pytest.mark.parametrize("opening", [CIRCLE, HorseshoeOpening(CENTRE, 3.0, 2.5, 1.0)])
+def test_short_joint_pieces_far_from_the_opening_are_the_single_elements_gmsh_makes(opening, monkeypatch):
+    """Joint pieces shorter than mesh_size where the opening's field has reached mesh_size are
+    given their one element up front (a transfinite count of 2 nodes, builders._one_element_curves,
+    which skips integrating the size field along them): the mesh gmsh makes without it, node for
+    node, and it does apply here."""
+    from rockjoint.meshes import builders, tunnel
+    from rockjoint.meshes import unit_normal
+    origin = tuple(np.asarray(CENTRE) - 10.2 * 1.5 * np.asarray(unit_normal(60.0, 90.0, 2)))
+    joints = (joint_set(1.0, 0.0, 90.0, origin=(20.0, 0.3), count=28, name="bedding")
+              + joint_set(1.5, 60.0, 90.0, origin=origin, count=20, name="cross"))
+    sizes = dict(mesh_size=2.0, opening_mesh_size=0.5, opening_refine_distance=4.0)
+    counts = []
+    one_element = builders._one_element_curves
+
+    def counted(*args):
+        counts.append(one_element(*args))
+        return counts[-1]
+
+    monkeypatch.setattr(tunnel, "_one_element_curves", counted)
+    m = tunnel_section(W, H, opening, joints, **sizes)
+    monkeypatch.setattr(tunnel, "_one_element_curves", lambda *args: 0)
+    natural = tunnel_section(W, H, opening, joints, **sizes)
+    assert len(counts) == 1 and counts[0] > 100
+    for name in ("points", "cells", "cell_blocks", "joint_facets_minus", "joint_facets_plus", "joint_tags",
+                 "boundary_facets", "boundary_tags"):
+        assert np.array_equal(getattr(m, name), getattr(natural, name)), name

@@ -42,19 +42,24 @@ class ElasticBlocks:
         cell_tag = np.full(ncells, -1, dtype=np.int64)
         cell_tag[tags.indices] = tags.values
         self.cell_tag = cell_tag
-        lam_a, mu_a, rho_a = np.full(ncells, np.nan), np.full(ncells, np.nan), np.zeros(ncells)
         blocks = names_of(dmesh, "blocks")
-        for tag, (E, nu) in rock.items():
-            sel = cell_tag == tag
-            mu_a[sel] = E / (2 * (1 + nu))
-            lmbda = E * nu / ((1 + nu) * (1 - 2 * nu))
-            if plane == "stress":
-                lmbda = 2 * lmbda * mu_a[sel] / (lmbda + 2 * mu_a[sel])
-            lam_a[sel] = lmbda
-        for name, value in densities.items():
-            rho_a[cell_tag == blocks[name]] = value
-        if np.isnan(mu_a).any():
+        # Per block, then to the cells through the block's position among the sorted tags (one
+        # mask per block cost 0.17 s for the 11k blocks and 23k cells of the continuum bench's
+        # discrete tunnel).
+        block_tags = np.array(sorted(rock), dtype=np.int64)
+        E = np.array([rock[t][0] for t in block_tags], dtype=np.float64)
+        nu = np.array([rock[t][1] for t in block_tags], dtype=np.float64)
+        mu_b = E / (2 * (1 + nu))
+        lam_b = E * nu / ((1 + nu) * (1 - 2 * nu))
+        if plane == "stress":
+            lam_b = 2 * lam_b * mu_b / (lam_b + 2 * mu_b)
+        density = {blocks[name]: value for name, value in densities.items()}
+        rho_b = np.array([density.get(int(t), 0.0) for t in block_tags], dtype=np.float64)
+        at = np.minimum(np.searchsorted(block_tags, cell_tag), max(block_tags.size - 1, 0))
+        known = block_tags.size > 0 and np.all(block_tags[at] == cell_tag) if ncells else True
+        if not known:
             raise ValueError("some cells carry no block tag with rock properties")
+        lam_a, mu_a, rho_a = lam_b[at], mu_b[at], rho_b[at]
         dofs = Q.dofmap.list.ravel()
         lam.x.array[dofs] = lam_a
         mu.x.array[dofs] = mu_a

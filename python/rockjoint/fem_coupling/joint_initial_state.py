@@ -44,14 +44,18 @@ def initial_jump(interface, in_situ, behaviours: dict, gdim: int, joint_names: d
     local = np.einsum("pij,pj->pi", frames, traction)          # F σ0 n
     scale = max(np.abs(sigma0).max(), 1e-300)
     name_of = {t: n for n, t in joint_names.items()}
+    # The points of each joint as index arrays, found once: a mask per joint (tags == tag) cost
+    # 0.13 s for the 268 joints and 44k points of the continuum bench's discrete tunnel.
+    order = np.argsort(tags, kind="stable")
+    sorted_tags = tags[order]
     for tag, behaviour in behaviours.items():
-        sel = tags == tag
-        if not sel.any():
+        sel = order[np.searchsorted(sorted_tags, tag, "left"):np.searchsorted(sorted_tags, tag, "right")]
+        if not sel.size:
             continue
         normal_stress = -local[sel, 0]
         tension = normal_stress < -1e-9 * scale
         if tension.any():
-            k = np.flatnonzero(sel)[np.argmax(tension)]
+            k = sel[np.argmax(tension)]
             raise ValueError(f"the in-situ stress pulls joint {name_of.get(tag, tag)!r} apart: normal stress "
                              f"{-local[k, 0]:.4g} Pa (tension) at {points[k].tolist()}; a joint carries no tension")
         normal_stress = np.maximum(normal_stress, 0.0)

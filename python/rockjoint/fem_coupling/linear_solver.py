@@ -1,11 +1,10 @@
 """Linear solves of the Newton steps, with failures detected instead of accepted.
 
 "direct": MUMPS Cholesky (symmetric Jacobian) or LU with null-pivot detection (ICNTL(24) = 1)
-— for small problems (and 2D problems with a non-symmetric Jacobian up to 250k dofs).
+— for small problems (and 2D problems with a non-symmetric Jacobian up to 60k dofs).
 "lagged": the same factorisation, kept as the preconditioner of CG / GMRES over several Newton
 iterations (rebuilt as GAMG is, below): fewer factorisations, each iteration a few triangular
-solves (bench/results/tunnel_profile.md: no faster than "direct" on the 2D tunnel, where a
-triangular solve costs 1/8 of a factorisation and inexact solves add Newton iterations).
+solves — for 2D problems with a non-symmetric Jacobian from 60k to 250k dofs (LAGGED_DOF_RANGE).
 "iterative": CG + GAMG with a rigid-body near-nullspace (per block through the aggregates,
 see rigid_body_modes) — for large ones (SPD
 Jacobians: constant shear stiffness). "auto" picks direct up to DIRECT_DOF_LIMIT[gdim] dofs.
@@ -82,13 +81,32 @@ DIRECT_DOF_LIMIT = {2: 60_000, 3: 5_000}
 #: factorisation grows like N^1.5, GAMG like N: the 4.7x would last to ~2M dofs; 250k keeps the
 #: factors to a few hundred MB (13.8M entries at 90k dofs).
 DIRECT_DOF_LIMIT_NONSYMMETRIC = {2: 250_000, 3: 5_000}
+#: "auto" keeps a non-symmetric 2D Jacobian's LU over several Newton iterations ("lagged") from
+#: DIRECT_DOF_LIMIT[2] dofs up to DIRECT_DOF_LIMIT_NONSYMMETRIC[2] (range (lo, hi]), direct below.
+#: Measured on the continuum bench's discrete tunnel (90k dofs; bench/bench_tunnel_profile.py →
+#: bench/results/tunnel_profile.md, "Linear solver of the discrete tunnel"): 8 factorisations and
+#: 60 triangular solves instead of 18 factorisations (0.17 s each against 0.02 s for a triangular
+#: solve: the split mesh's LU has 13.8M entries), the same crown and sidewall. Below 60k dofs the
+#: direct solver's exact Newton steps are kept: lagged is faster there too, by less than 0.3 s an
+#: analysis (the same tunnel at s = 1 and 0.5 m, 11k and 26k dofs), but its inexact steps lose
+#: knife-edge slipping cases that the exact ones get through (test_fem_joint_slip's direct shear
+#: at σ_n = 1 MPa, c = 0, and at times the tunnel demo's --quick slip model: a singular Jacobian
+#: on the way).
+LAGGED_DOF_RANGE = {2: (DIRECT_DOF_LIMIT[2], DIRECT_DOF_LIMIT_NONSYMMETRIC[2])}
 #: Krylov iterations allowed with a lagged factorisation before it is given up and rebuilt
 LAGGED_MAX_ITERATIONS = 50
+#: rebuild_factor of the lagged kind: a factorisation is rebuilt once a solve with it needs 1.5
+#: Krylov iterations per decade of residual reduction (an exact one needs 1 in all). On the
+#: discrete tunnel (bench/results/tunnel_profile.md) 1.5 gives the direct solver's crown and
+#: sidewall with 8 factorisations; GAMG's 2.0 gives 6, 0.1 s less, and lands 0.1 % off at the
+#: sidewall (another state within Newton's tolerance, reached by a longer inexact path).
+LAGGED_REBUILD_FACTOR = 1.5
 
 
 def resolve_kind(kind: str, num_dofs: int, gdim: int, symmetric: bool = True) -> str:
     """"direct", "lagged" or "iterative" for a requested kind ("direct", "lagged", "iterative" or
-    "auto"; "auto" by the Jacobian's symmetry and DIRECT_DOF_LIMIT(_NONSYMMETRIC))."""
+    "auto"; "auto" by the Jacobian's symmetry, DIRECT_DOF_LIMIT(_NONSYMMETRIC) and
+    LAGGED_DOF_RANGE)."""
     if kind not in ("direct", "lagged", "iterative", "auto"):
         raise ValueError(f"linear solver must be 'direct', 'lagged', 'iterative' or 'auto', got {kind!r}")
     if kind != "auto":
@@ -96,7 +114,10 @@ def resolve_kind(kind: str, num_dofs: int, gdim: int, symmetric: bool = True) ->
     if gdim not in DIRECT_DOF_LIMIT:
         raise ValueError(f"linear solver: gdim must be 2 or 3, got {gdim!r}")
     limit = (DIRECT_DOF_LIMIT if symmetric else DIRECT_DOF_LIMIT_NONSYMMETRIC)[gdim]
-    return "direct" if num_dofs <= limit else "iterative"
+    if num_dofs > limit:
+        return "iterative"
+    lagged = None if symmetric else LAGGED_DOF_RANGE.get(gdim)
+    return "lagged" if lagged is not None and lagged[0] < num_dofs <= lagged[1] else "direct"
 
 
 class LinearSolver:
@@ -105,8 +126,10 @@ class LinearSolver:
     def __init__(self, comm, kind: str = "auto", num_dofs: int = 0, gdim: int = 3,
                  near_nullspace=None, rtol: float = 1e-10, check_tolerance: float = 1e-6,
                  symmetric: bool = True, options: dict | None = None, prefix: str | None = None,
-                 reuse_preconditioner: bool = True, rebuild_factor: float = 2.0):
+                 reuse_preconditioner: bool = True, rebuild_factor: float | None = None):
         kind = resolve_kind(kind, num_dofs, gdim, symmetric)
+        if rebuild_factor is None:  # GAMG's, or a factorisation's (LAGGED_REBUILD_FACTOR)
+            rebuild_factor = LAGGED_REBUILD_FACTOR if kind == "lagged" else 2.0
         self.kind = kind
         self.symmetric = symmetric
         self.check_tolerance = check_tolerance
