@@ -148,8 +148,10 @@ def _boundary_points(model, name: str) -> np.ndarray:
     tdim = mesh.topology.dim
     facets = model.dmesh.boundary(name)
     mesh.topology.create_connectivity(tdim - 1, tdim)
-    nodes = dmesh.entities_to_geometry(mesh, tdim - 1, facets, False)
-    x = mesh.geometry.x[np.unique(nodes.ravel())][:, :mesh.geometry.dim]
+    x = np.zeros((0, mesh.geometry.dim))
+    if facets.size:   # DOLFINx 0.9's entities_to_geometry divides by zero on an empty list
+        nodes = dmesh.entities_to_geometry(mesh, tdim - 1, facets, False)
+        x = mesh.geometry.x[np.unique(nodes.ravel())][:, :mesh.geometry.dim]
     return np.concatenate(mesh.comm.allgather(x), axis=0)
 
 
