@@ -321,8 +321,9 @@ def _one_element_curves(gmsh, lines, smallest: float, size: float | None = None,
     mesh size is `size` everywhere. gmsh meshes a curve in N = max(2, int(L / h + 1)) nodes (h the
     size along it; Mesh.MinimumLineNodes = 2), and finds L / h by integrating the size field over
     at least 64 intervals, a transfinite count by integrating the curve's speed only. The
-    continuum bench's discrete tunnel: 16k of its 22k joint pieces, 1D meshing 2.3 -> 1.2 s for
-    0.2 s of queries, the same mesh node for node. Returns the number of curves so set."""
+    continuum bench's discrete tunnel: 16k of its 22k joint pieces, mesh generation 2.3 -> 1.4 s
+    for 0.2 s of queries (bench/results/tunnel_profile.md), the same mesh node for node. Returns
+    the number of curves so set."""
     try:
         if gmsh.option.getNumber("Mesh.MinimumLineNodes") > 2:
             return 0
@@ -355,9 +356,9 @@ def _generate(gmsh, dim: int, pieces, groups: dict, boundary_tags: dict, names: 
     The cells and the facets come from one gmsh call each, not one per entity: the continuum bench's
     discrete tunnel has 33k entities (11k blocks, 22k joint pieces), and one call per entity, with
     the centres of mass the blocks were numbered by and the adjacencies the joints were checked
-    with, took 1.3 s of its 10.1 s (0.2 s now: bench/results/tunnel_profile.md). The blocks are
-    found on the mesh instead (_block_labels), the facets' entities from the order gmsh lists them
-    in (_facet_entities), and a joint that does not separate two blocks from its facets' cells.
+    with, took 1.0 s of its 10.1 s (0.2 s now). The blocks are found on the mesh instead
+    (_block_labels), the facets' entities from the order gmsh lists them in (_facet_entities), and
+    a joint that does not separate two blocks from its facets' cells.
     """
     fd = dim - 1
     for name in groups:

@@ -85,7 +85,7 @@ DIRECT_DOF_LIMIT_NONSYMMETRIC = {2: 250_000, 3: 5_000}
 #: DIRECT_DOF_LIMIT[2] dofs up to DIRECT_DOF_LIMIT_NONSYMMETRIC[2] (range (lo, hi]), direct below.
 #: Measured on the continuum bench's discrete tunnel (90k dofs; bench/bench_tunnel_profile.py →
 #: bench/results/tunnel_profile.md, "Linear solver of the discrete tunnel"): 8 factorisations and
-#: 60 triangular solves instead of 18 factorisations (0.17 s each against 0.02 s for a triangular
+#: 60 triangular solves instead of 18 factorisations (0.2 s each against 0.02 s for a triangular
 #: solve: the split mesh's LU has 13.8M entries), the same crown and sidewall. Below 60k dofs the
 #: direct solver's exact Newton steps are kept: lagged is faster there too, by less than 0.3 s an
 #: analysis (the same tunnel at s = 1 and 0.5 m, 11k and 26k dofs), but its inexact steps lose
