@@ -175,9 +175,10 @@ def flow_lines(state, dist, theta, model, intact_dmesh, laws, names, out):
     crown = near & (np.abs(np.sin(theta)) > 0.9) & (sets == "bedding")
     side = near & (np.abs(np.cos(theta)) > 0.9) & (sets == "bedding")
     per_joint = {n: laws[n.rsplit("_", 1)[0]].transmissivity for n in names.values()}
-    rates = {stage: network_flow(model.stages[i], per_joint, FLOW_HEADS).flow_rates["opening"]
-             for i, stage in ((0, "in-situ"), (1, "excavation"))}
-    network_flow(model.stages[1], per_joint, FLOW_HEADS).write(out("tunnel_flow.xdmf"), COMM)
+    networks = {stage: network_flow(model.stages[i], per_joint, FLOW_HEADS)
+                for i, stage in ((0, "in-situ"), (1, "excavation"))}
+    networks["excavation"].write(out("tunnel_flow.xdmf"), COMM)
+    rates = {stage: network.flow_rates["opening"] for stage, network in networks.items()}
     intact = darcy_flow(intact_dmesh, ROCK_PERMEABILITY * np.eye(2), FLOW_HEADS).flow_rates["opening"]
     lmin = 6e4   # m²/s -> L/min per metre of tunnel
     return [
