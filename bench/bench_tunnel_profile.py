@@ -11,8 +11,8 @@ Cases:
                    mesh lines): its linear solves are the yardstick of the Newton iterations.
   demos            demos/demo_tunnel.py and demos/demo_blocky_rock_mass.py at their default sizes
                    (every model each demo solves, summed).
-Phases (CPU seconds of this process, and wall seconds): geometry (OCC: cut, fragment,
-synchronize), gmsh mesh generation, node splitting (meshes.build_jointed_mesh), the rest of
+Phases (CPU seconds of this process, and wall seconds): geometry (the 2D section's crossings and
+outline split, gmsh's synchronize and embedding; OCC cut, fragment, synchronize where used), gmsh mesh generation, node splitting (meshes.build_jointed_mesh), the rest of
 tunnel_section / jointed_block (entity queries, element extraction), distribution (DOLFINx mesh,
 joint pairing), table building (rockjoint.tabulate), model set-up (forms, the joint coupling, the
 linear solver), bulk assembly, joint residual, Jacobian (bulk copy + joint tangent), linear solves
@@ -60,6 +60,11 @@ BEFORE = {"geometry (OCC cut, fragment, synchronize, remove)": (21.98, 17.00),
           "Jacobian + residual + Newton overhead": (1.83, None), "total (set-up + solve)": (106.99, 60.74)}
 BEFORE_ANSWER = (24.6708, 17.0147, 31)   # crown, sidewall [mm], Newton iterations (main, same day)
 
+#: the geometry phase: the 2D section's crossings and outline (meshes.planar_section) and the
+#: built-in kernel's synchronize and embedding; OCC's cut, fragment and synchronize (3D, and
+#: the OCC builders of the demos' blocks)
+GEOMETRY = "geometry (crossings, outline, synchronize; OCC booleans)"
+
 #: PETSc events of the linear solves (their time is inside the model's linear_solve timing)
 EVENTS = ("MatLUFactorSym", "MatLUFactorNum", "MatCholFctrSym", "MatCholFctrNum", "MatSolve", "KSPSolve",
           "KSPGMRESOrthog", "MatMult")
@@ -92,7 +97,10 @@ class Phases:
         import gmsh
         from rockjoint.meshes import builders
         from rockjoint.fem_coupling import model as model_module
-        targets = [(gmsh.model.occ, n, "geometry (OCC)") for n in ("cut", "fragment", "synchronize", "remove")]
+        from rockjoint.meshes import planar_section
+        targets = [(gmsh.model.occ, n, "geometry") for n in ("cut", "fragment", "synchronize", "remove")]
+        targets += [(gmsh.model.geo, "synchronize", "geometry"), (gmsh.model.mesh, "embed", "geometry"),
+                    (planar_section, "arrange", "geometry"), (planar_section, "split_outline", "geometry")]
         targets += [(gmsh.model.mesh, "generate", "gmsh generate"),
                     (builders, "build_jointed_mesh", "node splitting"),
                     (meshes, "tunnel_section", "meshing total"), (meshes, "jointed_block", "meshing total"),
@@ -209,13 +217,19 @@ def solver_comparison(spacings=(1.0, 0.5, 0.25), mesh_size=1.5):
     for spacing in spacings:
         jm = meshes.tunnel_section(bc.WIDTH, bc.WIDTH, opening, bc.discrete_sets(spacing, ("bedding", "cross")),
                                    comm=comm, **sizes)
-        variants = [("direct", "direct", None), ("lagged", "lagged", None)]
+        variants = [("direct", "direct", None, None), ("lagged", "lagged", None, None)]
         if spacing == min(spacings):
-            variants.append((f"lagged, rebuild_factor 2 (not {LAGGED_REBUILD_FACTOR:g})", "lagged", 2.0))
-        for label, kind, rebuild in variants:
+            variants.append((f"lagged, rebuild_factor 2 (not {LAGGED_REBUILD_FACTOR:g})", "lagged", 2.0, None))
+            # MUMPS's approximate minimum fill ordering instead of its automatic choice: the same
+            # factors here (13.8M against 14.0M entries on the matrix alone), a shorter analysis
+            # on that matrix alone (0.08 against 0.4 s), no gain inside the analysis (this row)
+            variants.append(("lagged, MUMPS ordering AMF (ICNTL(7) = 2, not MUMPS's choice)", "lagged", None,
+                             {"mat_mumps_icntl_7": 2}))
+        for label, kind, rebuild, options in variants:
             before = petsc_events()
             t0 = time.perf_counter()
-            model = tunnel_model(distribute(jm, comm), linear_solver=kind)
+            model = tunnel_model(distribute(jm, comm), linear_solver=kind,
+                                 **({} if options is None else {"petsc_options": options}))
             if rebuild is not None:
                 model.prepare()
                 model.linear_solver.rebuild_factor = rebuild
@@ -226,6 +240,7 @@ def solver_comparison(spacings=(1.0, 0.5, 0.25), mesh_size=1.5):
             after = petsc_events()
             u = probe(model.u, points)
             rows.append((spacing, model.num_dofs, label, after["MatLUFactorNum"][0] - before["MatLUFactorNum"][0],
+                         after["MatLUFactorSym"][1] - before["MatLUFactorSym"][1],
                          after["MatSolve"][0] - before["MatSolve"][0],
                          sum(s.newton_iterations for s in model.stages), model.timings["linear_solve"], wall,
                          -u[0, 1], -u[1, 0]))
@@ -253,17 +268,17 @@ def split_rows(phases, cpu, wall):
     """Markdown rows of the phase split (wall seconds; CPU seconds where this process timed them)."""
     t, n = phases.model_split()
     mesh_total = phases.wall["meshing total"]
-    inner = sum(phases.wall[k] for k in ("geometry (OCC)", "gmsh generate", "node splitting"))
+    inner = sum(phases.wall[k] for k in ("geometry", "gmsh generate", "node splitting"))
     newton_parts = t["interface_residual"] + t["interface_jacobian"] + t["matrix_copy"] + t["linear_solve"]
     its = max(n["newton_iterations"], 1)
-    rows = [("geometry (OCC cut, fragment, synchronize)", phases.wall["geometry (OCC)"], phases.cpu["geometry (OCC)"],
-             phases.calls["geometry (OCC)"]),
+    rows = [(GEOMETRY, phases.wall["geometry"], phases.cpu["geometry"],
+             phases.calls["geometry"]),
             ("gmsh mesh generation", phases.wall["gmsh generate"], phases.cpu["gmsh generate"],
              phases.calls["gmsh generate"]),
             ("node splitting", phases.wall["node splitting"], phases.cpu["node splitting"],
              phases.calls["node splitting"]),
             ("rest of meshing (entity queries, elements)", mesh_total - inner,
-             phases.cpu["meshing total"] - sum(phases.cpu[k] for k in ("geometry (OCC)", "gmsh generate",
+             phases.cpu["meshing total"] - sum(phases.cpu[k] for k in ("geometry", "gmsh generate",
                                                                        "node splitting")), ""),
             ("distribution (DOLFINx mesh, joint pairs)", phases.wall["distribution"], phases.cpu["distribution"],
              phases.calls["distribution"]),
@@ -329,12 +344,12 @@ def main():
             f"**{per_iteration / best['intact_solve']:.2f}**. Entries in the factors (MUMPS INFOG(29)): "
             f"jointed {best['factor_entries'][0]}, intact {best['factor_entries'][1]}.\n"]
     t, n = best["phases"].model_split()
-    after = {"geometry (OCC cut, fragment, synchronize, remove)": "geometry (OCC)",
+    after = {"geometry (OCC cut, fragment, synchronize, remove)": "geometry",
              "gmsh mesh generation": "gmsh generate"}
     rows = ["| phase | before: wall / CPU [s] | after: wall / CPU [s] |", "|---|---|---|"]
     ph = best["phases"]
-    rest = (ph.wall["meshing total"] - ph.wall["geometry (OCC)"] - ph.wall["gmsh generate"],
-            ph.cpu["meshing total"] - ph.cpu["geometry (OCC)"] - ph.cpu["gmsh generate"])
+    rest = (ph.wall["meshing total"] - ph.wall["geometry"] - ph.wall["gmsh generate"],
+            ph.cpu["meshing total"] - ph.cpu["geometry"] - ph.cpu["gmsh generate"])
     now = [(ph.wall[after[k]], ph.cpu[after[k]]) for k in after] + \
           [rest, (ph.wall["distribution"], ph.cpu["distribution"]), (t["linear_solve"], None),
            (t["newton"] - t["linear_solve"], None), (best["wall"], best["cpu"])]
@@ -351,10 +366,11 @@ def main():
              f"sidewall {100 * (best['sidewall'] * 1e3 / BEFORE_ANSWER[1] - 1):+.3f} % against before.\n",
              "\n".join(rows), ""]
     if not args.no_solvers:
-        table = ["| s [m] | dofs | linear solver | LU factorisations | triangular solves | Newton iterations | "
-                 "linear solves [s] | set-up + solve [s] | crown [mm] | sidewall [mm] |", "|---|---|---|---|---|---|---|---|---|---|"]
-        for sp, dofs, label, lu, tri, its, solve, wall, crown, side in solver_comparison():
-            table.append(f"| {sp:g} | {dofs} | {label} | {lu} | {tri} | {its} | {solve:.2f} | {wall:.2f} | "
+        table = ["| s [m] | dofs | linear solver | LU factorisations | LU analyses [s] | triangular solves | "
+                 "Newton iterations | linear solves [s] | set-up + solve [s] | crown [mm] | sidewall [mm] |",
+                 "|---|---|---|---|---|---|---|---|---|---|---|"]
+        for sp, dofs, label, lu, sym, tri, its, solve, wall, crown, side in solver_comparison():
+            table.append(f"| {sp:g} | {dofs} | {label} | {lu} | {sym:.2f} | {tri} | {its} | {solve:.2f} | {wall:.2f} | "
                          f"{crown * 1e3:.4f} | {side * 1e3:.4f} |")
         text += ["### Linear solver of the discrete tunnel\n",
                  "The analysis above without its meshing, one run each, with each linear solver (\"auto\" picks "

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <exception>
+#include <limits>
 #include <memory>
 #include <sstream>
 #include <stdexcept>
@@ -204,7 +205,12 @@ CurveFitResult fit_curve(const CurveModel& model, std::span<const double> observ
   {
     for (std::size_t j = 0; j < p; ++j)
       r.covariance[i * p + j] = variance * gsl_matrix_get(covariance.get(), i, j);
-    r.standard_errors[i] = std::sqrt(r.covariance[i * p + i]);
+    // GSL zeroes the row and column of a parameter whose Jacobian column depends on the others
+    // (here: is zero to rounding, e.g. a log-parameter driven to where it no longer changes the
+    // model): the data do not determine it, so its uncertainty is unbounded, not zero.
+    const bool determined = gsl_matrix_get(covariance.get(), i, i) > 0.0 || variance == 0.0;
+    r.standard_errors[i] = determined ? std::sqrt(r.covariance[i * p + i])
+                                      : std::numeric_limits<double>::infinity();
   }
   return r;
 }

@@ -40,7 +40,7 @@ struct CurveFitResult
 {
   std::vector<double> parameters;      ///< p at the minimum
   std::vector<double> covariance;      ///< C = s²(JᵀWJ)⁻¹, P×P row-major
-  std::vector<double> standard_errors; ///< √C_jj
+  std::vector<double> standard_errors; ///< √C_jj; +inf for a parameter the data do not determine
   std::vector<double> residuals;       ///< m_i(p) - y_i (unweighted)
   double chi_squared = 0.0;            ///< Σ w_i (m_i - y_i)²
   int degrees_of_freedom = 0;          ///< N - P

@@ -7,5 +7,6 @@ from .joint_geometry import Joint, joint_set, unit_normal  # noqa: F401
 from .jointed_mesh import FORMAT_VERSION, JointedMesh  # noqa: F401
 from .node_splitting import build_jointed_mesh, split_nodes  # noqa: F401
 from .gmsh_model import from_gmsh_model, from_msh_file  # noqa: F401
-from .tunnel import (OPENING, OPENING_TAG, CircularOpening, HorseshoeOpening,  # noqa: F401
+from .openings import CircularOpening, HorseshoeOpening  # noqa: F401
+from .tunnel import (OPENING, OPENING_TAG,  # noqa: F401
                      tunnel_section)

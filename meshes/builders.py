@@ -120,7 +120,10 @@ _OPTIONS = ("General.Terminal", "Mesh.MeshSizeExtendFromBoundary", "Mesh.MeshSiz
 @contextlib.contextmanager
 def _gmsh_model(name: str):
     """gmsh (initialised) with a new model `name`, quiet; afterwards the model is removed and the
-    global options a builder sets (_OPTIONS) are restored, whatever happened."""
+    global options a builder sets (_OPTIONS) are restored, whatever happened. One thread: gmsh's
+    1D meshing on two (General.NumThreads, Mesh.MaxNumThreads1D) was 0.3 s faster on the
+    continuum bench's tunnel section but gave different meshes from run to run (the intact
+    variant of test_meshes_tunnel's section lost 2 of its 1128 nodes in 3 of 4 runs)."""
     import gmsh  # heavy, and only rank 0 meshes: imported when a mesh is built
     _ensure_gmsh(gmsh)
     saved = {o: gmsh.option.getNumber(o) for o in _OPTIONS}  # gmsh options are global: restore them
@@ -287,10 +290,20 @@ def _graded_size(gmsh, mesh_size: float) -> None:
     gmsh.option.setNumber("Mesh.MeshSizeMin", 0.0)
 
 
+def threshold_size(distance, size_min: float, size_max: float, refine_distance: float):
+    """The size [m] _distance_threshold's field gives at `distance` [m] from its entities: size_min
+    up to size_min / 2, then linear up to size_max at size_min / 2 + refine_distance (gmsh's
+    Threshold field with DistMin, DistMax as set there)."""
+    lo = 0.5 * size_min
+    w = np.clip((np.asarray(distance, float) - lo) / refine_distance, 0.0, 1.0)
+    return size_min + w * (size_max - size_min)
+
+
 def _distance_threshold(gmsh, dim: int, entities, size_min: float, size_max: float, refine_distance: float,
-                        extent: float) -> int:
+                        extent: float, longest: float | None = None) -> int:
     """gmsh Distance + Threshold field: size_min within size_min/2 of the facet entities (curves in 2D,
-    surfaces in 3D), growing linearly to size_max over refine_distance. Returns the field tag."""
+    surfaces in 3D), growing linearly to size_max over refine_distance (threshold_size). Returns the
+    field tag. longest: the longest curve's length [m] (default: asked of OCC)."""
     field = gmsh.model.mesh.field
     dist = field.add("Distance")
     field.setNumbers(dist, "FacesList" if dim == 3 else "EdgesList", list(entities))
@@ -302,7 +315,8 @@ def _distance_threshold(gmsh, dim: int, entities, size_min: float, size_max: flo
         # most of the 1D meshing time (4.4 of 5.5 s CPU on the continuum bench's discrete tunnel,
         # 316 arcs). Four points per refined element on the longest curve are enough (the same
         # mesh there to 5 µm).
-        longest = max(gmsh.model.occ.getMass(1, e) for e in entities)
+        if longest is None:
+            longest = max(gmsh.model.occ.getMass(1, e) for e in entities)
         samples = min(samples, max(20, math.ceil(4.0 * longest / size_min)))
     field.setNumber(dist, "NumPointsPerCurve", samples)
     thr = field.add("Threshold")
@@ -318,7 +332,7 @@ def _one_element_curves(gmsh, lines, smallest: float, size: float | None = None,
     """Give the straight curves `lines` (2D) that gmsh would mesh as one element that element up
     front, as a transfinite count of 2 nodes: those shorter than `smallest`, the smallest mesh size
     anywhere, and those shorter than `size` inside one of `boxes` ((x0, y0, x1, y1)), where the
-    mesh size is `size` everywhere. gmsh meshes a curve in N = max(2, int(L / h + 1)) nodes (h the
+    mesh size is `size` everywhere. gmsh meshes a curve in N = max(2, int(L / h + 1.99)) nodes (h the
     size along it; Mesh.MinimumLineNodes = 2), and finds L / h by integrating the size field over
     at least 64 intervals, a transfinite count by integrating the curve's speed only. The
     continuum bench's discrete tunnel: 16k of its 22k joint pieces, mesh generation 2.3 -> 1.4 s
@@ -343,13 +357,14 @@ def _one_element_curves(gmsh, lines, smallest: float, size: float | None = None,
 
 
 def _generate(gmsh, dim: int, pieces, groups: dict, boundary_tags: dict, names: dict, *,
-              one_block: bool = False, dangling: str = "") -> JointedMesh:
+              one_block: bool = False, dangling: str = "", blocks_are_volumes: bool = True) -> JointedMesh:
     """Mesh the model (linear simplices), then split it by block and pair the joint facets.
 
     Blocks: every volume (surface in 2D) of the model is a block, ``block_<k>`` with k = 1, 2, ... in
     order of the centre of mass (vertical coordinate first, then y, then x; _block_labels), or
-    one_block: the whole model is block 1. pieces: joint entities per joint (tags
-    JOINT_TAG_OFFSET + i, names in names["joints"]); groups: {boundary name: entities}, tagged
+    one_block: the whole model is block 1; blocks_are_volumes=False: the model is one surface with
+    the joints embedded (tunnel._build_planar), its blocks exist on the mesh only. pieces: joint
+    entities per joint (tags JOINT_TAG_OFFSET + i, names in names["joints"]); groups: {boundary name: entities}, tagged
     boundary_tags[name]. A joint facet without a different block on each side raises ValueError
     naming the joint, followed by `dangling` (what to do).
 
@@ -384,7 +399,7 @@ def _generate(gmsh, dim: int, pieces, groups: dict, boundary_tags: dict, names: 
     else:
         blocks = _block_labels(cells, points, joined)
         volumes = len(gmsh.model.getEntities(dim))
-        if int(blocks.max()) != volumes:
+        if blocks_are_volumes and int(blocks.max()) != volumes:
             raise RuntimeError(f"internal: the mesh splits into {int(blocks.max())} blocks, the model has "
                                f"{volumes} volumes")
     for k in range(1, int(blocks.max()) + 1):

@@ -1,11 +1,14 @@
-"""gmsh (OCC) builder of a 2D rock-mass section around a tunnel opening, cut by joint sets.
+"""gmsh builder of a rock-mass section around a tunnel opening, cut by joint sets (2D, or extruded to 3D).
 
 Geometry (plane strain, y up): the section is the rectangle [0, width] x [0, height] minus the
-opening (a CircularOpening or a HorseshoeOpening placed at its ``centre``). Joints (meshes.Joint,
-e.g. from meshes.joint_set) are clipped analytically to the rectangle (and to the joints they are
-bounded by) and to the opening (its ``crossing``), then ``occ.fragment`` cuts the section with what
-is left: no piece of a joint is ever made inside the opening, so every joint ends on the opening,
-on the outer boundary or on another joint.
+opening (a CircularOpening or a HorseshoeOpening placed at its ``centre``, meshes.openings). Joints
+(meshes.Joint, e.g. from meshes.joint_set) are clipped analytically to the rectangle (and to the
+joints they are bounded by) and to the opening (its ``crossing``): no piece of a joint is ever made
+inside the opening, so every joint ends on the opening, on the outer boundary or on another joint.
+A 2D section (_build_planar) is then built without any boolean: the joints' crossings and the
+outline's split points come from meshes.planar_section, and gmsh's built-in kernel meshes one
+surface with the joint pieces embedded as mesh lines; the blocks are found on the mesh. The 3D
+extrusion and the quarter section (_build) cut the section with OCC's ``fragment``.
 Joints must separate blocks completely, as in meshes.builders; a joint that lies entirely inside the
 opening, misses the section, touches the opening tangentially or runs along its boundary raises
 ValueError naming it.
@@ -25,194 +28,23 @@ the jointed-vs-intact comparison then differs by the joints only.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from typing import Iterable
 
 import numpy as np
 
+from . import planar_section
 from .builders import (BOUNDARY_TAGS, _add_trace, _block_face, _distance_threshold, _generate, _gmsh_model,
-                       _graded_size, _joint_names, _normalise_joints, _one_element_curves, _resolve_bounds)
+                       _graded_size, _joint_names, _normalise_joints, _one_element_curves, _resolve_bounds,
+                       threshold_size)
 from .joint_geometry import _positive, joint_trace, unit_normal
 from .jointed_mesh import JointedMesh
+from .openings import CircularOpening, HorseshoeOpening
 
 OPENING = "opening"
 OPENING_TAG = 7  # after builders.BOUNDARY_TAGS (1..6)
 #: what to do about a joint that does not separate two blocks (the end of its error message)
 _DANGLING = "part of it runs along the opening's boundary or ends inside a block (dangling tip)"
 SECTION_BOUNDARY_TAGS = {**{k: BOUNDARY_TAGS[k] for k in ("bottom", "top", "left", "right")}, OPENING: OPENING_TAG}
-
-
-def _point(value, label: str) -> np.ndarray:
-    p = np.asarray(value, dtype=float)
-    if p.shape != (2,) or not np.all(np.isfinite(p)):
-        raise ValueError(f"{label} must be 2 finite coordinates (x, y) [m], got {value!r}")
-    return p
-
-
-@dataclass(frozen=True)
-class CircularOpening:
-    """A circular opening of ``radius`` [m] centred at ``centre`` (x, y) [m]."""
-
-    centre: tuple
-    radius: float
-
-    def __post_init__(self):
-        object.__setattr__(self, "centre", tuple(_point(self.centre, "CircularOpening.centre")))
-        object.__setattr__(self, "radius", _positive("CircularOpening.radius", self.radius))
-
-    @property
-    def area(self) -> float:
-        return math.pi * self.radius ** 2
-
-    @property
-    def perimeter(self) -> float:
-        return 2.0 * math.pi * self.radius
-
-    def bounds(self) -> tuple:
-        """(x_min, y_min, x_max, y_max) [m]."""
-        (x, y), a = self.centre, self.radius
-        return (x - a, y - a, x + a, y + a)
-
-    def outline(self, count: int = 720) -> np.ndarray:
-        """(count, 2) points [m] along the outline, counter-clockwise from the right springline."""
-        t = np.linspace(0.0, 2.0 * math.pi, count, endpoint=False)
-        return np.asarray(self.centre) + self.radius * np.stack([np.cos(t), np.sin(t)], axis=1)
-
-    def add_to(self, occ) -> int:
-        (x, y), a = self.centre, self.radius
-        return occ.addDisk(x, y, 0.0, a, a)
-
-    def crossing(self, a, b) -> tuple | None:
-        """(t_in, t_out): where the line a + t (b - a) enters and leaves the disk, or None if it
-        misses it or only touches it (the disk is convex: one interval)."""
-        d, f = np.subtract(b, a), np.subtract(a, self.centre)
-        # |f + t d|² = r²: d·d t² + 2 f·d t + f·f - r² = 0
-        qa, qb, qc = d @ d, f @ d, f @ f - self.radius ** 2
-        disc = qb * qb - qa * qc
-        if not disc > 0.0:
-            return None
-        root = math.sqrt(disc)
-        return ((-qb - root) / qa, (-qb + root) / qa)
-
-
-@dataclass(frozen=True)
-class HorseshoeOpening:
-    """A horseshoe: semicircular crown of ``radius`` [m] centred at ``centre`` (the springline's
-    middle), straight vertical walls ``wall_height`` [m] below the springline, and an invert that is
-    flat (invert_depth = 0) or a circular arc sagging ``invert_depth`` [m] below the wall feet."""
-
-    centre: tuple
-    radius: float
-    wall_height: float
-    invert_depth: float = 0.0
-
-    def __post_init__(self):
-        object.__setattr__(self, "centre", tuple(_point(self.centre, "HorseshoeOpening.centre")))
-        object.__setattr__(self, "radius", _positive("HorseshoeOpening.radius", self.radius))
-        object.__setattr__(self, "wall_height", _positive("HorseshoeOpening.wall_height", self.wall_height))
-        d = float(self.invert_depth)
-        if not (math.isfinite(d) and 0.0 <= d <= self.radius):
-            raise ValueError(f"HorseshoeOpening.invert_depth must be in [0, radius = {self.radius}] m, got {d!r}")
-        object.__setattr__(self, "invert_depth", d)
-
-    def _invert_arc(self) -> tuple:
-        """(radius R, half angle θ) of the invert arc through the wall feet with sag invert_depth."""
-        a, s = self.radius, self.invert_depth
-        R = (a * a + s * s) / (2.0 * s)
-        return R, math.asin(a / R) if s <= a else math.pi - math.asin(a / R)
-
-    @property
-    def area(self) -> float:
-        a = self.radius
-        area = 0.5 * math.pi * a * a + 2.0 * a * self.wall_height
-        if self.invert_depth > 0.0:
-            R, th = self._invert_arc()
-            area += R * R * (th - math.sin(th) * math.cos(th))  # circular segment
-        return area
-
-    @property
-    def perimeter(self) -> float:
-        a = self.radius
-        invert = 2.0 * a
-        if self.invert_depth > 0.0:
-            R, th = self._invert_arc()
-            invert = 2.0 * R * th
-        return math.pi * a + 2.0 * self.wall_height + invert
-
-    def bounds(self) -> tuple:
-        (x, y), a = self.centre, self.radius
-        return (x - a, y - self.wall_height - self.invert_depth, x + a, y + a)
-
-    def outline(self, count: int = 720) -> np.ndarray:
-        """(about count, 2) points [m] along the outline, counter-clockwise from the right springline."""
-        (x, y), a, hw = self.centre, self.radius, self.wall_height
-        step = self.perimeter / count
-        crown = np.linspace(0.0, math.pi, max(2, int(math.pi * a / step)), endpoint=False)
-        parts = [np.stack([x + a * np.cos(crown), y + a * np.sin(crown)], axis=1)]
-        wall = np.linspace(0.0, hw, max(2, int(hw / step)), endpoint=False)
-        parts.append(np.stack([np.full(wall.size, x - a), y - wall], axis=1))
-        if self.invert_depth > 0.0:
-            R, th = self._invert_arc()
-            phi = np.linspace(-math.pi / 2 - th, -math.pi / 2 + th, max(2, int(2 * R * th / step)), endpoint=False)
-            yc = y - hw - self.invert_depth + R
-            parts.append(np.stack([x + R * np.cos(phi), yc + R * np.sin(phi)], axis=1))
-        else:
-            foot = np.linspace(-a, a, max(2, int(2 * a / step)), endpoint=False)
-            parts.append(np.stack([x + foot, np.full(foot.size, y - hw)], axis=1))
-        parts.append(np.stack([np.full(wall.size, x + a), y - hw + wall], axis=1))
-        return np.concatenate(parts)
-
-    def crossing(self, a, b) -> tuple | None:
-        """(t_in, t_out): where the line a + t (b - a) enters and leaves the horseshoe, or None if
-        it misses it or only touches it. The horseshoe is convex, so the line meets its outline
-        (crown arc, walls, invert) at its first and last crossing of those pieces."""
-        (x, y), r, hw, s = self.centre, self.radius, self.wall_height, self.invert_depth
-        a, d = np.asarray(a, float), np.subtract(b, a)
-        tol = 1e-12 * r
-        hits = []
-
-        def arc(centre, radius, keep):  # circle crossings whose point passes `keep`
-            f = a - centre
-            qa, qb, qc = d @ d, f @ d, f @ f - radius ** 2
-            disc = qb * qb - qa * qc
-            if disc > 0.0:
-                for t in ((-qb - math.sqrt(disc)) / qa, (-qb + math.sqrt(disc)) / qa):
-                    if keep(a + t * d):
-                        hits.append(t)
-
-        def segment(axis, value, lo, hi):  # the line x (axis 0) or y (axis 1) = value, other in [lo, hi]
-            if abs(d[axis]) > 0.0:
-                t = (value - a[axis]) / d[axis]
-                if lo - tol <= (a + t * d)[1 - axis] <= hi + tol:
-                    hits.append(t)
-
-        arc(np.array([x, y]), r, lambda p: p[1] >= y - tol)
-        segment(0, x - r, y - hw, y)
-        segment(0, x + r, y - hw, y)
-        if s > 0.0:
-            R, _ = self._invert_arc()
-            arc(np.array([x, y - hw - s + R]), R, lambda p: p[1] <= y - hw + tol)
-        else:
-            segment(1, y - hw, x - r, x + r)
-        if len(hits) < 2 or max(hits) - min(hits) <= tol / max(np.linalg.norm(d), 1e-300):
-            return None
-        return (min(hits), max(hits))
-
-    def add_to(self, occ) -> int:
-        (x, y), a, hw, s = self.centre, self.radius, self.wall_height, self.invert_depth
-        c = occ.addPoint(x, y, 0.0)
-        right, top, left = occ.addPoint(x + a, y, 0.0), occ.addPoint(x, y + a, 0.0), occ.addPoint(x - a, y, 0.0)
-        left_foot, right_foot = occ.addPoint(x - a, y - hw, 0.0), occ.addPoint(x + a, y - hw, 0.0)
-        curves = [occ.addCircleArc(right, c, top), occ.addCircleArc(top, c, left), occ.addLine(left, left_foot)]
-        if s > 0.0:
-            R, _ = self._invert_arc()
-            ci = occ.addPoint(x, y - hw - s + R, 0.0)
-            bottom = occ.addPoint(x, y - hw - s, 0.0)
-            curves += [occ.addCircleArc(left_foot, ci, bottom), occ.addCircleArc(bottom, ci, right_foot)]
-        else:
-            curves.append(occ.addLine(left_foot, right_foot))
-        curves.append(occ.addLine(right_foot, right))
-        return occ.addPlaneSurface([occ.addCurveLoop(curves)])
 
 
 def tunnel_section(width: float, height: float, opening, joints: Iterable = (), *, mesh_size: float,
@@ -296,6 +128,9 @@ def tunnel_section(width: float, height: float, opening, joints: Iterable = (), 
             raise ValueError(f"joint {j.name!r} misses the rock section: its trace lies inside the opening")
 
     with _gmsh_model("rockjoint_tunnel_section") as gmsh:
+        if length is None and not quarter:
+            return _build_planar(gmsh, size, opening, joints, segments, mesh_size, opening_mesh_size,
+                                 opening_refine_distance, joint_mesh_size, joint_refine_distance, intact)
         return _build(gmsh, size, opening, joints, segments, mesh_size, opening_mesh_size, opening_refine_distance,
                       joint_mesh_size, joint_refine_distance, intact, length)
 
@@ -318,6 +153,118 @@ def _outside(opening, trace: np.ndarray, shortest: float) -> list:
     if (1.0 - cross[1]) * length > shortest:
         parts.append(np.array([a + cross[1] * (b - a), b]))
     return parts
+
+
+def _build_planar(gmsh, size, opening, joints, segments, mesh_size, opening_mesh_size, opening_refine_distance,
+                  joint_mesh_size, joint_refine_distance, intact) -> JointedMesh:
+    """The 2D section with gmsh's built-in kernel and no boolean: the joints' crossings and the
+    outline's split points from planar_section, ONE surface (the rectangle minus the opening) with
+    every joint piece embedded in it as a mesh line, each given its node count up front.
+
+    Against OCC's fragment into 11k block surfaces (the 3D and quarter sections still use it,
+    _build), on the continuum bench's discrete tunnel: geometry 2.0 -> 0.1 s
+    (bench/results/tunnel_profile.md). The node counts are gmsh's own rule on the same size fields
+    (planar_section.line_node_counts, builders.threshold_size): gmsh finds them by integrating the
+    field along every one of the 22k joint pieces, which was most of its 1D meshing time.
+    """
+    extent = float(size.max())
+    tol = 1e-9 * extent
+    owner = np.array([i for i, segs in enumerate(segments) for _ in segs], dtype=np.int64)
+    segs = np.array([seg for segs in segments for seg in segs], dtype=float).reshape(-1, 2, 2)
+    loops = [planar_section.rectangle(*size), opening.pieces()]
+    outline = loops[0] + loops[1]
+    nodes, chains, vertex = planar_section.arrange(segs, [joints[i].name for i in owner], tol,
+                                                   np.array([p.start for p in outline]))
+    starts = np.concatenate([c[:-1] for c in chains]) if chains else np.empty(0, np.int64)
+    ends = np.concatenate([c[1:] for c in chains]) if chains else np.empty(0, np.int64)
+    line_owner = np.concatenate([np.full(len(c) - 1, owner[k]) for k, c in enumerate(chains)]) if chains else owner
+    tips = np.unique(np.concatenate([[c[0], c[-1]] for c in chains])) if chains else np.empty(0, np.int64)
+    # A joint piece between two nodes on the outline may run along it (then it separates nothing).
+    on_outline = np.zeros(len(nodes), dtype=bool)
+    on_outline[tips[planar_section.outline_distance(nodes[tips], outline) <= tol] if tips.size else tips] = True
+    both = np.flatnonzero(on_outline[starts] & on_outline[ends])
+    if both.size:
+        runs_along = planar_section.outline_distance(0.5 * (nodes[starts[both]] + nodes[ends[both]]), outline) <= tol
+        if runs_along.any():
+            raise ValueError(f"joint {joints[int(line_owner[both[np.argmax(runs_along)]])].name!r} does not separate "
+                             f"two blocks everywhere: {_DANGLING}")
+
+    geo = gmsh.model.geo
+    tags = np.zeros(len(nodes), dtype=np.int64)
+
+    def point(k):
+        if not tags[k]:
+            tags[k] = geo.addPoint(*nodes[k], 0.0)
+        return int(tags[k])
+
+    names = ("bottom", "right", "top", "left")
+    splits = planar_section.split_outline(outline, nodes, tips, tol)
+    groups, loop_tags, lengths, k = {}, [], {}, 0
+    for loop in loops:
+        curves = []
+        for j, piece in enumerate(loop):
+            seq = [vertex[k + j], *splits[k + j], vertex[k + (j + 1) % len(loop)]]
+            centre = None if piece.centre is None else geo.addPoint(*piece.centre, 0.0)
+            along = piece.position(nodes[seq])[1]
+            for a, b, length in zip(seq[:-1], seq[1:], np.diff(along)):
+                c = geo.addLine(point(a), point(b)) if centre is None else \
+                    geo.addCircleArc(point(a), centre, point(b))
+                curves.append(c)
+                groups.setdefault(names[j] if loop is loops[0] else OPENING, []).append(c)
+                lengths[c] = float(length)
+        loop_tags.append(geo.addCurveLoop(curves))
+        k += len(loop)
+    lines = np.array([geo.addLine(point(a), point(b)) for a, b in zip(starts, ends)], dtype=np.int64)
+    surface = geo.addPlaneSurface(loop_tags)
+    geo.synchronize()
+    if lines.size:
+        gmsh.model.mesh.embed(1, lines.tolist(), 2, surface)
+    pieces = [lines[line_owner == i].tolist() for i in range(len(joints))]
+
+    # Sizes: the finer of the opening's and the joints' Threshold fields (as _build).
+    hole = groups[OPENING]
+    fields = [_distance_threshold(gmsh, 2, hole, opening_mesh_size, mesh_size, opening_refine_distance, extent,
+                                  longest=max(lengths[c] for c in hole))]
+    segment_length = np.linalg.norm(nodes[ends] - nodes[starts], axis=1)
+    if joint_mesh_size is not None and lines.size:
+        fields.append(_distance_threshold(gmsh, 2, lines.tolist(), joint_mesh_size, mesh_size, joint_refine_distance,
+                                          extent, longest=float(segment_length.max())))
+    field = gmsh.model.mesh.field
+    finest = field.add("Min")
+    field.setNumbers(finest, "FieldsList", fields)
+    field.setAsBackgroundMesh(finest)
+    _graded_size(gmsh, mesh_size)
+    factor = gmsh.option.getNumber("Mesh.MeshSizeFactor")
+
+    def size_at(p):
+        h = np.minimum(mesh_size, threshold_size(planar_section.outline_distance(p, loops[1]), opening_mesh_size,
+                                                 mesh_size, opening_refine_distance))
+        return factor * (h if joint_mesh_size is None else np.minimum(h, joint_mesh_size))
+
+    if lines.size:
+        # Beyond the opening's field (DistMax, _distance_threshold) the size is uniform: the distance
+        # is 1-Lipschitz, so a piece whose midpoint lies half its length farther is all there.
+        far = factor * (mesh_size if joint_mesh_size is None else min(mesh_size, joint_mesh_size))
+        counts = np.maximum(2, (segment_length / far + 1.99).astype(np.int64))
+        mid = 0.5 * (nodes[starts] + nodes[ends])
+        near = np.flatnonzero(planar_section.outline_distance(mid, loops[1]) - 0.5 * segment_length
+                              < 0.5 * opening_mesh_size + opening_refine_distance)
+        counts[near] = planar_section.line_node_counts(segment_length[near], nodes[starts[near]], nodes[ends[near]],
+                                                       size_at)
+        _set_node_counts(gmsh, lines, counts)
+
+    if intact:  # the same mesh lines, one block, no joints
+        return _generate(gmsh, 2, [], groups, SECTION_BOUNDARY_TAGS, _joint_names([]), one_block=True,
+                         blocks_are_volumes=False)
+    return _generate(gmsh, 2, pieces, groups, SECTION_BOUNDARY_TAGS, _joint_names(joints), dangling=_DANGLING,
+                     blocks_are_volumes=False)
+
+
+def _set_node_counts(gmsh, lines, counts) -> None:
+    """Mesh each line with its count of nodes, equally spaced (a transfinite curve: gmsh then only
+    integrates the curve's speed, not the size field)."""
+    for c, n in zip(np.asarray(lines).tolist(), np.asarray(counts).tolist()):
+        gmsh.model.mesh.setTransfiniteCurve(c, n)
 
 
 def _build(gmsh, size, opening, joints, segments, mesh_size, opening_mesh_size, opening_refine_distance,

@@ -9,7 +9,7 @@ inside functions, resolved to the package's own modules.
 
 Packages are the layers of docs/architecture.md: `rockjoint.<name>` for the sub-packages
 (fem_coupling, scenes, scans, commands, reference, meshes) and the compiled `_rockjoint` /
-`_rockjoint_fem_coupling`; the top-level modules are their own layer each. Outside imports
+`_rockjoint_fem_coupling` / `_rockjoint_dolfinx`; the top-level modules are their own layer each. Outside imports
 (dolfinx, ufl, petsc4py, ...) are kept as their top-level name. tests/python/test_architecture.py
 asserts that both graphs are acyclic and that the package edges are the ones the page allows.
 """
@@ -25,9 +25,10 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SOURCES = {"rockjoint": os.path.join(ROOT, "python", "rockjoint"),
            "rockjoint.meshes": os.path.join(ROOT, "meshes")}
 #: compiled modules (bindings in python/src): leaves of the graph
-COMPILED = ("rockjoint._rockjoint", "rockjoint._rockjoint_fem_coupling")
+COMPILED = ("rockjoint._rockjoint", "rockjoint._rockjoint_fem_coupling", "rockjoint._rockjoint_dolfinx")
 #: the FE stack and other outside packages a layer may need, by their import names
-FE_STACK = ("dolfinx", "ufl", "basix", "petsc4py", "mpi4py", "rockjoint._rockjoint_fem_coupling")
+FE_STACK = ("dolfinx", "ufl", "basix", "petsc4py", "mpi4py", "rockjoint._rockjoint_fem_coupling",
+            "rockjoint._rockjoint_dolfinx")
 
 
 def modules() -> dict:

@@ -91,6 +91,23 @@ TEST(CurveFit, RecoversANonlinearModelFromExactData)
   EXPECT_GT(r.iterations, 0);
 }
 
+TEST(CurveFit, AParameterTheModelIgnoresHasAnUnboundedUncertainty)
+{
+  // y = a + 0 * b: the data say nothing about b (its Jacobian column is zero), so its standard
+  // error is +inf, not the 0 GSL leaves in its covariance row; a = mean(y) keeps s / sqrt(N).
+  const std::vector<double> y{1.0, 1.2, 0.9, 1.1, 0.8};
+  auto model = [](std::span<const double> p, std::span<double> m)
+  {
+    for (double& v : m)
+      v = p[0] + 0.0 * p[1];
+  };
+  const CurveFitResult r = fit_curve(model, y, std::vector<double>{0.0, 3.0});
+  EXPECT_NEAR(r.parameters[0], 1.0, 1e-10);
+  EXPECT_TRUE(std::isinf(r.standard_errors[1]));
+  // s² = Σ(y - ȳ)² / (N - P) = 0.1 / 3, σ_a = s / √N
+  EXPECT_NEAR(r.standard_errors[0], std::sqrt(0.1 / 3.0 / 5.0), 1e-8);
+}
+
 TEST(CurveFit, ModelExceptionsAreRethrownAndBadInputNamed)
 {
   const std::vector<double> y{1, 2, 3}, p{0.0};

@@ -162,3 +162,37 @@ def test_partition_is_the_same_at_every_launch():
     assert all(len(x) == 1 for x in lines), [r.stdout for r in runs]
     assert int(lines[0][0].split()[1]) > 50_000
     assert lines[0] == lines[1] == lines[2]
+
+
+def test_serial_mesh_keeps_the_cells_in_order_and_equals_dolfinx():
+    """compat.create_serial_mesh (DOLFINx >= 0.10: our _rockjoint_dolfinx, create_mesh without the
+    Gibbs-Poole-Stockmeyer reordering; 0.9: dolfinx.mesh.create_mesh) gives the mesh DOLFINx gives:
+    the same cells on the same points (compared through the original cell index), the same area.
+    With the module the cells stay in input order; the module must be built where it can be."""
+    import ufl
+    import basix.ufl
+    from rockjoint.fem_coupling import compat
+    from rockjoint.meshes import CircularOpening, joint_set, tunnel_section
+    has_hook = tuple(int(p) for p in dolfinx.__version__.split(".")[:2]) >= (0, 10)
+    assert (compat.create_mesh_in_order is not None) == has_hook
+    joints = joint_set(1.0, 0.0, 90.0, origin=(10.0, 0.3), count=16, name="bed") + \
+        joint_set(1.5, 70.0, 90.0, origin=(2.0, 8.0), count=12, name="cross")
+    jm = tunnel_section(20.0, 16.0, CircularOpening((10.0, 8.0), 2.0), joints, mesh_size=1.0)
+    domain = ufl.Mesh(basix.ufl.element("Lagrange", "triangle", 1, shape=(2,)))
+    cells = jm.cells.astype(np.int64)
+    ours = compat.create_serial_mesh(MPI.COMM_SELF, cells, domain, jm.points)
+    theirs = dolfinx.mesh.create_mesh(MPI.COMM_SELF, cells, e=domain, x=jm.points)
+
+    def cell_points(m):
+        dofmap = m.geometry.dofmaps[0] if hasattr(m.geometry, "dofmaps") else m.geometry.dofmap
+        x = m.geometry.x[:, :2]
+        order = np.argsort(np.asarray(m.topology.original_cell_index))
+        return np.sort(np.round(x[dofmap[order]], 12).reshape(len(order), -1), axis=1)
+
+    assert np.array_equal(cell_points(ours), cell_points(theirs))
+    area = [dolfinx.fem.assemble_scalar(dolfinx.fem.form(1.0 * ufl.dx(domain=m))) for m in (ours, theirs)]
+    assert area[0] == pytest.approx(area[1], rel=1e-13) and area[0] == pytest.approx(jm.cell_measures().sum(),
+                                                                                      rel=1e-13)
+    if has_hook:
+        assert np.array_equal(np.asarray(ours.topology.original_cell_index), np.arange(len(cells)))
+

@@ -238,10 +238,20 @@ def test_direct_shear_under_constant_normal_load_reaches_the_coulomb_peak(sigma_
     joints = result.gather_joints()
     assert curve[0] < 0.9 * peak, "the first shear step must still be on the elastic rise"
     assert curve[1] == pytest.approx(peak, rel=1e-9)
-    assert np.all(joints["normal_stress"] > 0.0)  # closed everywhere (needed for c > 0)
-    assert np.all(np.abs(joints["slip"][:, 0]) > 1e-3)
+    closed = joints["normal_stress"] > 0.0
+    if c > 0.0:
+        assert np.all(closed)  # closed everywhere (needed for c > 0)
+    else:
+        # c = 0: ∫τ = tan φ ∫σ_n holds with open points too. Only the trailing corner (x = 0, the
+        # edge the shear moment unloads, where the block's corner concentrates the contact stress)
+        # may open: at σ_n = 1 MPa it does after 1 mm of slip with Debian sid's packages of
+        # 2026-11-28 (it stayed closed by a hair with earlier ones); an open point's slip and
+        # dilation stay where they were when it opened.
+        open_x = joints["coordinates"][~closed, 0]
+        assert np.all(np.abs(open_x) < 1e-12), open_x
+    assert np.all(np.abs(joints["slip"][closed, 0]) > 1e-3)
     # Constant normal load with dilation: the top rises by tan ψ per unit slip, dilation stops at 2 mm.
-    np.testing.assert_allclose(joints["dilation"], math.tan(math.radians(5.0)) * 2e-3, rtol=1e-12)
+    np.testing.assert_allclose(joints["dilation"][closed], math.tan(math.radians(5.0)) * 2e-3, rtol=1e-12)
 
 
 def _translate_block(model, block: str, vector) -> np.ndarray:

@@ -367,29 +367,29 @@ def test_3d_extrusion_volumes_joint_areas_and_faces():
 
 
 @pytest.mark.parametrize("opening", [CIRCLE, HorseshoeOpening(CENTRE, 3.0, 2.5, 1.0)])
-def test_short_joint_pieces_far_from_the_opening_are_the_single_elements_gmsh_makes(opening, monkeypatch):
-    """Joint pieces shorter than mesh_size where the opening's field has reached mesh_size are
-    given their one element up front (a transfinite count of 2 nodes, builders._one_element_curves,
-    which skips integrating the size field along them): the mesh gmsh makes without it, node for
-    node, and it does apply here."""
-    from rockjoint.meshes import builders, tunnel
-    from rockjoint.meshes import unit_normal
+@pytest.mark.parametrize("joint_mesh_size", [None, 0.7])
+def test_joint_pieces_get_the_node_counts_gmsh_gives_them(opening, joint_mesh_size, monkeypatch):
+    """The 2D section's joint pieces are given their node counts up front (tunnel._set_node_counts,
+    from planar_section.line_node_counts on the same size fields), which spares gmsh integrating its
+    field along each of them: the counts are the ones gmsh finds itself. Measured against gmsh's
+    own 1D meshing of the same model: every joint within one facet (gmsh samples the opening's
+    distance at points, the counts here use the exact distance, so a piece whose integral sits at
+    an integer may tip either way), at most 10 % of the joints off at all, the same cells to 1 %."""
+    from rockjoint.meshes import tunnel, unit_normal
     origin = tuple(np.asarray(CENTRE) - 10.2 * 1.5 * np.asarray(unit_normal(60.0, 90.0, 2)))
     joints = (joint_set(1.0, 0.0, 90.0, origin=(20.0, 0.3), count=28, name="bedding")
               + joint_set(1.5, 60.0, 90.0, origin=origin, count=20, name="cross"))
-    sizes = dict(mesh_size=2.0, opening_mesh_size=0.5, opening_refine_distance=4.0)
-    counts = []
-    one_element = builders._one_element_curves
-
-    def counted(*args):
-        counts.append(one_element(*args))
-        return counts[-1]
-
-    monkeypatch.setattr(tunnel, "_one_element_curves", counted)
+    sizes = dict(mesh_size=2.0, opening_mesh_size=0.5, opening_refine_distance=4.0, joint_mesh_size=joint_mesh_size)
+    calls = []
+    given = tunnel._set_node_counts
+    monkeypatch.setattr(tunnel, "_set_node_counts", lambda *args: calls.append(len(args[1])) or given(*args))
     m = tunnel_section(W, H, opening, joints, **sizes)
-    monkeypatch.setattr(tunnel, "_one_element_curves", lambda *args: 0)
+    monkeypatch.setattr(tunnel, "_set_node_counts", lambda *args: None)
     natural = tunnel_section(W, H, opening, joints, **sizes)
-    assert len(counts) == 1 and counts[0] > 100
-    for name in ("points", "cells", "cell_blocks", "joint_facets_minus", "joint_facets_plus", "joint_tags",
-                 "boundary_facets", "boundary_tags"):
-        assert np.array_equal(getattr(m, name), getattr(natural, name)), name
+    assert len(calls) == 1 and calls[0] > 500
+    check_split_invariants(m)
+    ours = np.bincount(m.joint_tags - 100, minlength=len(joints))
+    gmsh_own = np.bincount(natural.joint_tags - 100, minlength=len(joints))
+    assert np.abs(ours - gmsh_own).max() <= 1
+    assert np.count_nonzero(ours != gmsh_own) <= 0.1 * len(joints)
+    assert m.cells.shape[0] == pytest.approx(natural.cells.shape[0], rel=0.01)

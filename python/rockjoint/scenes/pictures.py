@@ -18,6 +18,8 @@ from .. import Status
 #: joint point states, drawn in this order and colour; "closed" is a joint without strength in
 #: contact (it has no stick/slip distinction)
 STATE_COLOURS = {"stick": "#1f3a93", "slip": "#e8112d", "open": "#ff9900", "closed": "#1f3a93"}
+#: which state a node shared by two joint pairs shows when the pairs differ
+_DRAW_FIRST = {"open": 0, "slip": 1, "stick": 2, "closed": 2}
 #: the largest displacement in the opening view is drawn as at most this fraction of the radius
 OPENING_FRACTION = 0.05
 
@@ -61,19 +63,29 @@ def joint_segments(x: np.ndarray, labels: np.ndarray, tags: np.ndarray, u_at):
         centre = p.mean(axis=0)
         direction = np.linalg.svd(p - centre, full_matrices=False)[2][0]
         t = (p - centre) @ direction
-        order = np.argsort(t, kind="stable")
+        # a node once, not per pair: where the pairs on either side of a node differ, the state
+        # that matters most is drawn (open, then slip, then stick or closed)
+        rank = np.array([_DRAW_FIRST.get(v, len(_DRAW_FIRST)) for v in s])
+        t_key = np.round(t / max(np.ptp(t), 1e-300), 9)
+        order = np.lexsort((rank, t_key))
         p, s, t = p[order], s[order], t[order]
-        keep = np.r_[True, np.diff(t) > 1e-9 * max(np.ptp(t), 1e-300)]  # a node once, not per pair
+        keep = np.r_[True, np.diff(t_key[order]) > 0]
         p, s, t = p[keep], s[keep], t[keep]
         if len(p) < 2:
             continue
         gaps = np.diff(t)
-        bridged = gaps <= 3.0 * np.median(gaps)
+        half = 0.5 * np.median(gaps)
+        bridged = gaps <= 6.0 * half
         moved = p + u_at(p)
         mid = 0.5 * (moved[1:] + moved[:-1])
         for i in np.flatnonzero(bridged):
             out.setdefault(s[i], []).append([moved[i], mid[i]])
             out.setdefault(s[i + 1], []).append([mid[i], moved[i + 1]])
+        # A point with no bridged gap on either side (a short piece between an opening and a wide
+        # gap) still shows its state: half a median gap each way along the joint.
+        alone = ~(np.r_[False, bridged] | np.r_[bridged, False])
+        for i in np.flatnonzero(alone):
+            out.setdefault(s[i], []).append([moved[i] - half * direction, moved[i] + half * direction])
     return {k: np.array(v) for k, v in out.items()}
 
 

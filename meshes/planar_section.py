@@ -1,0 +1,158 @@
+"""Plane geometry of a jointed 2D section, computed here instead of by OCC booleans.
+
+A 2D section is an outline (the rectangle, and the opening's hole) cut by straight joint traces.
+tunnel_section used to hand the traces to OCC's ``fragment``, which found the crossings and made
+one surface per block: 2.0 s of the continuum bench's 8.4 s discrete tunnel (11k blocks, 316
+traces; bench/results/tunnel_profile.md). The crossings of straight segments are a closed form, so
+they are computed here (``arrange``): every trace becomes a chain of nodes, the outline's pieces are
+split where traces end on them (``split_outline``), and gmsh's built-in kernel meshes ONE surface
+with the traces' pieces embedded as mesh lines; the blocks are found on the mesh afterwards
+(builders._block_labels), as they already were.
+
+Outline pieces (``OutlinePiece``) are straight segments or circular arcs of less than pi, arcs
+counter-clockwise around their centre. Lengths in metres.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.sparse import coo_matrix
+from scipy.sparse.csgraph import connected_components
+from scipy.spatial import cKDTree
+
+
+@dataclass(frozen=True)
+class OutlinePiece:
+    """A straight piece start -> end (centre None) or a circular arc counter-clockwise around centre."""
+
+    start: tuple
+    end: tuple
+    centre: tuple | None = None
+
+    @property
+    def radius(self) -> float:
+        return math.dist(self.start, self.centre)
+
+    def span(self) -> float:
+        """Angle of the arc [rad], in (0, 2 pi)."""
+        a0, a1 = (math.atan2(p[1] - self.centre[1], p[0] - self.centre[0]) for p in (self.start, self.end))
+        return (a1 - a0) % (2.0 * math.pi)
+
+    @property
+    def length(self) -> float:
+        return math.dist(self.start, self.end) if self.centre is None else self.radius * self.span()
+
+    def position(self, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(distance of each point from the piece [m], its position along the piece in [0, length]
+        [m], clamped to the ends)."""
+        p = np.atleast_2d(np.asarray(points, float))
+        s = np.asarray(self.start, float)
+        if self.centre is None:
+            d = np.subtract(self.end, s)
+            t = np.clip((p - s) @ d / (d @ d), 0.0, 1.0)
+            return np.linalg.norm(p - (s + t[:, None] * d), axis=1), t * math.sqrt(d @ d)
+        c, r, span = np.asarray(self.centre, float), self.radius, self.span()
+        f = p - c
+        a0 = math.atan2(s[1] - c[1], s[0] - c[0])
+        phi = (np.arctan2(f[:, 1], f[:, 0]) - a0) % (2.0 * math.pi)
+        on_arc = phi <= span
+        ends = np.minimum(np.linalg.norm(p - s, axis=1), np.linalg.norm(p - np.asarray(self.end), axis=1))
+        dist = np.where(on_arc, np.abs(np.linalg.norm(f, axis=1) - r), ends)
+        return dist, r * np.where(on_arc, phi, np.where(phi - span < 2.0 * math.pi - phi, span, 0.0))
+
+
+def rectangle(width: float, height: float) -> list:
+    """The pieces of [0, width] x [0, height], counter-clockwise from the origin: bottom, right, top, left."""
+    corners = [(0.0, 0.0), (width, 0.0), (width, height), (0.0, height)]
+    return [OutlinePiece(corners[k], corners[(k + 1) % 4]) for k in range(4)]
+
+
+def outline_distance(points: np.ndarray, pieces) -> np.ndarray:
+    """Distance [m] of each point to the nearest of the outline pieces."""
+    return np.min([piece.position(points)[0] for piece in pieces], axis=0)
+
+
+def merge_points(points: np.ndarray, tol: float) -> tuple[np.ndarray, np.ndarray]:
+    """(unique points, index of each input point's unique point): points closer than tol are one."""
+    pairs = cKDTree(points).query_pairs(tol, output_type="ndarray")
+    n = len(points)
+    graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(n, n)) if len(pairs) else \
+        coo_matrix((n, n))
+    count, label = connected_components(graph, directed=False)
+    first = np.full(count, n)
+    np.minimum.at(first, label, np.arange(n))
+    return points[first], label
+
+
+def arrange(segments: np.ndarray, names, tol: float, extra_points: np.ndarray = np.empty((0, 2))):
+    """Where the straight segments ((n, 2, 2) [m]) cross or touch.
+
+    Returns (nodes (m, 2), chains, extra): chains[k] are the node indices along segment k from its
+    start to its end (its ends, and every point where another segment crosses it or ends on it);
+    extra: the node of each of extra_points (e.g. the outline's corners), merged with the segments'
+    nodes when closer than tol [m]. Collinear overlapping segments raise ValueError naming
+    names[k] of both.
+    """
+    seg = np.asarray(segments, float).reshape(-1, 2, 2)
+    n = len(seg)
+    a, d = seg[:, 0], seg[:, 1] - seg[:, 0]
+    length = np.linalg.norm(d, axis=1)
+    # a_i + t d_i = a_j + u d_j: with r = a_j - a_i, t = (r x d_j) / (d_i x d_j), u = (r x d_i) / (d_i x d_j)
+    cross = d[:, None, 0] * d[None, :, 1] - d[:, None, 1] * d[None, :, 0]
+    r = a[None, :, :] - a[:, None, :]
+    r_dj = r[..., 0] * d[None, :, 1] - r[..., 1] * d[None, :, 0]
+    r_di = r[..., 0] * d[:, None, 1] - r[..., 1] * d[:, None, 0]
+    parallel = np.abs(cross) <= 1e-12 * length[:, None] * length[None, :]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t, u = r_dj / cross, r_di / cross
+    # parameter tolerance of each segment: tol along it
+    eps_i, eps_j = (tol / length)[:, None], (tol / length)[None, :]
+    hit = ~parallel & (t >= -eps_i) & (t <= 1 + eps_i) & (u >= -eps_j) & (u <= 1 + eps_j)
+    # collinear: parallel and the other's start within tol of this one's line; overlapping if the
+    # parameter intervals share more than a point
+    collinear = parallel & (np.abs(r_di) <= tol * length[:, None])
+    np.fill_diagonal(collinear, False)
+    for i, j in zip(*np.nonzero(np.triu(collinear, 1))):
+        ends = ((seg[j] - a[i]) @ d[i]) / (length[i] ** 2)
+        if min(ends.max(), 1.0) - max(ends.min(), 0.0) > tol / length[i]:
+            raise ValueError(f"joints {names[i]!r} and {names[j]!r} overlap")
+    i, j = np.nonzero(np.triu(hit, 1))
+    params = [[0.0, 1.0] for _ in range(n)]
+    for k, pk in ((i, t[i, j]), (j, u[i, j])):
+        for s, p in zip(k, pk):
+            params[s].append(min(max(float(p), 0.0), 1.0))
+    raw = [a[k] + np.unique(params[k])[:, None] * d[k] for k in range(n)]
+    raw.append(np.asarray(extra_points, float).reshape(-1, 2))
+    nodes, label = merge_points(np.concatenate(raw), tol)
+    chains, start = [], 0
+    for k in range(n):
+        c = label[start:start + len(raw[k])]
+        start += len(raw[k])
+        chains.append(c[np.concatenate([[True], c[1:] != c[:-1]])])   # crossings closer than tol: one node
+    return nodes, chains, label[start:]
+
+
+def split_outline(pieces, nodes: np.ndarray, candidates: np.ndarray, tol: float):
+    """For each piece, the candidate nodes (indices into nodes) that lie on it within tol [m],
+    strictly between its ends, in order along it: where the piece is split."""
+    out = []
+    pts = nodes[candidates]
+    for k, piece in enumerate(pieces):
+        dist, along = piece.position(pts)
+        inside = (dist <= tol) & (along > tol) & (along < piece.length - tol)
+        order = np.argsort(along[inside], kind="stable")
+        out.append(candidates[inside][order])
+    return out
+
+
+def line_node_counts(lengths: np.ndarray, starts: np.ndarray, ends: np.ndarray, size_at, samples: int = 16):
+    """gmsh's node count of straight lines meshed with the size field size_at(points) [m]:
+    N = max(2, int(a + 1.99)), a = integral of ds / h along the line (gmsh's meshGEdgeProcessing,
+    with Mesh.MinimumLineNodes = 2), the integral by the midpoint rule on `samples` intervals (the
+    lines here are a few elements long)."""
+    s = (np.arange(samples) + 0.5) / samples
+    pts = starts[:, None, :] + s[None, :, None] * (ends - starts)[:, None, :]
+    h = size_at(pts.reshape(-1, 2)).reshape(len(lengths), samples)
+    return np.maximum(2, (np.mean(1.0 / h, axis=1) * lengths + 1.99).astype(np.int64))
