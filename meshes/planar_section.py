@@ -86,6 +86,34 @@ def merge_points(points: np.ndarray, tol: float) -> tuple[np.ndarray, np.ndarray
     return points[first], label
 
 
+#: pairs of segments examined at once by arrange (memory: a few arrays of this many doubles)
+_PAIRS_PER_BLOCK = 1 << 20
+
+
+def _crossings(a, d, length, tol: float, lo: int, hi: int):
+    """Segments lo..hi-1 against every later segment: (rows (i, j, t, u) where they cross or touch,
+    at a + t d of segment i and of segment j at u; pairs (i, j) that are collinear)."""
+    ai, di, li = a[lo:hi, None, :], d[lo:hi, None, :], length[lo:hi, None]
+    # a_i + t d_i = a_j + u d_j: with r = a_j - a_i, t = (r x d_j) / (d_i x d_j), u = (r x d_i) / (d_i x d_j)
+    cross = di[..., 0] * d[None, :, 1] - di[..., 1] * d[None, :, 0]
+    r = a[None, :, :] - ai
+    r_dj = r[..., 0] * d[None, :, 1] - r[..., 1] * d[None, :, 0]
+    r_di = r[..., 0] * di[..., 1] - r[..., 1] * di[..., 0]
+    parallel = np.abs(cross) <= 1e-12 * li * length[None, :]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t, u = r_dj / cross, r_di / cross
+    later = np.arange(len(a))[None, :] > np.arange(lo, hi)[:, None]
+    # parameter tolerance of each segment: tol along it
+    eps_i, eps_j = tol / li, (tol / length)[None, :]
+    hit = later & ~parallel & (t >= -eps_i) & (t <= 1 + eps_i) & (u >= -eps_j) & (u <= 1 + eps_j)
+    # collinear: parallel and the other's start within tol of this one's line (arrange then checks
+    # whether their parameter intervals share more than a point)
+    collinear = later & parallel & (np.abs(r_di) <= tol * li)
+    bi, j = np.nonzero(hit)
+    ci, cj = np.nonzero(collinear)
+    return (np.column_stack([bi + lo, j, t[bi, j], u[bi, j]]), np.column_stack([ci + lo, cj]))
+
+
 def arrange(segments: np.ndarray, names, tol: float, extra_points: np.ndarray = np.empty((0, 2))):
     """Where the straight segments ((n, 2, 2) [m]) cross or touch.
 
@@ -99,28 +127,20 @@ def arrange(segments: np.ndarray, names, tol: float, extra_points: np.ndarray = 
     n = len(seg)
     a, d = seg[:, 0], seg[:, 1] - seg[:, 0]
     length = np.linalg.norm(d, axis=1)
-    # a_i + t d_i = a_j + u d_j: with r = a_j - a_i, t = (r x d_j) / (d_i x d_j), u = (r x d_i) / (d_i x d_j)
-    cross = d[:, None, 0] * d[None, :, 1] - d[:, None, 1] * d[None, :, 0]
-    r = a[None, :, :] - a[:, None, :]
-    r_dj = r[..., 0] * d[None, :, 1] - r[..., 1] * d[None, :, 0]
-    r_di = r[..., 0] * d[:, None, 1] - r[..., 1] * d[:, None, 0]
-    parallel = np.abs(cross) <= 1e-12 * length[:, None] * length[None, :]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        t, u = r_dj / cross, r_di / cross
-    # parameter tolerance of each segment: tol along it
-    eps_i, eps_j = (tol / length)[:, None], (tol / length)[None, :]
-    hit = ~parallel & (t >= -eps_i) & (t <= 1 + eps_i) & (u >= -eps_j) & (u <= 1 + eps_j)
-    # collinear: parallel and the other's start within tol of this one's line; overlapping if the
-    # parameter intervals share more than a point
-    collinear = parallel & (np.abs(r_di) <= tol * length[:, None])
-    np.fill_diagonal(collinear, False)
-    for i, j in zip(*np.nonzero(np.triu(collinear, 1))):
+    hits, collinear = [], []
+    rows = max(1, _PAIRS_PER_BLOCK // max(n, 1))   # segment i against every j > i, a block of i at once
+    for lo in range(0, n, rows):
+        hit_block, collinear_block = _crossings(a, d, length, tol, lo, min(n, lo + rows))
+        hits.append(hit_block)
+        collinear.append(collinear_block)
+    for i, j in np.concatenate(collinear) if collinear else ():
         ends = ((seg[j] - a[i]) @ d[i]) / (length[i] ** 2)
         if min(ends.max(), 1.0) - max(ends.min(), 0.0) > tol / length[i]:
             raise ValueError(f"joints {names[i]!r} and {names[j]!r} overlap")
-    i, j = np.nonzero(np.triu(hit, 1))
+    hit = np.concatenate(hits) if hits else np.empty((0, 4))
+    i, j, t, u = hit[:, 0].astype(np.int64), hit[:, 1].astype(np.int64), hit[:, 2], hit[:, 3]
     params = [[0.0, 1.0] for _ in range(n)]
-    for k, pk in ((i, t[i, j]), (j, u[i, j])):
+    for k, pk in ((i, t), (j, u)):
         for s, p in zip(k, pk):
             params[s].append(min(max(float(p), 0.0), 1.0))
     raw = [a[k] + np.unique(params[k])[:, None] * d[k] for k in range(n)]
