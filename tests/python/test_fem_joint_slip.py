@@ -244,9 +244,9 @@ def test_direct_shear_under_constant_normal_load_reaches_the_coulomb_peak(sigma_
     else:
         # c = 0: ∫τ = tan φ ∫σ_n holds with open points too. Only the trailing corner (x = 0, the
         # edge the shear moment unloads, where the block's corner concentrates the contact stress)
-        # may open: at σ_n = 1 MPa it does after 1 mm of slip with Debian sid's packages of
-        # 2026-11-28 (it stayed closed by a hair with earlier ones); an open point's slip and
-        # dilation stay where they were when it opened.
+        # may open: at σ_n = 1 MPa it does after 1 mm of slip on the machine of 2026-11-28 (the same
+        # code and packages kept it closed by a hair on earlier machines: a round-off matter); an
+        # open point's slip and dilation stay where they were when it opened.
         open_x = joints["coordinates"][~closed, 0]
         assert np.all(np.abs(open_x) < 1e-12), open_x
     assert np.all(np.abs(joints["slip"][closed, 0]) > 1e-3)
