@@ -290,12 +290,17 @@ def _graded_size(gmsh, mesh_size: float) -> None:
     gmsh.option.setNumber("Mesh.MeshSizeMin", 0.0)
 
 
+def threshold_distances(size_min: float, refine_distance: float) -> tuple:
+    """(DistMin, DistMax) [m] of _distance_threshold's field: size_min up to size_min / 2 from its
+    entities, size_max from size_min / 2 + refine_distance on."""
+    return 0.5 * size_min, 0.5 * size_min + refine_distance
+
+
 def threshold_size(distance, size_min: float, size_max: float, refine_distance: float):
-    """The size [m] _distance_threshold's field gives at `distance` [m] from its entities: size_min
-    up to size_min / 2, then linear up to size_max at size_min / 2 + refine_distance (gmsh's
-    Threshold field with DistMin, DistMax as set there)."""
-    lo = 0.5 * size_min
-    w = np.clip((np.asarray(distance, float) - lo) / refine_distance, 0.0, 1.0)
+    """The size [m] _distance_threshold's field gives at `distance` [m] from its entities (gmsh's
+    Threshold field: linear between threshold_distances)."""
+    lo, hi = threshold_distances(size_min, refine_distance)
+    w = np.clip((np.asarray(distance, float) - lo) / (hi - lo), 0.0, 1.0)
     return size_min + w * (size_max - size_min)
 
 
@@ -323,8 +328,9 @@ def _distance_threshold(gmsh, dim: int, entities, size_min: float, size_max: flo
     field.setNumber(thr, "InField", dist)
     field.setNumber(thr, "SizeMin", size_min)
     field.setNumber(thr, "SizeMax", size_max)
-    field.setNumber(thr, "DistMin", 0.5 * size_min)
-    field.setNumber(thr, "DistMax", 0.5 * size_min + refine_distance)
+    dist_min, dist_max = threshold_distances(size_min, refine_distance)
+    field.setNumber(thr, "DistMin", dist_min)
+    field.setNumber(thr, "DistMax", dist_max)
     return thr
 
 

@@ -167,12 +167,17 @@ def split_outline(pieces, nodes: np.ndarray, candidates: np.ndarray, tol: float)
     return out
 
 
+def node_count(elements) -> np.ndarray:
+    """gmsh's node count of a curve whose integral of ds / h is `elements`: N = max(2, int(a + 1.99))
+    (gmsh's meshGEdgeProcessing, with Mesh.MinimumLineNodes = 2)."""
+    return np.maximum(2, (np.asarray(elements, float) + 1.99).astype(np.int64))
+
+
 def line_node_counts(lengths: np.ndarray, starts: np.ndarray, ends: np.ndarray, size_at, samples: int = 16):
-    """gmsh's node count of straight lines meshed with the size field size_at(points) [m]:
-    N = max(2, int(a + 1.99)), a = integral of ds / h along the line (gmsh's meshGEdgeProcessing,
-    with Mesh.MinimumLineNodes = 2), the integral by the midpoint rule on `samples` intervals (the
-    lines here are a few elements long)."""
+    """gmsh's node count (node_count) of straight lines meshed with the size field size_at(points)
+    [m], the integral of ds / h by the midpoint rule on `samples` intervals (the lines here are a
+    few elements long)."""
     s = (np.arange(samples) + 0.5) / samples
     pts = starts[:, None, :] + s[None, :, None] * (ends - starts)[:, None, :]
     h = size_at(pts.reshape(-1, 2)).reshape(len(lengths), samples)
-    return np.maximum(2, (np.mean(1.0 / h, axis=1) * lengths + 1.99).astype(np.int64))
+    return node_count(np.mean(1.0 / h, axis=1) * lengths)

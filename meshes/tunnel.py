@@ -35,7 +35,7 @@ import numpy as np
 from . import planar_section
 from .builders import (BOUNDARY_TAGS, _add_trace, _block_face, _distance_threshold, _generate, _gmsh_model,
                        _graded_size, _joint_names, _normalise_joints, _one_element_curves, _resolve_bounds,
-                       threshold_size)
+                       threshold_distances, threshold_size)
 from .joint_geometry import _positive, joint_trace, unit_normal
 from .jointed_mesh import JointedMesh
 from .openings import CircularOpening, HorseshoeOpening
@@ -199,19 +199,19 @@ def _build_planar(gmsh, size, opening, joints, segments, mesh_size, opening_mesh
 
     names = ("bottom", "right", "top", "left")
     splits = planar_section.split_outline(outline, nodes, tips, tol)
-    groups, loop_tags, lengths, k = {}, [], {}, 0
+    groups, loop_tags, hole_longest, k = {}, [], 0.0, 0
     for loop in loops:
         curves = []
         for j, piece in enumerate(loop):
             seq = [vertex[k + j], *splits[k + j], vertex[k + (j + 1) % len(loop)]]
             centre = None if piece.centre is None else geo.addPoint(*piece.centre, 0.0)
-            along = piece.position(nodes[seq])[1]
-            for a, b, length in zip(seq[:-1], seq[1:], np.diff(along)):
+            for a, b in zip(seq[:-1], seq[1:]):
                 c = geo.addLine(point(a), point(b)) if centre is None else \
                     geo.addCircleArc(point(a), centre, point(b))
                 curves.append(c)
                 groups.setdefault(names[j] if loop is loops[0] else OPENING, []).append(c)
-                lengths[c] = float(length)
+            if loop is loops[1]:   # the opening's longest curve, for its Distance field's sampling
+                hole_longest = max(hole_longest, float(np.diff(piece.position(nodes[seq])[1]).max()))
         loop_tags.append(geo.addCurveLoop(curves))
         k += len(loop)
     lines = np.array([geo.addLine(point(a), point(b)) for a, b in zip(starts, ends)], dtype=np.int64)
@@ -224,7 +224,7 @@ def _build_planar(gmsh, size, opening, joints, segments, mesh_size, opening_mesh
     # Sizes: the finer of the opening's and the joints' Threshold fields (as _build).
     hole = groups[OPENING]
     fields = [_distance_threshold(gmsh, 2, hole, opening_mesh_size, mesh_size, opening_refine_distance, extent,
-                                  longest=max(lengths[c] for c in hole))]
+                                  longest=hole_longest)]
     segment_length = np.linalg.norm(nodes[ends] - nodes[starts], axis=1)
     if joint_mesh_size is not None and lines.size:
         fields.append(_distance_threshold(gmsh, 2, lines.tolist(), joint_mesh_size, mesh_size, joint_refine_distance,
@@ -245,10 +245,10 @@ def _build_planar(gmsh, size, opening, joints, segments, mesh_size, opening_mesh
         # Beyond the opening's field (DistMax, _distance_threshold) the size is uniform: the distance
         # is 1-Lipschitz, so a piece whose midpoint lies half its length farther is all there.
         far = factor * (mesh_size if joint_mesh_size is None else min(mesh_size, joint_mesh_size))
-        counts = np.maximum(2, (segment_length / far + 1.99).astype(np.int64))
+        counts = planar_section.node_count(segment_length / far)
         mid = 0.5 * (nodes[starts] + nodes[ends])
         near = np.flatnonzero(planar_section.outline_distance(mid, loops[1]) - 0.5 * segment_length
-                              < 0.5 * opening_mesh_size + opening_refine_distance)
+                              < threshold_distances(opening_mesh_size, opening_refine_distance)[1])
         counts[near] = planar_section.line_node_counts(segment_length[near], nodes[starts[near]], nodes[ends[near]],
                                                        size_at)
         _set_node_counts(gmsh, lines, counts)
@@ -317,7 +317,7 @@ def _build(gmsh, size, opening, joints, segments, mesh_size, opening_mesh_size, 
         # Far from the opening (beyond the DistMax = size_min / 2 + refine_distance of its
         # Threshold field, builders._distance_threshold) the size is mesh_size, unless the joints
         # have a field of their own.
-        reach = 0.5 * opening_mesh_size + opening_refine_distance
+        reach = threshold_distances(opening_mesh_size, opening_refine_distance)[1]
         x0, y0, x1, y1 = opening.bounds()
         big = 2.0 * extent
         far = [] if len(fields) > 1 else [(-big, -big, x0 - reach, big), (x1 + reach, -big, big, big),

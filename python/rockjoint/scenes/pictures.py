@@ -74,8 +74,8 @@ def joint_segments(x: np.ndarray, labels: np.ndarray, tags: np.ndarray, u_at):
         if len(p) < 2:
             continue
         gaps = np.diff(t)
+        bridged = gaps <= 3.0 * np.median(gaps)
         half = 0.5 * np.median(gaps)
-        bridged = gaps <= 6.0 * half
         moved = p + u_at(p)
         mid = 0.5 * (moved[1:] + moved[:-1])
         for i in np.flatnonzero(bridged):
