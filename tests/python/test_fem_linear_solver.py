@@ -170,6 +170,30 @@ def test_lagged_factorisation_preconditions_gmres_on_a_changed_nonsymmetric_matr
     assert solver.setups == 1
 
 
+def test_lagged_factorisation_costs_one_triangular_solve_per_krylov_iteration():
+    """kind "lagged", non-symmetric: FGMRES applies the factorisation once per Krylov iteration and
+    never again to build its solution (right-preconditioned GMRES would: one more triangular solve
+    per linear solve, two for the one iteration of a fresh factorisation). PETSc's event log counts
+    MUMPS's triangular solves (MatSolve)."""
+    PETSc.Log.begin()
+    mat_solve = PETSc.Log.Event("MatSolve")
+    solver = LinearSolver(PETSc.COMM_SELF, "lagged", symmetric=False, rtol=1e-10)
+    assert solver.ksp.getType() == "fgmres" and solver.ksp.getPCSide() == PETSc.PC.Side.RIGHT
+    A = convection_diffusion(30, 0.5)
+    b = A.createVecLeft()
+    b.set(1.0)
+    x = b.duplicate()
+    total = 0
+    for velocity in (0.5, 0.55, 0.6):
+        convection_diffusion(30, velocity).copy(A, structure=PETSc.Mat.Structure.SAME_NONZERO_PATTERN)
+        x.set(0.0)
+        before = mat_solve.getPerfInfo()["count"]
+        its = solver.solve(A, b, x)
+        assert mat_solve.getPerfInfo()["count"] - before == its and residual(A, x, b) <= 1e-10
+        total += its
+    assert solver.setups == 1 and total > 3   # lagged: the later solves needed several iterations
+
+
 def test_direct_solver_factorises_symbolically_once_for_a_fixed_pattern():
     """PETSc reuses MUMPS's analysis (symbolic factorisation) while the nonzero pattern stays:
     new values give a numeric factorisation only (PETSc's event log counts them)."""

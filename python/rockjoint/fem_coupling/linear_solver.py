@@ -2,7 +2,7 @@
 
 "direct": MUMPS Cholesky (symmetric Jacobian) or LU with null-pivot detection (ICNTL(24) = 1)
 — for small problems (and 2D problems with a non-symmetric Jacobian up to 60k dofs).
-"lagged": the same factorisation, kept as the preconditioner of CG / GMRES over several Newton
+"lagged": the same factorisation, kept as the preconditioner of CG / FGMRES over several Newton
 iterations (rebuilt as GAMG is, below): fewer factorisations, each iteration a few triangular
 solves — for 2D problems with a non-symmetric Jacobian from 60k to 250k dofs (LAGGED_DOF_RANGE).
 "iterative": CG + GAMG with a rigid-body near-nullspace (per block through the aggregates,
@@ -85,8 +85,8 @@ DIRECT_DOF_LIMIT_NONSYMMETRIC = {2: 250_000, 3: 5_000}
 #: DIRECT_DOF_LIMIT[2] dofs up to DIRECT_DOF_LIMIT_NONSYMMETRIC[2] (range (lo, hi]), direct below.
 #: Measured on the continuum bench's discrete tunnel (90k dofs; bench/bench_tunnel_profile.py →
 #: bench/results/tunnel_profile.md, "Linear solver of the discrete tunnel"): 8 factorisations and
-#: 60 triangular solves instead of 18 factorisations (0.2 s each against 0.02 s for a triangular
-#: solve: the split mesh's LU has 13.8M entries), the same crown and sidewall. Below 60k dofs the
+#: 38 triangular solves instead of 18 factorisations (0.25 s each against 0.03 s for a triangular
+#: solve: the split mesh's LU has 13.5M entries), the same crown and sidewall. Below 60k dofs the
 #: direct solver's exact Newton steps are kept: lagged is faster there too, by less than 0.3 s an
 #: analysis (the same tunnel at s = 1 and 0.5 m, 11k and 26k dofs), but its inexact steps lose
 #: knife-edge slipping cases that the exact ones get through (test_fem_joint_slip's direct shear
@@ -160,7 +160,12 @@ class LinearSolver:
                 # current one (lagged as GAMG is, see the module docstring): one numeric
                 # factorisation serves several Newton iterations, each then costing a few
                 # triangular solves. Right preconditioning and the true residual's norm, as below.
-                self.ksp.setType("cg" if symmetric else "gmres")
+                # Flexible GMRES, not GMRES: right-preconditioned GMRES builds its solution as
+                # M⁻¹(V y), one more triangular solve per linear solve (2 for the 1 iteration of a
+                # fresh factorisation); FGMRES keeps the preconditioned vectors and needs none
+                # (the factorisation is a fixed operator, so both give the same iterates). On the
+                # discrete tunnel 20 of its 61 triangular solves (bench/results/tunnel_profile.md).
+                self.ksp.setType("cg" if symmetric else "fgmres")
                 self.ksp.setTolerances(rtol=rtol, atol=1e-50, max_it=LAGGED_MAX_ITERATIONS)
                 if not symmetric:
                     self.ksp.setPCSide(PETSc.PC.Side.RIGHT)

@@ -69,7 +69,7 @@ class JointedRockModel:
     quadrature: "nodal" (default; smooth tractions for stiff joints) or "gauss".
     linear_solver: "auto" (MUMPS up to 60k dofs in 2D and 5k in 3D, 250k in 2D for a
         non-symmetric Jacobian, else CG/GMRES + GAMG; see linear_solver.DIRECT_DOF_LIMIT),
-        "direct", "lagged" (a factorisation reused as GMRES's preconditioner) or "iterative".
+        "direct", "lagged" (a factorisation reused as FGMRES's preconditioner) or "iterative".
     newton: NewtonOptions (tolerances, closure limit, load-step control, verbosity).
     petsc_options: {option: value} for the linear solver's KSP/PC, without the leading dash
         (DOLFINx convention, e.g. {"ksp_type": "gmres", "pc_type": "hypre"}); applied after the
