@@ -4,7 +4,7 @@ and for scenes of our own that no default was tuned on, the rung the planner pic
 accuracy ladder or the exact contact curve of the walls), its predicted total cost against the
 measured one, and its predicted error against the error measured on a finer reference.
 
-Run:  PYTHONPATH=python:build/python /usr/bin/python3 bench/bench_plan_check.py
+Run:  bash scripts/run.sh python3 bench/bench_plan_check.py
 Writes bench/results/plan_check.md and plan_check.json.
 
 Measured cost: the wall time of what the rung's cost counts (scenes.joint_laws.law_of_walls on the
@@ -119,10 +119,17 @@ def check(name, scene, repeat):
                                           rockjoint.composite_modulus(young, poisson), loads).closure
         closure = np.array([law.closure_at_stress(s) for s in loads])
         error = float(np.mean(np.abs(closure[assessed] / reference[assessed] - 1.0)))
+        # the same metric on the closure from the seating load (the lowest assessed load): what a
+        # joint seated by its in-situ stress responds with; informative, not the planner's metric
+        seat = int(np.argmax(assessed))
+        later = assessed.copy()
+        later[seat] = False
+        seated = float(np.mean(np.abs((closure[later] - closure[seat]) / (reference[later] - reference[seat]) - 1.0)))
         met = rung.error <= d["error_budget"]
         rows.append(dict(scene=name, joint_set=set_name, rung=key, points=n, spacing=h,
                          budget=d["error_budget"], predicted_seconds=predicted_seconds,
                          measured_seconds=seconds, predicted_error=rung.error, measured_error=error,
+                         measured_seated_error=seated,
                          plan_meets_budget=bool(met),
                          time_holds=bool(0.5 <= seconds / predicted_seconds <= 2.0),
                          error_holds=bool(error <= (d["error_budget"] if met else rung.error))))
@@ -154,22 +161,26 @@ def write(path, rows):
     lines = ["# Plan check: the planner's predicted cost and error of the joint's law against measured", "",
              f"Produced by `bench/bench_plan_check.py` on {when}, {platform.machine()} (a machine shared "
              "with other jobs: wall times carry their contention).", "",
-             "Reproduce: `PYTHONPATH=python:build/python /usr/bin/python3 bench/bench_plan_check.py`", "",
+             "Reproduce: `bash scripts/run.sh python3 bench/bench_plan_check.py`", "",
              "Predicted: scenes/ladder.py from bench/results/accuracy_ladder.json. Measured: the rung's "
              "work on the scan (best of 3), and its closure error against the exact contact of the same "
              "walls at half the scan's spacing (mean over the loads >= 1/30 of the top). Holds: time "
              "within 2x, and the error within the budget where the plan says it meets it, else within "
-             "the plan's predicted error (the plan says the budget is missed).", "",
+             "the plan's predicted error (the plan says the budget is missed). *From seating*: the same "
+             "error measure on the closure counted from the lowest assessed load, Δ(σ) - Δ(σ_seat) (not the "
+             "planner's measure; shown because the absolute closure's error is mostly the first contact's "
+             "shift).", "",
              "| scene | rung | scan | budget | predicted cost [s] | measured cost [s] | ratio | "
-             "predicted error | plan meets budget | measured error | holds |",
-             "|---|---|---|---:|---:|---:|---:|---:|---|---:|---|"]
+             "predicted error | plan meets budget | measured error | holds | measured error from seating |",
+             "|---|---|---|---:|---:|---:|---:|---:|---|---:|---|---:|"]
     for r in rows:
         holds = "yes" if r["time_holds"] and r["error_holds"] else (
             "time: no" if not r["time_holds"] else "error: no") + ("" if r["time_holds"] or r["error_holds"] else ", error: no")
         lines.append(f"| {r['scene']} | `{r['rung']}` | {r['points']}² at {r['spacing'] * 1e3:g} mm | "
                      f"{r['budget']:.0%} | {r['predicted_seconds']:.3g} | {r['measured_seconds']:.3g} | "
                      f"{r['measured_seconds'] / r['predicted_seconds']:.2f} | {r['predicted_error']:.1%} | "
-                     f"{'yes' if r['plan_meets_budget'] else 'no'} | {r['measured_error']:.1%} | {holds} |")
+                     f"{'yes' if r['plan_meets_budget'] else 'no'} | {r['measured_error']:.1%} | {holds} | "
+                     f"{r['measured_seated_error']:.1%} |")
     text = "\n".join(lines) + "\n"
     with open(path, "w", encoding="utf-8") as fh:
         fh.write(text)

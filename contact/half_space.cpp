@@ -4,7 +4,10 @@
 
 #include <fftw3.h>
 
+#include <array>
 #include <cstdlib>
+#include <mutex>
+#include <map>
 #include <thread>
 
 #include <algorithm>
@@ -34,6 +37,14 @@ double love_primitive(double x, double y)
 }
 } // namespace
 
+namespace detail
+{
+bool measure_plans(std::size_t points, std::size_t plans_before)
+{
+  return plans_before >= measure_after_plans || points >= measure_from_points;
+}
+} // namespace detail
+
 namespace
 {
 /// Worker threads for large transforms: every core of the machine (ROCKJOINT_FFT_THREADS
@@ -49,6 +60,29 @@ int worker_threads(std::size_t size)
     return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
   }();
   return size >= 512 * 512 ? available : 1;
+}
+
+/// FFTW's planning flag for the transforms of an m0 × m1 grid with `rows` data rows; counts the
+/// plans of each size made in this process (a mutex guards the count).
+unsigned planning_flag(std::size_t rows, std::size_t m0, std::size_t m1)
+{
+  static std::mutex mutex;
+  static std::map<std::array<std::size_t, 3>, std::size_t> plans; // size -> plans made so far
+  const std::lock_guard<std::mutex> lock(mutex);
+  const std::size_t before = plans[{rows, m0, m1}]++;
+  // ROCKJOINT_FFT_PLANNING=measure|estimate overrides the rule (bench/bench_fft_planning.py)
+  static const std::string forced = []
+  {
+    const char* env = std::getenv("ROCKJOINT_FFT_PLANNING");
+    const std::string value = env ? env : "auto";
+    if (value != "auto" && value != "measure" && value != "estimate")
+      throw std::invalid_argument("ROCKJOINT_FFT_PLANNING must be auto, measure or estimate, got '"
+                                  + value + "'");
+    return value;
+  }();
+  if (forced != "auto")
+    return forced == "measure" ? FFTW_MEASURE : FFTW_ESTIMATE;
+  return detail::measure_plans(m0 * m1, before) ? FFTW_MEASURE : FFTW_ESTIMATE;
 }
 
 /// Calls work(begin, end, worker) on `workers` contiguous slices of [0, count), the first on
@@ -105,19 +139,20 @@ struct HalfSpace::Fft
       throw std::bad_alloc();
     const int n0 = static_cast<int>(m0), n1 = static_cast<int>(m1);
     const int nh = static_cast<int>(half), nrows = static_cast<int>(rows);
+    const unsigned flag = planning_flag(rows, m0, m1);
     bool planned = true;
     if (rows == m0)
     {
-      forward = fftw_plan_dft_r2c_2d(n0, n1, real, spectrum, FFTW_MEASURE);
-      backward = fftw_plan_dft_c2r_2d(n0, n1, spectrum, real, FFTW_MEASURE);
+      forward = fftw_plan_dft_r2c_2d(n0, n1, real, spectrum, flag);
+      backward = fftw_plan_dft_c2r_2d(n0, n1, spectrum, real, flag);
       planned = forward && backward;
     }
     else
     {
       rows_forward = fftw_plan_many_dft_r2c(1, &n1, nrows, real, nullptr, 1, n1, spectrum,
-                                            nullptr, 1, nh, FFTW_MEASURE);
+                                            nullptr, 1, nh, flag);
       rows_backward = fftw_plan_many_dft_c2r(1, &n1, nrows, spectrum, nullptr, 1, nh, real,
-                                             nullptr, 1, n1, FFTW_MEASURE);
+                                             nullptr, 1, n1, flag);
       fftw_plan_with_nthreads(1); // one block per worker
       for (int t = 0; t < workers; ++t)
         buffers.push_back(fftw_alloc_complex(column_block * m0));
@@ -127,7 +162,7 @@ struct HalfSpace::Fft
       {
         const int howmany = static_cast<int>(count);
         return fftw_plan_many_dft(1, &n0, howmany, buffers[0], nullptr, 1, n0, buffers[0],
-                                  nullptr, 1, n0, sign, FFTW_MEASURE);
+                                  nullptr, 1, n0, sign, flag);
       };
       block_forward = plan_columns(column_block, FFTW_FORWARD);
       block_backward = plan_columns(column_block, FFTW_BACKWARD);

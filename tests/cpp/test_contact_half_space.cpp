@@ -94,4 +94,42 @@ TEST(PeriodicConvolution, SinusoidalPressureGivesTheExactDisplacement)
   }
 }
 
+/// A size's first transforms are planned by FFTW_ESTIMATE, those planned after
+/// measure_after_plans plans of the size (and every transform of 1024² points up) by
+/// FFTW_MEASURE (contact/half_space.hpp, detail::measure_plans): the two plans must give the same
+/// operator. A size no other test uses, so the first object here is the first of its size.
+TEST(HalfSpacePlans, EstimatedAndMeasuredPlansGiveTheSameOperator)
+{
+  using rockjoint::contact::detail::measure_after_plans;
+  using rockjoint::contact::detail::measure_from_points;
+  using rockjoint::contact::detail::measure_plans;
+  EXPECT_FALSE(measure_plans(256 * 256, 0));
+  EXPECT_FALSE(measure_plans(256 * 256, measure_after_plans - 1));
+  EXPECT_TRUE(measure_plans(256 * 256, measure_after_plans));
+  EXPECT_TRUE(measure_plans(measure_from_points, 0));
+  for (const auto kernel : {Kernel::periodic, Kernel::non_periodic})
+  {
+    const std::size_t rows = 94, cols = 70;
+    HalfSpace estimated(rows, cols, 1e-4, 1.2e-4, modulus, kernel);
+    for (std::size_t k = 1; k < measure_after_plans; ++k)
+      HalfSpace(rows, cols, 1e-4, 1.2e-4, modulus, kernel);
+    HalfSpace measured(rows, cols, 1e-4, 1.2e-4, modulus, kernel);
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> value(0.0, 5e7);
+    std::vector<double> p(rows * cols), u(p.size()), v(p.size());
+    for (double& x : p)
+      x = value(rng);
+    estimated.displacement(p, u);
+    measured.displacement(p, v);
+    double worst = 0.0, scale = 0.0;
+    for (std::size_t k = 0; k < p.size(); ++k)
+    {
+      worst = std::max(worst, std::abs(u[k] - v[k]));
+      scale = std::max(scale, std::abs(u[k]));
+    }
+    EXPECT_GT(scale, 0.0);
+    EXPECT_LE(worst, 1e-12 * scale) << (kernel == Kernel::periodic ? "periodic" : "non-periodic");
+  }
+}
+
 } // namespace

@@ -17,6 +17,7 @@ import math
 import os
 import re
 
+import numpy as np
 import pytest
 
 from rockjoint.scenes import SceneError, load_scene, make_plan, planner
@@ -80,20 +81,58 @@ def test_ladder_json_says_what_the_report_says():
     text = open(LADDER_FILE, encoding="utf-8").read()
     section = text[text.index("## Exact contact as a rung"):]
     for family in FAMILIES:
-        row = re.search(r"^\| " + family + r" \| ([\d.]+) % \| ([\d.]+) % \| ([\d.]+) % \|$", section, re.M)
+        row = re.search(r"^\| " + family + r" \| (\d+) \(([\d, ]+)\) \| ([\d., ]+) % \| ([\d.]+) % \| "
+                        r"([\d.]+) % \| ([\d.]+) % \| ([\d.]+) % \| ([\d.]+) % \|$", section, re.M)
         e = data["bem"]["families"][family]
-        assert [float(x) for x in row.groups()] == [round(100 * e["resolution_error_mean"], 1),
-                                                    round(100 * e["resolution_error_max"], 1),
-                                                    round(100 * e["table_error"], 2)], family
-    # the planner's rungs are the JSON's rows: a law's error its error against the scan's BEM plus
-    # the BEM's resolution error, the exact contact's that resolution error plus its table's
+        count, seeds, per_joint, *values = row.groups()
+        assert int(count) == len(e["resolution_errors"]) and seeds.split(", ") == list(e["resolution_errors"])
+        assert [float(x) for x in per_joint.split(", ")] == [round(100 * v, 1) for v in e["resolution_errors"].values()]
+        per = list(e["resolution_errors"].values())
+        assert [float(x) for x in values] == [round(100 * e["resolution_error_mean"], 1), round(100 * max(per), 1),
+                                              round(100 * prediction_limit(per), 1),
+                                              round(100 * e["resolution_error_max"], 1),
+                                              round(100 * e["table_error"], 2)], family
+        assert e["resolution_error_mean"] == pytest.approx(np.mean(per), rel=1e-12)
+        assert max(per) <= e["resolution_error_max"]
+    # the planner's rungs are the JSON's rows: a law's error the upper prediction limit of its
+    # per-joint errors against the scan's BEM plus that of the BEM's resolution errors, the exact
+    # contact's that resolution limit plus its table's
     rungs = ladder.by_key()
     exact = data["bem"]["families"]
     for key, row in ladder_rows().items():
-        assert rungs[key].errors == {f: data["laws"][row]["families"][f]["closure_error_mean"]
-                                     + exact[f]["resolution_error_mean"] for f in FAMILIES}
-    assert rungs[ladder.EXACT_CONTACT].errors == {
-        f: exact[f]["resolution_error_mean"] + exact[f]["table_error"] for f in FAMILIES}
+        family = data["laws"][row]["families"]
+        assert rungs[key].errors == pytest.approx(
+            {f: prediction_limit(family[f]["closure_errors"]) + prediction_limit(
+                list(exact[f]["resolution_errors"].values())) for f in FAMILIES}, rel=1e-12)
+        assert all(family[f]["closure_error_mean"] == pytest.approx(np.mean(family[f]["closure_errors"]), rel=1e-12)
+                   for f in FAMILIES)
+    assert rungs[ladder.EXACT_CONTACT].errors == pytest.approx({
+        f: prediction_limit(list(exact[f]["resolution_errors"].values())) + exact[f]["table_error"]
+        for f in FAMILIES}, rel=1e-12)
+
+
+def prediction_limit(samples, t=None):
+    """The 95 % upper prediction limit for one more sample, written here on its own: mean +
+    t_0.95,n-1 s sqrt(1 + 1/n), Student's quantile from scipy (checked against a printed table in
+    test_upper_prediction_limit)."""
+    from scipy import stats
+    x = np.asarray(samples, dtype=float)
+    n = x.size
+    return x.mean() + stats.t.ppf(0.95, n - 1) * x.std(ddof=1) * math.sqrt(1 + 1 / n)
+
+
+def test_upper_prediction_limit():
+    """mean + t s sqrt(1 + 1/n) with Student's t from a printed table (t_0.95 = 2.132 for 4
+    degrees of freedom, 1.833 for 9): 1..5 → 3 + 2.132 · 1.5811 · 1.0954; a constant sample → its
+    value; bad samples named."""
+    assert ladder.upper_prediction_limit([1, 2, 3, 4, 5]) == pytest.approx(3 + 2.132 * math.sqrt(2.5) * math.sqrt(1.2),
+                                                                          rel=2e-4)
+    ten = np.arange(10.0)
+    assert ladder.upper_prediction_limit(ten) == pytest.approx(4.5 + 1.833 * ten.std(ddof=1) * math.sqrt(1.1), rel=2e-4)
+    assert ladder.upper_prediction_limit([0.2, 0.2, 0.2]) == pytest.approx(0.2, rel=1e-12)
+    for bad in ([0.1], [0.1, float("nan")], []):
+        with pytest.raises(ValueError, match="at least 2 finite samples"):
+            ladder.upper_prediction_limit(bad)
 
 
 def rung_seconds(data, row, points, tolerance):
@@ -124,10 +163,11 @@ def test_rung_meets_the_budget_at_least_total_cost(tmp_path, budget):
     error, seconds = {}, {}
     exact = data["bem"]["families"]
     for key, row in ladder_rows().items():
-        error[key] = max(data["laws"][row]["families"][f]["closure_error_mean"] + exact[f]["resolution_error_mean"]
-                         for f in FAMILIES)
+        error[key] = max(prediction_limit(data["laws"][row]["families"][f]["closure_errors"])
+                         + prediction_limit(list(exact[f]["resolution_errors"].values())) for f in FAMILIES)
         seconds[key] = rung_seconds(data, row, points, tol)
-    error[ladder.EXACT_CONTACT] = max(exact[f]["resolution_error_mean"] + exact[f]["table_error"] for f in FAMILIES)
+    error[ladder.EXACT_CONTACT] = max(prediction_limit(list(exact[f]["resolution_errors"].values()))
+                                      + exact[f]["table_error"] for f in FAMILIES)
     seconds[ladder.EXACT_CONTACT] = rung_seconds(data, None, points, tol)
     key = plan.laws["joint"]
     choice = next(c for c in plan.choices if c.topic == "law of joint")

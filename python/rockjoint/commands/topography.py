@@ -238,7 +238,8 @@ def _analyse(args) -> int:
         print(f"\nrecommended: {RECOMMENDATION}")
         rung = ladder.by_key().get(RECOMMENDED)
         if rung is not None:   # the bench's measured errors (one source: the ladder's JSON)
-            print("  mean closure error against the walls' exact contact at half the scan's spacing "
+            print(f"  closure error against the walls' exact contact at half the scan's spacing, "
+                  f"{ladder.PREDICTION_LEVEL:.0%} upper prediction limit for a joint of the bench's types "
                   "(the law's own and the scan's resolution error): " + ", ".join(
                 f"{family} {100 * e:.1f} %" for family, e in sorted(rung.errors.items())))
         print(f"\nclosure Δ [mm] (laws seated at the measured first contact)"

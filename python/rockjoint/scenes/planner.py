@@ -218,7 +218,8 @@ def make_plan(scene, reduced: bool = False) -> Plan:
             choices.append(Choice(
                 f"law of {s['name']}", f"{key} ({r.label.replace('**', '')})", why=why,
                 cost=f"~{seconds:.2g} s on the {points}² scan: {what} (bench/results/accuracy_ladder.json)",
-                error=(f"closure vs the walls' exact contact at half the scan's spacing, on the bench's joints "
+                error=(f"closure vs the walls' exact contact at half the scan's spacing, "
+                       f"{ladder.PREDICTION_LEVEL:.0%} upper prediction limit for a joint from the bench's joints "
                        f"scanned at {at * 1e3:g} mm: {errors} ("
                        + ("the BEM's resolution error + its table's" if key == ladder.EXACT_CONTACT else
                           "the law vs the scan's BEM + the BEM's resolution error")
