@@ -19,6 +19,7 @@ import re
 
 import numpy as np
 import pytest
+from scipy import stats
 
 from rockjoint.scenes import SceneError, load_scene, make_plan, planner
 from rockjoint.scenes import ladder, stresses
@@ -115,7 +116,6 @@ def prediction_limit(samples, t=None):
     """The 95 % upper prediction limit for one more sample, written here on its own: mean +
     t_0.95,n-1 s sqrt(1 + 1/n), Student's quantile from scipy (checked against a printed table in
     test_upper_prediction_limit)."""
-    from scipy import stats
     x = np.asarray(samples, dtype=float)
     n = x.size
     return x.mean() + stats.t.ppf(0.95, n - 1) * x.std(ddof=1) * math.sqrt(1 + 1 / n)

@@ -32,6 +32,7 @@ import os
 from typing import Optional
 
 import numpy as np
+from scipy import stats
 
 import rockjoint
 
@@ -73,7 +74,6 @@ def upper_prediction_limit(samples, level: float = PREDICTION_LEVEL) -> float:
     """Upper limit below which one more draw of the population the samples come from falls with
     probability `level`: mean + t_level,n-1 s sqrt(1 + 1/n) (normal theory; s the sample standard
     deviation, t Student's quantile). Needs at least 2 finite samples."""
-    from scipy import stats
     x = np.asarray(samples, dtype=float)
     if x.ndim != 1 or x.size < 2 or not np.all(np.isfinite(x)):
         raise ValueError(f"upper_prediction_limit: needs at least 2 finite samples, got {x.tolist()}")
