@@ -14,7 +14,8 @@ The second run reads the meshes and partitions the first one made (--mesh-dir): 
 solve the same systems, and only DOLFINx, PETSc and their build differ.
 
 This script only reads the two reports' ratio tables and writes them side by side (no number of
-its own); the full tables, settings and residual histories stay in the two reports.
+its own); the full tables, settings and residual histories stay in the two reports. The 1M-dof
+run (bench/results/fem_1m.md, its command inside) is copied below them the same way.
 """
 from __future__ import annotations
 
@@ -78,6 +79,21 @@ def main() -> None:
         f"{case} {ranks} rank(s) {a:.2f} vs {b:.2f}" for (case, ranks), a, b in zip(keys, cpu["0.11"], cpu["0.9"]))
         + (". No case is worse on 0.11." if not worse else
            ". Worse on 0.11: " + ", ".join(f"{c} {r} rank(s)" for (c, r), _, _ in worse) + "."), ""]
+    big = os.path.join(RESULTS, "fem_1m.md")
+    if os.path.exists(big):
+        title, rows = ratio_rows(big)
+        out += [f"## At 1 M dofs: {title}", "",
+                "From [`fem_1m.md`](fem_1m.md) (its command, definitions and residual histories there; "
+                "target <= 1.3; where the time goes and what would reach the target: docs/fem.md, "
+                "\"At 1M dofs\").", "",
+                "| case | ranks | dofs (jointed / intact) | runs | intact LS [s] | jointed [s] | ratio wall | "
+                "ratio CPU | Newton its | Krylov its per Newton it (intact) |",
+                "|---|---:|---|---:|---:|---:|---|---:|---:|---|"]
+        for (case, ranks), c in sorted(rows.items()):
+            out.append(f"| {case} | {ranks} | {c['dofs (jointed / intact)']} | {c['runs']} | {c['intact LS [s]']} | "
+                       f"{c['jointed [s]']} | {c['ratio (wall)']} | {c['ratio (CPU)']} | {c['Newton its']} | "
+                       f"{c['Krylov its per Newton it (intact)']} |")
+        out.append("")
     with open(args.output, "w", encoding="utf-8") as f:
         f.write("\n".join(out))
     print("\n".join(out))
