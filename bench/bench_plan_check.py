@@ -52,6 +52,12 @@ OWN = {
     "own: granite-like, law forced: GW on summits": dict(
         hurst=0.8, rms="1 mm", points=180, spacing="0.5 mm", matedness="2.5 mm", seed=4, young="50 GPa",
         budget="30 %", law="greenwood_williamson_empirical"),
+    # budgets the planner's limits meet (the exact contact, then a law): its "meets the budget"
+    # branch, checked against the finer walls like the rest
+    "own: rough, poorly mated, 40 %": dict(hurst=0.75, rms="1.2 mm", points=220, spacing="0.5 mm",
+                                          matedness="2 mm", seed=13, young="45 GPa", budget="40 %"),
+    "own: sandstone-like, 60 %": dict(hurst=0.7, rms="0.7 mm", points=200, spacing="0.5 mm",
+                                     matedness="5 mm", seed=17, young="20 GPa", budget="60 %"),
 }
 
 
