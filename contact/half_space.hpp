@@ -88,11 +88,11 @@ inline constexpr std::size_t measure_after_plans = 8;
 /// FFTW's planning effort for a transform of `points` points, the size planned `plans_before`
 /// times before in this process: FFTW_MEASURE (true) times candidate algorithms, FFTW_ESTIMATE
 /// (false) plans at once from heuristics. Below 1024² points MEASURE's planning costs what its
-/// faster transforms save over 7 to 44 closure curves of 15 loads (128² to 512²), and a scene run
-/// solves one curve per size: a fresh process's 256² curve took 0.15 s estimated against 0.39 s
+/// faster transforms save over 6 to 58 closure curves of 15 loads (128²: never), and a scene run
+/// solves one curve per size: a fresh process's 256² curve took 0.15 s estimated against 0.43 s
 /// measured. So a size is estimated until it has been planned `measure_after_plans` times, then
 /// measured (a rent-or-buy rule: never more than about twice the cost of the better choice made
-/// in hindsight). From 1024² points MEASURE pays at once (ESTIMATE's transforms 2-13 % slower
+/// in hindsight). From 1024² points MEASURE pays at once (ESTIMATE's transforms 17-41 % slower
 /// there). bench/bench_fft_planning.py → bench/results/fft_planning.md; docs/contact.md, "Cost".
 bool measure_plans(std::size_t points, std::size_t plans_before);
 } // namespace detail
