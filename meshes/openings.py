@@ -12,6 +12,34 @@ from .joint_geometry import _positive
 from .planar_section import OutlinePiece
 
 
+def _line_circle(a, d, centre, radius) -> tuple | None:
+    """(t1, t2), t1 < t2: where the line a + t d crosses the circle, or None if it misses or
+    touches it. |a - c + t d|² = r²: d·d t² + 2 f·d t + f·f - r² = 0 with f = a - c."""
+    f = np.subtract(a, centre)
+    qa, qb, qc = d @ d, f @ d, f @ f - radius ** 2
+    disc = qb * qb - qa * qc
+    if not disc > 0.0:
+        return None
+    root = math.sqrt(disc)
+    return ((-qb - root) / qa, (-qb + root) / qa)
+
+
+def _outline_points(pieces, count: int) -> np.ndarray:
+    """About `count` points [m] along the closed chain of outline pieces, equally spaced on each
+    piece, from the first piece's start (each piece's end is the next one's start)."""
+    step = sum(p.length for p in pieces) / count
+    parts = []
+    for p in pieces:
+        s = np.linspace(0.0, 1.0, max(2, int(p.length / step)), endpoint=False)
+        if p.centre is None:
+            parts.append(np.asarray(p.start) + s[:, None] * np.subtract(p.end, p.start))
+        else:
+            a0 = math.atan2(p.start[1] - p.centre[1], p.start[0] - p.centre[0])
+            phi = a0 + s * p.span()
+            parts.append(np.asarray(p.centre) + p.radius * np.stack([np.cos(phi), np.sin(phi)], axis=1))
+    return np.concatenate(parts)
+
+
 def _point(value, label: str) -> np.ndarray:
     p = np.asarray(value, dtype=float)
     if p.shape != (2,) or not np.all(np.isfinite(p)):
@@ -44,9 +72,8 @@ class CircularOpening:
         return (x - a, y - a, x + a, y + a)
 
     def outline(self, count: int = 720) -> np.ndarray:
-        """(count, 2) points [m] along the outline, counter-clockwise from the right springline."""
-        t = np.linspace(0.0, 2.0 * math.pi, count, endpoint=False)
-        return np.asarray(self.centre) + self.radius * np.stack([np.cos(t), np.sin(t)], axis=1)
+        """(about count, 2) points [m] along the outline, counter-clockwise from the right springline."""
+        return _outline_points(self.pieces(), count)
 
     def pieces(self) -> list:
         """The outline as four quarter arcs, counter-clockwise from the right springline."""
@@ -61,14 +88,7 @@ class CircularOpening:
     def crossing(self, a, b) -> tuple | None:
         """(t_in, t_out): where the line a + t (b - a) enters and leaves the disk, or None if it
         misses it or only touches it (the disk is convex: one interval)."""
-        d, f = np.subtract(b, a), np.subtract(a, self.centre)
-        # |f + t d|² = r²: d·d t² + 2 f·d t + f·f - r² = 0
-        qa, qb, qc = d @ d, f @ d, f @ f - self.radius ** 2
-        disc = qb * qb - qa * qc
-        if not disc > 0.0:
-            return None
-        root = math.sqrt(disc)
-        return ((-qb - root) / qa, (-qb + root) / qa)
+        return _line_circle(a, np.subtract(b, a), self.centre, self.radius)
 
 
 @dataclass(frozen=True)
@@ -121,22 +141,7 @@ class HorseshoeOpening:
 
     def outline(self, count: int = 720) -> np.ndarray:
         """(about count, 2) points [m] along the outline, counter-clockwise from the right springline."""
-        (x, y), a, hw = self.centre, self.radius, self.wall_height
-        step = self.perimeter / count
-        crown = np.linspace(0.0, math.pi, max(2, int(math.pi * a / step)), endpoint=False)
-        parts = [np.stack([x + a * np.cos(crown), y + a * np.sin(crown)], axis=1)]
-        wall = np.linspace(0.0, hw, max(2, int(hw / step)), endpoint=False)
-        parts.append(np.stack([np.full(wall.size, x - a), y - wall], axis=1))
-        if self.invert_depth > 0.0:
-            R, th = self._invert_arc()
-            phi = np.linspace(-math.pi / 2 - th, -math.pi / 2 + th, max(2, int(2 * R * th / step)), endpoint=False)
-            yc = y - hw - self.invert_depth + R
-            parts.append(np.stack([x + R * np.cos(phi), yc + R * np.sin(phi)], axis=1))
-        else:
-            foot = np.linspace(-a, a, max(2, int(2 * a / step)), endpoint=False)
-            parts.append(np.stack([x + foot, np.full(foot.size, y - hw)], axis=1))
-        parts.append(np.stack([np.full(wall.size, x + a), y - hw + wall], axis=1))
-        return np.concatenate(parts)
+        return _outline_points(self.pieces(), count)
 
     def crossing(self, a, b) -> tuple | None:
         """(t_in, t_out): where the line a + t (b - a) enters and leaves the horseshoe, or None if
@@ -148,13 +153,7 @@ class HorseshoeOpening:
         hits = []
 
         def arc(centre, radius, keep):  # circle crossings whose point passes `keep`
-            f = a - centre
-            qa, qb, qc = d @ d, f @ d, f @ f - radius ** 2
-            disc = qb * qb - qa * qc
-            if disc > 0.0:
-                for t in ((-qb - math.sqrt(disc)) / qa, (-qb + math.sqrt(disc)) / qa):
-                    if keep(a + t * d):
-                        hits.append(t)
+            hits.extend(t for t in (_line_circle(a, d, centre, radius) or ()) if keep(a + t * d))
 
         def segment(axis, value, lo, hi):  # the line x (axis 0) or y (axis 1) = value, other in [lo, hi]
             if abs(d[axis]) > 0.0:

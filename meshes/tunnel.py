@@ -221,19 +221,10 @@ def _build_planar(gmsh, size, opening, joints, segments, mesh_size, opening_mesh
         gmsh.model.mesh.embed(1, lines.tolist(), 2, surface)
     pieces = [lines[line_owner == i].tolist() for i in range(len(joints))]
 
-    # Sizes: the finer of the opening's and the joints' Threshold fields (as _build).
-    hole = groups[OPENING]
-    fields = [_distance_threshold(gmsh, 2, hole, opening_mesh_size, mesh_size, opening_refine_distance, extent,
-                                  longest=hole_longest)]
     segment_length = np.linalg.norm(nodes[ends] - nodes[starts], axis=1)
-    if joint_mesh_size is not None and lines.size:
-        fields.append(_distance_threshold(gmsh, 2, lines.tolist(), joint_mesh_size, mesh_size, joint_refine_distance,
-                                          extent, longest=float(segment_length.max())))
-    field = gmsh.model.mesh.field
-    finest = field.add("Min")
-    field.setNumbers(finest, "FieldsList", fields)
-    field.setAsBackgroundMesh(finest)
-    _graded_size(gmsh, mesh_size)
+    _size_fields(gmsh, 2, groups[OPENING], lines.tolist(), mesh_size, opening_mesh_size, opening_refine_distance,
+                 joint_mesh_size, joint_refine_distance, extent,
+                 longest=(hole_longest, float(segment_length.max()) if lines.size else None))
     factor = gmsh.option.getNumber("Mesh.MeshSizeFactor")
 
     def size_at(p):
@@ -258,6 +249,26 @@ def _build_planar(gmsh, size, opening, joints, segments, mesh_size, opening_mesh
                          blocks_are_volumes=False)
     return _generate(gmsh, 2, pieces, groups, SECTION_BOUNDARY_TAGS, _joint_names(joints), dangling=_DANGLING,
                      blocks_are_volumes=False)
+
+
+def _size_fields(gmsh, dim, opening_entities, joint_entities, mesh_size, opening_mesh_size,
+                 opening_refine_distance, joint_mesh_size, joint_refine_distance, extent,
+                 longest=(None, None)) -> bool:
+    """The mesh size: the finer of the opening's and (joint_mesh_size given) the joints' Threshold
+    fields (builders._distance_threshold; longest: their longest curves [m] if known), graded
+    (builders._graded_size). Returns whether the joints have a field of their own."""
+    fields = [_distance_threshold(gmsh, dim, opening_entities, opening_mesh_size, mesh_size, opening_refine_distance,
+                                  extent, longest=longest[0])]
+    joint_field = joint_mesh_size is not None and len(joint_entities) > 0
+    if joint_field:
+        fields.append(_distance_threshold(gmsh, dim, joint_entities, joint_mesh_size, mesh_size, joint_refine_distance,
+                                          extent, longest=longest[1]))
+    field = gmsh.model.mesh.field
+    finest = field.add("Min")
+    field.setNumbers(finest, "FieldsList", fields)
+    field.setAsBackgroundMesh(finest)
+    _graded_size(gmsh, mesh_size)
+    return joint_field
 
 
 def _set_node_counts(gmsh, lines, counts) -> None:
@@ -301,18 +312,9 @@ def _build(gmsh, size, opening, joints, segments, mesh_size, opening_mesh_size, 
         if exterior.intersection(ps):
             raise ValueError(f"joint {j.name!r} does not separate two blocks everywhere: {_DANGLING}")
 
-    # Sizes: the finer of the opening's and the joints' Threshold fields.
     extent = float(size.max())
-    fields = [_distance_threshold(gmsh, dim, groups[OPENING], opening_mesh_size, mesh_size, opening_refine_distance,
-                                  extent)]
-    if joint_mesh_size is not None and joint_facets:
-        fields.append(_distance_threshold(gmsh, dim, joint_facets, joint_mesh_size, mesh_size, joint_refine_distance,
-                                          extent))
-    field = gmsh.model.mesh.field
-    finest = field.add("Min")
-    field.setNumbers(finest, "FieldsList", fields)
-    field.setAsBackgroundMesh(finest)
-    _graded_size(gmsh, mesh_size)
+    joint_field = _size_fields(gmsh, dim, groups[OPENING], joint_facets, mesh_size, opening_mesh_size,
+                               opening_refine_distance, joint_mesh_size, joint_refine_distance, extent)
     if dim == 2:
         # Far from the opening (beyond the DistMax = size_min / 2 + refine_distance of its
         # Threshold field, builders._distance_threshold) the size is mesh_size, unless the joints
@@ -320,7 +322,7 @@ def _build(gmsh, size, opening, joints, segments, mesh_size, opening_mesh_size, 
         reach = threshold_distances(opening_mesh_size, opening_refine_distance)[1]
         x0, y0, x1, y1 = opening.bounds()
         big = 2.0 * extent
-        far = [] if len(fields) > 1 else [(-big, -big, x0 - reach, big), (x1 + reach, -big, big, big),
+        far = [] if joint_field else [(-big, -big, x0 - reach, big), (x1 + reach, -big, big, big),
                                           (-big, -big, big, y0 - reach), (-big, y1 + reach, big, big)]
         _one_element_curves(gmsh, joint_facets, min(opening_mesh_size, joint_mesh_size or mesh_size), mesh_size, far)
 

@@ -165,6 +165,6 @@ def create_serial_mesh(comm, cells, domain, x):
     if create_mesh_in_order is None or comm.size != 1:
         return dolfinx.mesh.create_mesh(comm, cells, e=domain, x=x)
     cmap = dolfinx.fem.coordinate_element(domain.ufl_coordinate_element().basix_element)
-    msh = create_mesh_in_order(comm, np.ascontiguousarray(cells, dtype=np.int64),
-                                                  cmap._cpp_object, np.ascontiguousarray(x, dtype=np.float64))
+    msh = create_mesh_in_order(comm, np.ascontiguousarray(cells, dtype=np.int64), cmap._cpp_object,
+                               np.ascontiguousarray(x, dtype=np.float64))
     return dolfinx.mesh.Mesh(msh, domain)
