@@ -275,6 +275,9 @@ def _tang_jiao_build(default_base: Callable[..., ClosureLaw]) -> Callable[..., C
     def build(parameters: Optional[AsperityParameters] = None, **options) -> ClosureLaw:
         tang_jiao = {k: options.pop(k) for k in _TANG_JIAO_OPTIONS if k in options}
         base = options.pop("base", None)
+        if base is None and parameters is None:  # named for the law the user asked for
+            raise ValueError(f"tang_jiao: AsperityParameters are required (for its base law, "
+                             f"{DEFAULT_TANG_JIAO_BASE} by default), or base= a ready closure law")
         if base is None:
             base = default_base(parameters, **options)
         elif options:

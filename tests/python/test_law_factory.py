@@ -51,8 +51,8 @@ def test_substrate_default_is_the_centre_deflection_coefficient():
 def test_by_name_errors_name_the_problem():
     with pytest.raises(ValueError, match="unknown law model 'gw'"):
         rl.make_law("gw", PARAMS)
-    with pytest.raises(ValueError, match="AsperityParameters are required"):
-        rl.make_law("tang_jiao")
+    with pytest.raises(ValueError, match="tang_jiao: AsperityParameters are required"):
+        rl.make_law("tang_jiao")       # the law the user named, not its default base
     with pytest.raises(ValueError, match="apply to tang_jiao only"):
         rl.make_law("greenwood_williamson", PARAMS, variant="I2")
 

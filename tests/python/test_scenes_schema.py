@@ -75,6 +75,16 @@ def test_joint_sets_are_checked_against_the_geometry(tmp_path, old, new, key):
         load_scene(write(tmp_path, text))
 
 
+@pytest.mark.parametrize("old,new,limit", [
+    ("dip: 30 deg}", "dip: 95 deg}", "must be <= 90 deg"),          # π/2 in the unit written
+    ("dip: 30 deg}", "dip: 1.7 rad}", "must be <= 1.5708 rad"),
+    ("dip: 30 deg}", "dip: -5 °}", "must be >= 0 °")])
+def test_a_limit_is_stated_in_the_unit_the_user_wrote(tmp_path, old, new, limit):
+    with pytest.raises(SceneError, match=re.escape(limit)) as err:
+        load_scene(write(tmp_path, BLOCK.replace(old, new)))
+    assert "(SI)" not in str(err.value)
+
+
 def test_not_yaml_and_missing_file(tmp_path):
     path = write(tmp_path, COLUMN.replace("rock:\n", "rock: [\n"))
     with pytest.raises(SceneError, match="not valid YAML"):

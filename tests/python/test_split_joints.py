@@ -82,5 +82,6 @@ def test_bad_tags_are_named():
         split_joints(mesh, cells, facets, joints={"fault": 999})
     with pytest.raises(ValueError, match=r"cells with tags \[\d+\] belong to no named block"):
         split_joints(mesh, cells, facets, joints={"fault": groups["fault"]}, blocks={"lower": groups["lower"]})
-    with pytest.raises(ValueError, match="named both as a joint and as a boundary"):
+    with pytest.raises(ValueError, match=rf"named both as a joint and as a boundary "
+                                         rf"\(tag {groups['fault']}: joint fault, boundary f\)"):
         split_joints(mesh, cells, facets, joints={"fault": groups["fault"]}, boundaries={"f": groups["fault"]})

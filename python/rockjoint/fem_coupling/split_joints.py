@@ -63,8 +63,11 @@ def split_joints(mesh, cell_tags=None, facet_tags=None, joints: Mapping[str, int
     if boundaries is None:
         boundaries = {f"boundary_{t}": t for t in sorted(facet_values - set(joints.values()))}
     boundaries = _check_names("boundaries", boundaries, facet_values)
-    if set(joints.values()) & set(boundaries.values()):
-        raise ValueError("split_joints: a facet tag is named both as a joint and as a boundary")
+    both = sorted(set(joints.values()) & set(boundaries.values()))
+    if both:
+        names = "; ".join(f"tag {t}: joint {', '.join(n for n, v in joints.items() if v == t)}, boundary "
+                          f"{', '.join(n for n, v in boundaries.items() if v == t)}" for t in both)
+        raise ValueError(f"split_joints: a facet tag is named both as a joint and as a boundary ({names})")
 
     # Owned cells and tagged owned facets, as input (gmsh) node indices.
     x = mesh.geometry.x[:, :mesh.geometry.dim]

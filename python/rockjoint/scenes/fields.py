@@ -9,7 +9,7 @@ import abc
 import dataclasses
 from typing import Any, Callable, Optional
 
-from .units import parse_quantity
+from .units import in_unit_of, parse_quantity
 from .yamlnodes import SceneError
 
 MISSING = object()
@@ -60,9 +60,10 @@ class Quantity(Field):
             c.fail(path, str(err))
         if self.low is not None and (x < self.low or (self.open_low and x == self.low)):
             c.fail(path, f"{value!r} is out of range: must be {'>' if self.open_low else '>='} "
-                         f"{self.low:g} (SI)")
+                         f"{in_unit_of(value, self.low, self.dimension)}")
         if self.high is not None and x > self.high:
-            c.fail(path, f"{value!r} is out of range: must be <= {self.high:g} (SI)")
+            c.fail(path, f"{value!r} is out of range: must be <= "
+                         f"{in_unit_of(value, self.high, self.dimension)}")
         return x
 
 

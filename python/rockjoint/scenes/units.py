@@ -40,3 +40,16 @@ def parse_quantity(value, dimension: str) -> float:
     if not math.isfinite(number):
         raise ValueError(f"{value!r} is not finite")
     return number
+
+
+def in_unit_of(value, si: float, dimension: str) -> str:
+    """`si` written in the unit `value` was given in ("90 deg" for π/2 when the user wrote
+    "95 deg"): a limit in a message reads in the user's terms. SI for a value whose unit is not
+    one of the dimension's (parse_quantity refuses those anyway)."""
+    units = DIMENSIONS[dimension]
+    match = _QUANTITY.match(value) if isinstance(value, str) else None
+    unit = (match.group(2) or "-") if match else "-"
+    if unit not in units:
+        return f"{si:g} (SI)"
+    number = f"{si / units[unit]:g}"
+    return number if unit == "-" else f"{number} {unit}"
