@@ -3,6 +3,7 @@ docs/tunnel.md "Verification of the intact tunnel against Kirsch" are bench/resu
 rows (written by bench/bench_kirsch.py), cell for cell, so a re-run bench that changes them fails
 here until the page is updated. No FE stack needed: the files are read as text."""
 import os
+import re
 
 import pytest
 
@@ -49,3 +50,74 @@ def test_tunnel_page_states_where_its_kirsch_numbers_come_from():
     assert "bash scripts/run.sh python3 bench/bench_kirsch.py" in doc
     stack = bench.split("Produced by `bash scripts/run.sh python3 bench/bench_kirsch.py` (", 1)[1].split(")", 1)[0]
     assert stack.startswith("DOLFINx ") and stack in doc
+
+
+# ---- every number of the README's figure tables is in the report its row cites (issue 39, item 7)
+
+_NUMBER = re.compile(r"(?<![\w.])(\d+(?:\.\d+)?(?:e[-+]?\d+)?)(?![\w])")
+_REPORT = re.compile(r"`(?:bench/results/)?([\w.]+\.md)`")
+#: numbers of a README figure row that are not a report's measurement: {(row start, number): why}
+NOT_FROM_THE_REPORT = {
+    ("elastic-plastic contact", "1e-10"): "a test tolerance (tests/python/test_contact_plastic.py)",
+    ("equivalent continuum", "1e-9"): "a test tolerance (tests/python/test_fem_continuum.py)",
+    ("FE, jointed analysis against", "60"): "the joints' dips, 60°/30° (the case, not a result)",
+    ("FE, jointed analysis against", "30"): "the joints' dips, 60°/30° (the case, not a result)",
+    ("FE, jointed analysis at 1M", "1.3"): "the issue's target ratio",
+    ("FE, jointed analysis at 1M", "1.32"): "docs/fem.md's CG iteration ratio 107/81 (from fem_1m.md's counts)",
+}
+
+
+def numbers(text: str) -> list[str]:
+    return _NUMBER.findall(text)
+
+
+def written_as(token: str, values) -> bool:
+    """`token` (as written: "2.83", "4.9e-7") is one of `values` rounded to the digits written,
+    in the same unit or one a factor 10³ or 10² (µs for ns, %) away."""
+    v = float(token)
+    mantissa, _, _ = token.partition("e")
+    digits = len(mantissa.split(".")[1]) if "." in mantissa else 0
+    for scale in (1.0, 1e3, 1e-3, 1e2, 1e-2):
+        for x in values:
+            if "e" in token:
+                if x != 0 and f"{x * scale:.{digits}e}" == f"{v:.{digits}e}":
+                    return True
+            elif abs(round(x * scale, digits) - v) < 1e-9:
+                return True
+    return False
+
+
+def readme_figure_rows():
+    """(row text, first cell, [reports]) of the README's table rows that cite bench reports: in
+    the row itself, or in the heading of the section the table sits in."""
+    reports = set(os.listdir(os.path.join(ROOT, "bench", "results")))
+    heading_cites, rows = [], []
+    for line in read("README.md").splitlines():
+        if line.startswith("#"):
+            heading_cites = [r for r in _REPORT.findall(line) if r in reports]
+        elif line.startswith("| ") and not line.startswith("| ---"):
+            cited = [r for r in _REPORT.findall(line) if r in reports] or heading_cites
+            cells = [c.strip() for c in line.strip().strip("|").split("|")]
+            if cited and cells[0] not in ("what", "setting"):
+                rows.append((" | ".join(cells[1:]), cells[0], cited))
+    return rows
+
+
+def test_readme_figures_are_the_numbers_of_the_reports_they_cite():
+    rows = readme_figure_rows()
+    assert len(rows) >= 20, rows         # the speed-against-error and FE-settings tables
+    stale = []
+    for text, name, cited in rows:
+        values = [float(x) for r in cited for x in numbers(read("bench", "results", r))]
+        for token in numbers(text):
+            if not written_as(token, values) and not any(
+                    name.startswith(start) and token == number for start, number in NOT_FROM_THE_REPORT):
+                stale.append(f"{name[:40]!r}: {token} not in {', '.join(cited)}")
+    assert not stale, "README figures that their report does not give:\n" + "\n".join(stale)
+
+
+def test_a_stale_figure_would_be_found():
+    # the check itself: the rounding rule and the unit steps it allows, and no more
+    assert written_as("2.83", [2.8312]) and written_as("64.7", [64.71]) and written_as("2.2", [2200.0])
+    assert written_as("4.9e-7", [4.93e-07]) and written_as("0.0046", [4.63e-03])
+    assert not written_as("0.0047", [4.63e-03]) and not written_as("64.71", [7.07, 8.4])
