@@ -66,7 +66,7 @@ NOT_FROM_THE_REPORT = {
     ("FE, jointed analysis against", "60"): "the joints' dips, 60°/30° (the case, not a result)",
     ("FE, jointed analysis against", "30"): "the joints' dips, 60°/30° (the case, not a result)",
     ("FE, jointed analysis at 1M", "1.3"): "the issue's target ratio",
-    ("FE, jointed analysis at 1M", "1.32"): "docs/fem.md's CG iteration ratio 107/81 (from fem_1m.md's counts)",
+    ("FE, jointed analysis at 1M", "1.31"): "derived: fem_1m.md's CG iterations 106/81 (column, 1 rank)",
 }
 
 
@@ -177,3 +177,71 @@ def test_continuum_page_table_is_the_bench_report():
         assert seconds.split()[0] == m[7], kind
         if "x" in seconds:
             assert re.search(r"\(([\d.]+)x", seconds).group(1) == m[8].rstrip("x"), kind
+
+
+# ---- docs pages: a paragraph that cites a bench report gives that section's reports' numbers
+
+_CITED = re.compile(r"bench/results/([\w.]+\.md)")
+_HISTORY = "an earlier run, stated with its date or commit on the page (git history), not today's report"
+_ON_PAGE = "a run stated on the page with its command, not kept as a report row"
+#: numbers of a docs paragraph citing a report that are not the report's: {(page, number): why}
+DOCS_NOT_FROM_THE_REPORT = {
+    ("contact.md", "6.6"): "bench_contact.py on the machine of fft_planning.md, stated as such",
+    ("contact.md", "1.16"): _ON_PAGE, ("contact.md", "0.93"): _ON_PAGE,
+    ("equivalent-continuum.md", "9.5"): "derived: 64.7 s (the 2026-11-26 report) / 6.81 s",
+    ("equivalent-continuum.md", "2756"): _HISTORY, ("equivalent-continuum.md", "89"): _HISTORY,
+    ("fem.md", "78"): "the sum of fem_dolfinx0.11.md's Krylov iterations per Newton step (column, 2 ranks)",
+    ("fem.md", "0.0235"): "an input: the mesh size of the command on the page",
+    ("fem.md", "1.473"): _ON_PAGE, ("fem.md", "1.521"): _ON_PAGE, ("fem.md", "1.501"): _ON_PAGE,
+    ("fem.md", "85"): _ON_PAGE, ("fem.md", "121"): _ON_PAGE, ("fem.md", "88"): _ON_PAGE,
+    ("fem.md", "89"): _ON_PAGE,
+    ("fem.md", "106"): "the sum of fem_1m.md's Krylov iterations per Newton step (column, 1 rank)",
+    ("fem.md", "119"): "the sum of fem_1m.md's Krylov iterations per Newton step (blocky, 1 rank)",
+    ("fem.md", "1.31"): "derived: 106/81 from fem_1m.md's counts",
+    ("fem.md", "20e9"): "an input: Young's modulus in a code example",
+    ("fem.md", "1.04"): _ON_PAGE,
+    ("flow.md", "1600"): "flow.md's CG iterations for both gradients (3142) halved, rounded",
+    ("scenes.md", "31.6"): "accuracy_ladder.md's resolution rows (the planner's source)",
+    ("scenes.md", "16.8"): "accuracy_ladder.md's resolution rows (the planner's source)",
+    ("scenes.md", "10.1"): "accuracy_ladder.md's resolution rows (the planner's source)",
+    ("tunnel.md", "268"): "the mesh's joint count (meshes.tunnel_section), not a timing",
+    ("tunnel.md", "13.2"): _ON_PAGE, ("tunnel.md", "14.4"): _ON_PAGE, ("tunnel.md", "11.9"): _ON_PAGE,
+    ("tunnel.md", "9.2"): _ON_PAGE, ("tunnel.md", "8.6"): _ON_PAGE, ("tunnel.md", "7.7"): _ON_PAGE,
+    ("tunnel.md", "8.4"): _HISTORY, ("tunnel.md", "0.66"): _ON_PAGE, ("tunnel.md", "4.5"): _ON_PAGE,
+    ("tunnel.md", "0.25"): "an input: the demo's mesh size at the wall",
+    ("tunnel.md", "54"): "the demo mesh's block count (demo output), not a timing",
+    ("tunnel.md", "2207"): "the demo mesh's joint facet pairs (demo output), not a timing",
+    ("tunnel.md", "4.8"): _HISTORY,
+}
+
+
+def docs_report_figures():
+    """(page, number, its context) of every number in a docs paragraph that cites a bench report,
+    checked against the reports its section (## heading) cites."""
+    out = []
+    for page in sorted(os.listdir(os.path.join(ROOT, "docs"))):
+        if not page.endswith(".md"):
+            continue
+        for section in re.split(r"\n(?=## )", read("docs", page)):
+            cited = sorted({c for c in _CITED.findall(section)
+                            if os.path.exists(os.path.join(ROOT, "bench", "results", c))})
+            if not cited:
+                continue
+            values = [float(x) for c in cited for x in numbers(read("bench", "results", c))]
+            for paragraph in re.split(r"\n\s*\n|\n(?=[*|-] )|\n(?=\d+\. )", section):
+                if not _CITED.search(paragraph):
+                    continue
+                flat = " ".join(paragraph.split())
+                for m in _NUMBER.finditer(flat):
+                    if not written_as(m.group(1), values):
+                        out.append((page, m.group(1), flat[max(0, m.start() - 50):m.end() + 15]))
+    return out
+
+
+def test_docs_figures_are_the_numbers_of_the_reports_they_cite():
+    stale = [f"docs/{page}: {n} (…{context}…)" for page, n, context in docs_report_figures()
+             if (page, n) not in DOCS_NOT_FROM_THE_REPORT]
+    assert not stale, "docs figures that their section's reports do not give:\n" + "\n".join(stale)
+    # and every exemption still names a number the page writes (none kept after its figure went)
+    written = {(page, n) for page, n, _ in docs_report_figures()}
+    assert set(DOCS_NOT_FROM_THE_REPORT) <= written, set(DOCS_NOT_FROM_THE_REPORT) - written
