@@ -18,11 +18,10 @@ from scene_cases import SCENES  # noqa: E402
 def test_blocky_scene_on_two_ranks_equals_serial(tmp_path_factory):
     comm = MPI.COMM_WORLD
     root = comm.bcast(str(tmp_path_factory.mktemp("scene")) if comm.rank == 0 else None)
-    scene = load_scene(os.path.join(SCENES, "blocky_rock_mass.yaml"))
-    plan = make_plan(scene, reduced=True)
-    parallel = run_scene(scene, plan, os.path.join(root, "parallel"), comm=comm, reduced=True)
-    serial = run_scene(scene, plan, os.path.join(root, f"serial{comm.rank}"), comm=MPI.COMM_SELF,
-                       reduced=True)
+    scene = load_scene(os.path.join(SCENES, "blocky_rock_mass.yaml")).at_reduced_size()
+    plan = make_plan(scene)
+    parallel = run_scene(scene, plan, os.path.join(root, "parallel"), comm=comm)
+    serial = run_scene(scene, plan, os.path.join(root, f"serial{comm.rank}"), comm=MPI.COMM_SELF)
     assert len(parallel.rows) == len(serial.rows)
     for p, s in zip(parallel.rows, serial.rows):
         assert (p.model, p.stage, p.slipping) == (s.model, s.stage, s.slipping)

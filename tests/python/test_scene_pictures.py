@@ -35,8 +35,8 @@ def run_capturing(scene_path, output, monkeypatch):
 
     monkeypatch.setattr(pictures, "_save", keep)
     monkeypatch.setattr(pictures, "joint_states", record)
-    scene = load_scene(str(scene_path))
-    result = run_scene(scene, make_plan(scene, reduced=True), str(output), reduced=True)
+    scene = load_scene(str(scene_path)).at_reduced_size()
+    result = run_scene(scene, make_plan(scene), str(output))
     assert len(figures) == 1 and os.path.getsize(os.path.join(output, "scene.png")) > 10000
     return scene, result, states, figures[0]
 

@@ -24,9 +24,9 @@ NAMES = ["lab_closure_test", "topography_to_closure", "blocky_rock_mass", "tunne
 
 
 def run(name, tmp_path):
-    scene = load_scene(os.path.join(SCENES, name + ".yaml"))
-    plan = make_plan(scene, reduced=True)
-    return scene, plan, run_scene(scene, plan, str(tmp_path / name), reduced=True)
+    scene = load_scene(os.path.join(SCENES, name + ".yaml")).at_reduced_size()
+    plan = make_plan(scene)
+    return scene, plan, run_scene(scene, plan, str(tmp_path / name))
 
 
 def test_every_demo_has_a_scene():
@@ -44,7 +44,7 @@ def test_closure_test_scenes_give_the_law(tmp_path, name):
     e, nu = rock["young"], rock["poisson"]
     uniaxial = stress * height / e * ((1 - nu ** 2) if result.gdim == 2 else 1.0)
     assert i.monitors["top"][-1] == pytest.approx(-uniaxial, rel=1e-8)
-    closure = source_law(scene, "joint", plan, reduced=True).closure_at_stress(stress)
+    closure = source_law(scene, "joint", plan).closure_at_stress(stress)
     assert j.monitors["top"][-1] - i.monitors["top"][-1] == pytest.approx(-closure, rel=1e-5)
     assert (tmp_path / name / "jointed_joints.xdmf").exists() and (tmp_path / name / "scene.png").exists()
 

@@ -208,9 +208,9 @@ def run_scene():
 
 @pytest.mark.parametrize("name", ["tunnel", "blocky_rock_mass"])
 def test_table_covers_what_the_scene_reaches(tmp_path, name, run_scene):
-    scene = load_scene(os.path.join(SCENES, name + ".yaml"))
-    plan = make_plan(scene, reduced=True)
-    result = run_scene(scene, plan, str(tmp_path / "out"), reduced=True)
+    scene = load_scene(os.path.join(SCENES, name + ".yaml")).at_reduced_size()
+    plan = make_plan(scene)
+    result = run_scene(scene, plan, str(tmp_path / "out"))
     for row in (r for r in result.rows if r.model == "jointed"):
         for joint_set, (closure, stress) in row.per_set.items():
             table = result.tables[joint_set]
@@ -242,10 +242,10 @@ def test_slip_left_out_far_from_the_envelope_and_the_answer_barely_changes(tmp_p
 def test_slip_put_in_where_the_joint_reaches_its_envelope(tmp_path, run_scene):
     # the shear box: 0.8 MPa shear over 2 MPa normal load, mobilised friction 0.69 of tan 30° on
     # average and more at the box's edges (bending): the plan includes slip and the run slips there
-    scene = load_scene(os.path.join(SCENES, "direct_shear.yaml"))
-    plan = make_plan(scene, reduced=True)
+    scene = load_scene(os.path.join(SCENES, "direct_shear.yaml")).at_reduced_size()
+    plan = make_plan(scene)
     assert plan.slip == {"joint": True}
-    row = run_scene(scene, plan, str(tmp_path / "c"), reduced=True).row("jointed", "shear")
+    row = run_scene(scene, plan, str(tmp_path / "c")).row("jointed", "shear")
     assert row.slipping > 0
 
 
@@ -267,3 +267,20 @@ def test_refinement_only_near_joints_and_openings(tmp_path):
     assert plan.joint_size is None and plan.opening_size is None and plan.laws == {}
     off = make_plan(load_scene(write(tmp_path, COLUMN + "plan: {refine: false}\n", "off.yaml")))
     assert off.joint_size is None
+
+
+def test_the_reduced_scene_is_built_once_and_leaves_the_scene_as_it_was():
+    # issue 44, item 2: the `reduced:` section applied before planning, read as any scene
+    scene = load_scene(os.path.join(SCENES, "tunnel.yaml"))
+    full = make_plan(scene)
+    small = scene.at_reduced_size()
+    r = scene.data["reduced"]
+    assert small.reduced and not scene.reduced
+    assert small.data["mesh"]["size"] == r["mesh_size"] != scene.data["mesh"]["size"]
+    assert small.data["joints"]["bedding"]["law"]["topography"]["points"] == r["topography_points"]
+    assert scene.data["joints"]["bedding"]["law"]["topography"]["points"] != r["topography_points"]
+    assert all("steps" not in stage for stage in small.data["stages"])
+    plan = make_plan(small)
+    assert plan.reduced and plan.mesh_size == r["mesh_size"] and plan.load_steps == r["load_steps"]
+    assert make_plan(scene).text() == full.text()      # the scene itself is unchanged
+    assert plan.laws == {"bedding": full.laws["bedding"]}   # a law the scene gives has no key

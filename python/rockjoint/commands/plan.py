@@ -18,7 +18,9 @@ def checked_plan(args):
     """(scene, plan) or None after printing the scene's mistake (exit code 2)."""
     try:
         scene = load_scene(args.scene)
-        return scene, make_plan(scene, reduced=args.reduced)
+        if args.reduced:
+            scene = scene.at_reduced_size()
+        return scene, make_plan(scene)
     except SceneError as err:
         print(f"rockjoint {args.command}: bad scene: {err}", file=sys.stderr)
         return None

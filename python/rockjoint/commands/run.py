@@ -39,7 +39,7 @@ def main(args) -> int:
     output = args.output or os.path.splitext(os.path.basename(args.scene))[0]
     log.info("scene %r: %s", scene.data["name"], "; ".join(f"{c.topic}: {c.choice}" for c in plan.choices))
     try:
-        result = run_scene(scene, plan, output, reduced=args.reduced)
+        result = run_scene(scene, plan, output)
     except SceneError as err:  # found while building (e.g. a block name the mesh does not have)
         print(f"rockjoint run: bad scene: {err}", file=sys.stderr)
         return 2

@@ -12,7 +12,8 @@ from .schema import Scene, load_scene  # noqa: F401
 from .yamlnodes import SceneError  # noqa: F401
 
 
-def run_scene(scene, plan, output, comm=None, reduced=False):
-    """Run `scene` as `plan` says (rockjoint.scenes.runner.run_scene; needs the FE stack)."""
+def run_scene(scene, plan, output, comm=None):
+    """Run `scene` as `plan` says (rockjoint.scenes.runner.run_scene; needs the FE stack); a
+    scene at its reduced size is `scene.at_reduced_size()`, planned and run as any scene."""
     from .runner import run_scene as run  # the FE stack is optional: planning works without it
-    return run(scene, plan, output, comm, reduced)
+    return run(scene, plan, output, comm)

@@ -68,7 +68,7 @@ SECONDS_PER_DOF = 0.71 / 26926
 #: all smeared, sidewall -42, -34, -30 %; mixed, sidewall -7.7, -3.8, -3.0 %); inf would mark a
 #: model that failed. Speed-ups: the fastest of 2 runs of each model. Kept equal to the report by
 #: tests/python/test_docs_match_results.py.
-#: The planner (planner._smeared_sets) smears a set where the row at the nearest ratio at or above
+#: The planner (smearing.smeared_sets) smears a set where the row at the nearest ratio at or above
 #: its own is within the budget and faster.
 SMEARED_EVIDENCE = ((1.0, 0.728, 0.1, 0.176, 0.6), (0.5, 0.769, 0.1, 0.289, 0.8),
                     (0.25, 0.133, 0.1, 0.089, 1.0), (0.125, 0.083, 0.4, 0.206, 1.5),

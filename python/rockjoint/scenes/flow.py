@@ -24,7 +24,7 @@ def requested(scene) -> bool:
     return "flow" in scene.data["outputs"]
 
 
-def transmissivity_laws(scene, plan, reduced: bool = False) -> dict:
+def transmissivity_laws(scene, plan) -> dict:
     """{joint set: rockjoint.flow.TransmissivityLaw} of the scene's `flow:` entries; a set whose
     law is a topography can take `law: walls`: T(Δ) of the same walls (BEM contact and Reynolds
     flow at the loads of its exact contact curve, up to the plan's table stress)."""
@@ -35,7 +35,7 @@ def transmissivity_laws(scene, plan, reduced: bool = False) -> dict:
         key = given.pop("law")
         if flow.built_from_walls(key):
             t = spec["law"]["topography"]
-            n = scene.data["reduced"].get("topography_points", t["points"]) if reduced else t["points"]
+            n = t["points"]
             upper, lower = joint_laws.scan(t, n)
             aperture = topo.composite_topography(upper, lower, offset=(0, 0)).aperture
             curve = contact.closure_curve(aperture, rockjoint.composite_modulus(rock["young"], rock["poisson"]),

@@ -14,7 +14,7 @@ from . import ladder
 log = logging.getLogger("rockjoint.scenes")
 
 
-def source_law(scene, set_name: str, plan, reduced: bool = False):
+def source_law(scene, set_name: str, plan):
     """The closure law of a joint set (before tabulation; a saved table is returned as it is)."""
     spec = scene.data["joints"][set_name]["law"]
     rock = scene.data["rock"]
@@ -43,7 +43,7 @@ def source_law(scene, set_name: str, plan, reduced: bool = False):
                  spec["fit"], spec["cycles"])
         return fit.law
     t = spec["topography"]
-    n = scene.data["reduced"].get("topography_points", t["points"]) if reduced else t["points"]
+    n = t["points"]
     key = plan.laws[set_name]
     log.info("joint set %s: %s from a %dx%d topography at %.3g mm", set_name, key, n, n, t["spacing"] * 1e3)
     return topography_law(key, t, n, rock["young"], rock["poisson"], plan.table_max_stress)
@@ -79,13 +79,13 @@ def law_of_walls(key: str, upper, lower, young: float, poisson: float, top_stres
     return laws.laws_from_topography(params, summits=analysis, keys=(key,))[key].law
 
 
-def tables(scene, plan, reduced: bool = False) -> dict:
+def tables(scene, plan) -> dict:
     """{joint set: tabulated law over the plan's normal-stress range} (a saved table and the
     exact contact curve are tables already)."""
     rungs = ladder.by_key()
     out = {}
     for name, spec in scene.data["joints"].items():
-        law = source_law(scene, name, plan, reduced)
+        law = source_law(scene, name, plan)
         rung = rungs.get(plan.laws.get(name))
         if "table" in spec["law"] or (rung is not None and not rung.tabulation):
             out[name] = law

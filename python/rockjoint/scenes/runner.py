@@ -243,7 +243,7 @@ def run_stages(scene, plan, model, label: str, current: list | None = None, tran
             else:
                 add = model.add_traction if kind == "traction" else model.add_pressure
                 handles[face, kind] = add(face, value)
-        steps = plan.load_steps if plan.reduced else stage.get("steps", plan.load_steps)
+        steps = stage.get("steps", plan.load_steps)
         solution = model.solve(load_steps=steps, name=stage["name"])
         rows.append(_record(scene, plan, model, label, stage["name"], solution, transmissivity))
         log.info("%s: stage %s, %d load step(s), %d Newton iterations (%.1f s)", label, stage["name"],
@@ -251,12 +251,12 @@ def run_stages(scene, plan, model, label: str, current: list | None = None, tran
     return rows
 
 
-def run_scene(scene, plan, output: str, comm=None, reduced: bool = False) -> SceneResult:
+def run_scene(scene, plan, output: str, comm=None) -> SceneResult:
     """Run the scene as planned; write its outputs to `output` (created; files replaced)."""
     comm = comm or MPI.COMM_WORLD
     t0 = time.perf_counter()
-    tables = joint_laws.tables(scene, plan, reduced)
-    transmissivity = scene_flow.transmissivity_laws(scene, plan, reduced) if scene_flow.requested(scene) else None
+    tables = joint_laws.tables(scene, plan)
+    transmissivity = scene_flow.transmissivity_laws(scene, plan) if scene_flow.requested(scene) else None
     jm = geometry.jointed_mesh(scene, plan, comm)
     meshes = {"jointed": distribute(jm, comm)}
     if plan.intact:

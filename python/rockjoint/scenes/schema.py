@@ -6,6 +6,7 @@ checked against the law registry (rockjoint.law_registry: a law's parameters and
 """
 from __future__ import annotations
 
+import copy
 import dataclasses
 import math
 import os
@@ -270,17 +271,38 @@ SCENE = Mapping({
 
 @dataclasses.dataclass
 class Scene:
-    """A checked scene: `data` in SI, where it came from (file, lines) for later messages."""
+    """A checked scene: `data` in SI, where it came from (file, lines) for later messages;
+    `reduced` for the scene at its reduced size (at_reduced_size)."""
 
     data: dict
     source: str
     lines: dict
+    reduced: bool = False
 
     def fail(self, path: tuple, message: str):
         _checker(self.source, self.lines).fail(path, message)
 
     def __getitem__(self, key):
         return self.data[key]
+
+    def at_reduced_size(self) -> "Scene":
+        """The scene as its `reduced:` section makes it (tests, quick runs), built once before
+        planning so that the planner, the laws and the runner read it as any scene: the far-field
+        mesh size, the scans' points, and one number of load steps for every stage (the reduced
+        `load_steps`, or the plan's: a stage's own steps are dropped)."""
+        data = copy.deepcopy(self.data)
+        reduced = data["reduced"]
+        if "mesh_size" in reduced:
+            data["mesh"]["size"] = reduced["mesh_size"]
+        if "topography_points" in reduced:
+            for joint in data["joints"].values():
+                if "topography" in joint["law"]:
+                    joint["law"]["topography"]["points"] = reduced["topography_points"]
+        if "load_steps" in reduced:
+            data["plan"]["load_steps"] = reduced["load_steps"]
+        for stage in data["stages"]:
+            stage.pop("steps", None)
+        return dataclasses.replace(self, data=data, reduced=True)
 
 
 def _checker(source, lines):

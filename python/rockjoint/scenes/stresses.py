@@ -1,6 +1,7 @@
 """The homogeneous stress of a scene's stages and how much of a joint set's shear strength it
 mobilises: what the planner (which laws, which sets smeared, the table range) and the statics
-checks (statics.py: which set opens or slides, freeing which block) both read."""
+checks (statics.py: which set opens or slides, freeing which block) both read, and the upper bound
+of any joint's normal stress the tables must cover (the planner's table range)."""
 from __future__ import annotations
 
 import math
@@ -8,6 +9,8 @@ import math
 import numpy as np
 
 from rockjoint.joint import make_strength
+
+from . import defaults, geometry
 
 #: axis-aligned faces: (axis, outward sign); bottom/top take the last axis (y in 2D, z in 3D)
 FACE_AXIS = {"left": (0, -1), "right": (0, 1), "bottom": (1, -1), "top": (1, 1),
@@ -67,3 +70,56 @@ def wall_mobilised_friction(strength: dict, hoop: float) -> float:
     sn, tau = hoop * np.sin(alpha) ** 2, hoop * np.sin(alpha) * np.cos(alpha)
     cap = shear_capacity(strength, sn)
     return float(np.max(tau / np.maximum(cap, 1e-300)))
+
+
+def concentration(scene) -> tuple:
+    """(factor, words): the stress-concentration bound of the scene's geometry: Kirsch's 3 at an
+    opening, block corners where joint sets of different orientation cross, else 1."""
+    g = scene.data["geometry"]
+    if "opening" in g:
+        return defaults.OPENING_CONCENTRATION, "x 3 Kirsch concentration at the opening"
+    orientations = {(round(s["dip"], 6), round(s["dip_direction"], 6)) for s in g.get("joint_sets", [])}
+    if len(orientations) > 1:
+        return (defaults.BLOCK_CORNER_CONCENTRATION,
+                f"x {defaults.BLOCK_CORNER_CONCENTRATION:g} at block corners where joint sets cross")
+    return 1.0, "no concentration: a homogeneous field"
+
+
+def bending(scene) -> list:
+    """Per stage, the bending stress [Pa] a shear traction on a face adds on a joint section:
+    the moment τ W H of a shear τ on a face of width W at lever arm H, over the section modulus
+    W²/6 (beam theory: 6 τ H/W), H the scene's extent normal to the face, W the smallest along it."""
+    g = scene.data["geometry"]
+    ext, dim = geometry.extent(g), g["dimension"]
+    out, loads = [], {}
+    for stage in scene.data["stages"]:
+        loads.update(stage["loads"])
+        extra = 0.0
+        for face, load in loads.items():
+            if "traction" not in load or face not in FACE_AXIS:
+                continue
+            axis = dim - 1 if face in ("bottom", "top") else (0 if face in ("left", "right") else 1)
+            t = np.asarray(load["traction"], float)
+            tau = float(np.linalg.norm(np.delete(t, axis)))
+            along = np.delete(ext, axis).min()
+            extra += 6.0 * tau * ext[axis] / along
+        out.append(extra)
+    return out
+
+
+def normal_stress_bound(scene) -> float:
+    """Upper bound [Pa] of any joint's normal stress over the stages."""
+    factor = concentration(scene)[0]
+    bound = 0.0
+    for (_, s, pressure), extra in zip(stage_stresses(scene), bending(scene)):
+        compression = max(0.0, -float(np.linalg.eigvalsh(s).min()))
+        bound = max(bound, compression * factor + pressure + extra)
+    return bound
+
+
+def largest_stress(scene) -> float:
+    """The largest principal stress magnitude [Pa] of any stage (pressures included); 1 MPa if
+    nothing loads the scene (a table needs a range)."""
+    top = max((max(float(np.abs(np.linalg.eigvalsh(s)).max(initial=0.0)), p)
+               for _, s, p in stage_stresses(scene)), default=0.0)
+    return top if top > 0 else 1e6
