@@ -53,6 +53,8 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import bench_fem  # noqa: E402  (the column case: mesh, model, closed form)
 import bench_kirsch  # noqa: E402  (the intact tunnel against Kirsch)
+import fe_speed_vs_error_report as report  # noqa: E402  (tables, plots, JSON; the budgets and error rule)
+from fe_speed_vs_error_report import BUDGETS, answer_error, jsonable  # noqa: E402
 
 log = logging.getLogger("bench_fe_speed_vs_error")
 
@@ -67,7 +69,6 @@ SPACING = 3.0                        # bedding spacing [m], the smallest of the 
 SHEAR_RATIO, RESIDUAL = 0.1, 1e6     # k_s / k_n, residual stiffness [Pa/m]
 TABLE_TOP = 4.0 * SIGMA_V            # table range [Pa]
 WALL_POINTS, RING_POINTS = 72, 72
-BUDGETS = (0.1, 0.03, 0.01, 0.003)   #: error budgets (jointed tunnel wall error) for the recommendations
 DEFAULT_BUDGET = 0.01
 
 
@@ -343,12 +344,6 @@ def sweep_ranks(cfg, args) -> dict:
 
 
 # ---- recommendations ----------------------------------------------------------------------------
-def answer_error(row) -> float:
-    """The error a budget is checked on: the larger of the wall error and the joints' share error (the
-    question a user asks: how far the wall converges, and how much of that is the joints)."""
-    return max(row["wall_error"], row.get("joint_share_error", 0.0))
-
-
 def recommend(res, budget) -> dict:
     """The cheapest mesh/degree meeting `budget` on the jointed tunnel's answer_error, and the other
     settings read off their tables (rules in the report)."""
@@ -486,16 +481,6 @@ def config(quick: bool) -> dict:
             "ranks_tunnel_n": 64, "second_p1_max": 32, "second_p2_max": 16}
 
 
-def jsonable(x):
-    if isinstance(x, dict):
-        return {str(k): jsonable(v) for k, v in x.items() if not isinstance(v, np.ndarray)}
-    if isinstance(x, (list, tuple)):
-        return [jsonable(v) for v in x]
-    if isinstance(x, (np.floating, np.integer)):
-        return x.item()
-    return x
-
-
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="coarse meshes, one run each (a smoke run)")
@@ -551,8 +536,7 @@ def main():
     res["machine"] = {"platform": platform.platform(), "cpus": os.cpu_count(), "load_start": load_start,
                       "load_end": os.getloadavg(), "wall_seconds": time.perf_counter() - t_start,
                       "date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()), "quick": args.quick}
-    import fe_speed_vs_error_report as report
-    report.write(res, args.output)
+    report.write(res, args.output, spacing=SPACING, radius=A)
 
 
 if __name__ == "__main__":
