@@ -1,6 +1,7 @@
 #include "equivalent_continuum.hpp"
 
 #include <rockjoint/constitutive/validation.hpp>
+#include <rockjoint/joint/joint_frame.hpp>
 #include <rockjoint/joint/joint_slip.hpp>
 
 #include <Eigen/Dense>
@@ -16,38 +17,11 @@ namespace
 {
 using Matrix = Eigen::MatrixXd;
 using Vector = Eigen::VectorXd;
-using Frame = std::array<std::array<double, 3>, 3>;
+using Frame = joint::JointFrame;
 
-/// Frame (n, t1[, t2]) of a set, by the rule of the discrete joint element
-/// (fem_coupling::set_tangents): 2D t1 = (n_y, -n_x); 3D t1 = e_x projected on the plane (the
-/// axis least aligned with n if n is within 1e-3 rad of e_x), t2 = n × t1. The shear response
-/// of joint_response() is isotropic in the plane, so the choice of t1 changes no result.
-Frame set_frame(int gdim, const std::array<double, 3>& n)
-{
-  Frame q{};
-  q[0] = n;
-  if (gdim == 2)
-  {
-    q[0][2] = 0.0;
-    q[1] = {n[1], -n[0], 0.0};
-    return q;
-  }
-  std::array<double, 3> ref{1.0, 0.0, 0.0};
-  if (std::abs(n[0]) > std::cos(1e-3))
-  {
-    const int axis = std::abs(n[1]) <= std::abs(n[2]) ? 1 : 2;
-    ref = {0.0, 0.0, 0.0};
-    ref[axis] = 1.0;
-  }
-  const double dot = ref[0] * n[0] + ref[1] * n[1] + ref[2] * n[2];
-  std::array<double, 3> t{ref[0] - dot * n[0], ref[1] - dot * n[1], ref[2] - dot * n[2]};
-  const double norm = std::sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
-  for (double& c : t)
-    c /= norm;
-  q[1] = t;
-  q[2] = {n[1] * t[2] - n[2] * t[1], n[2] * t[0] - n[0] * t[2], n[0] * t[1] - n[1] * t[0]};
-  return q;
-}
+/// Frame (n, t1[, t2]) of a set: the discrete joint element's rule (joint::joint_frame with its
+/// default reference e_x), so a smeared set's shear axes are its discrete joints'.
+Frame set_frame(int gdim, const std::array<double, 3>& n) { return joint::joint_frame(gdim, n); }
 
 /// P(n): Voigt vector of sym(n ⊗ g) (engineering shear) as a matrix acting on g (gdim). Its
 /// transpose maps the Voigt stress to the traction σ n (virtual work: σ : sym(n ⊗ g) = σn · g).

@@ -1,5 +1,7 @@
 #include "local_frame.hpp"
 
+#include <rockjoint/joint/joint_frame.hpp>
+
 #include <Eigen/Eigenvalues>
 
 #include <cmath>
@@ -81,40 +83,10 @@ LocalFrame facet_frame(int gdim, std::span<const double> vertices,
 
 void set_tangents(LocalFrame& frame, int gdim, const std::array<double, 3>& reference)
 {
-  const auto& n = frame.axes[0];
-  if (gdim == 2)
-  {
-    frame.axes[1] = {n[1], -n[0], 0.0};
-    return;
-  }
-  // t1 = (I - n nᵀ) r / |(I - n nᵀ) r|: the joint's reference direction in the facet plane.
-  auto project = [&](const std::array<double, 3>& r)
-  {
-    const double rn = r[0] * n[0] + r[1] * n[1] + r[2] * n[2];
-    return std::array<double, 3>{r[0] - rn * n[0], r[1] - rn * n[1], r[2] - rn * n[2]};
-  };
-  const double rr = norm(reference);
-  if (!(rr > 0.0) || !std::isfinite(rr))
-    throw std::invalid_argument("set_tangents: the reference direction must be a finite non-zero "
-                                "vector (got norm " + std::to_string(rr) + ")");
-  auto t1 = project(reference);
-  if (!(norm(t1) > 1e-3 * rr))
-  {
-    // Facet normal along the reference (a strongly curved joint): fall back to the axis
-    // least aligned with n.
-    int k = 0;
-    for (int c = 1; c < 3; ++c)
-      if (std::abs(n[c]) < std::abs(n[k]))
-        k = c;
-    std::array<double, 3> e{};
-    e[k] = 1.0;
-    t1 = project(e);
-  }
-  const double l = norm(t1);
-  for (auto& c : t1)
-    c /= l;
-  frame.axes[1] = t1;
-  frame.axes[2] = cross(n, t1);
+  const auto q = joint::joint_frame(gdim, frame.axes[0], reference);  // the one frame rule
+  frame.axes[1] = q[1];
+  if (gdim == 3)
+    frame.axes[2] = q[2];
 }
 
 std::array<double, 3> joint_reference_direction(const std::array<double, 9>& normal_moment)
