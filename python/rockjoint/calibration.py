@@ -220,8 +220,8 @@ def read_columns(path, *, intact_length: Optional[float] = None,
 
 
 # ---- what a calibration fits: the law registry's CalibrationSpec of each law -----------------
-#: the closure offset Δ_0 (fitted besides a law's own unknowns)
-_OFFSET = Quantity("closure_offset", "Δ_0", "mm")
+#: the closure offset Δ_0 (fitted besides a law's own unknowns; cycle_calibration's seating offset)
+CLOSURE_OFFSET = Quantity("closure_offset", "Δ_0", "mm")
 
 
 def calibratable_laws() -> list:
@@ -386,7 +386,7 @@ def calibrate(curve: ClosureCurve, law: str, *, composite_modulus: Optional[floa
                "base_radius": None if base_radius is None else float(base_radius)}
     given.update({k: options[k] for k in spec.options if options[k] is not None})
     offset = spec.fit_offset if fit_offset is None else bool(fit_offset)
-    unknowns = list(spec.unknowns) + ([_OFFSET] if offset else [])
+    unknowns = list(spec.unknowns) + ([CLOSURE_OFFSET] if offset else [])
     if curve.closure.size <= len(unknowns) + 1:
         raise ValueError(f"{curve.source}: {curve.closure.size} points are too few to fit "
                          f"{len(unknowns)} parameters with an uncertainty (need at least "

@@ -8,8 +8,17 @@ residuals r_i = Δ_model(σ_0..σ_i; p) - Δ_i along the path (NormalHysteresis.
 the same Levenberg-Marquardt as calibration.py (GSL through fit_curve). The virgin law's positive
 parameters are fitted as logarithms, r as a logit (0 < r < 1) and m - 1 as a logarithm (m > 1), so
 the search space has no boundary; standard uncertainties are carried back to first order
-(σ_p = p σ_ln p, σ_r = r (1 - r) σ_logit, σ_m = (m - 1) σ_ln(m-1)). The path starts at the law's
-datum (Δ = 0 at σ = 0; no closure offset).
+(σ_p = p σ_ln p, σ_r = r (1 - r) σ_logit, σ_m = (m - 1) σ_ln(m-1)).
+
+The seating offset. A laboratory cycle starts at a seating load σ_0 > 0 where the gauges are
+zeroed: the measured closure is counted from there, while the law's closure is counted from the
+virgin joint at zero stress, Δ(σ_0) > 0 already. The model of the data is therefore
+Δ_i = Δ_model(σ_0..σ_i; p) - Δ_0 (as calibration.py's closure offset), with Δ_0, the law's closure
+at the data's zero, fitted beside the other parameters (default; fit_offset=False fixes Δ_0 = 0,
+for data whose first point is the unloaded virgin joint). Forcing Δ_0 = 0 on seated data makes
+the virgin law itself absorb the missing closure (too soft at low stress) and leaves r, the
+closure kept at zero stress, to that distortion. Δ_0 is a fitted parameter with its own
+uncertainty; r, m and the permanent closure r Δ_m are in the law's frame (from the virgin joint).
 
 The report gives the rms residual of each branch (virgin loading, unloading, reloading), per
 cycle the measured and fitted closure at the lowest stress of its unloading (what the data show),
@@ -29,7 +38,8 @@ import numpy as np
 
 from ._rockjoint import calibration as _cpp_calibration
 from ._rockjoint.constitutive import NormalHysteresis
-from .calibration import FittedParameter, calibration_spec, check_points, closure_of, read_columns
+from .calibration import (CLOSURE_OFFSET, FittedParameter, calibration_spec, check_points, closure_of,
+                          read_columns)
 
 __all__ = ["LoadCycles", "read_load_cycles", "calibrate_cycles", "CycleCalibration", "BRANCHES",
            "UnloadingEnd", "identifiable"]
@@ -80,9 +90,15 @@ def read_load_cycles(path) -> LoadCycles:
     return LoadCycles(stress, closure, lines, source)
 
 
-def identifiable(p: FittedParameter) -> bool:
-    """True if the data determine ``p``: a finite standard uncertainty no larger than the value."""
-    return math.isfinite(p.standard_error) and p.standard_error <= abs(p.value)
+def identifiable(p: FittedParameter, closure_range: float = math.inf) -> bool:
+    """True if the data determine ``p``: a finite standard uncertainty no larger than the value;
+    for the seating offset Δ_0, a location that may be zero, no larger than a tenth of the
+    measured ``closure_range`` [m]."""
+    if not math.isfinite(p.standard_error):
+        return False
+    if p.name == CLOSURE_OFFSET.name:
+        return p.standard_error <= 0.1 * closure_range
+    return p.standard_error <= abs(p.value)
 
 
 @dataclass(frozen=True)
@@ -106,6 +122,7 @@ class CycleCalibration:
     residuals: np.ndarray                   # model - data closure [m]
     given: Dict[str, object] = field(default_factory=dict)
     fit: object = None
+    closure_offset: float = 0.0             # Δ_0: the law's closure at the data's zero [m]
 
     def branch_rms(self) -> Dict[str, float]:
         """rms closure residual [m] per branch (those present)."""
@@ -115,9 +132,9 @@ class CycleCalibration:
 
     def permanent_closures(self) -> np.ndarray:
         """Fitted permanent closure r Δ_m [m] at the end of each unloading (the lowest stress of
-        each unloading run)."""
+        each unloading run), in the law's frame (from the virgin joint at zero stress)."""
         labels = self.cycles.branches()
-        predicted = self.predicted_closure()
+        predicted = self.predicted_closure() + self.closure_offset
         out, dm = [], 0.0
         for i, b in enumerate(labels):
             dm = max(dm, predicted[i])
@@ -142,10 +159,16 @@ class CycleCalibration:
 
     def not_identifiable(self) -> List[str]:
         """Names of the parameters these data do not determine (see ``identifiable``)."""
-        return [p.name for p in self.parameters if not identifiable(p)]
+        return [p.name for p in self.parameters if not identifiable(p, self.closure_range)]
+
+    @property
+    def closure_range(self) -> float:
+        """The measured closure's range [m]."""
+        return float(np.ptp(self.cycles.closure))
 
     def predicted_closure(self) -> np.ndarray:
-        return np.asarray(self.law.closure_path(self.cycles.normal_stress), dtype=float)
+        """The fitted closure at each point on the data's datum [m] (the law's path - Δ_0)."""
+        return np.asarray(self.law.closure_path(self.cycles.normal_stress), dtype=float) - self.closure_offset
 
     def parameter(self, name: str) -> FittedParameter:
         for p in self.parameters:
@@ -164,13 +187,15 @@ class CycleCalibration:
         lines.append("  fitted parameters (± standard uncertainty from the covariance scaled by the "
                      "residual variance):")
         for p in self.parameters:
-            if identifiable(p):
+            if identifiable(p, self.closure_range):
                 lines.append(f"    {p}")
             else:
                 unit = "" if p.unit == "-" else f" {p.unit}"
+                bound = ("a tenth of the measured closure" if p.name == CLOSURE_OFFSET.name
+                         else "the value")
                 lines.append(f"    {p.symbol:>4}   not identifiable from these data (the fit gives "
                              f"{p.value / p.scale:.3g} ± {p.standard_error / p.scale:.2g}{unit}: "
-                             "the uncertainty exceeds the value)")
+                             f"the uncertainty exceeds {bound})")
         for b, rms in self.branch_rms().items():
             lines.append(f"  {b:9s} rms {rms * 1e6:.4g} µm = {rms / top:.2%} of the maximum closure")
         ends = self.unloading_ends()
@@ -181,7 +206,7 @@ class CycleCalibration:
                          f"{e.measured_closure * 1e3:.4g} mm, {e.fitted_closure * 1e3:.4g} mm")
         r = self.parameter("permanent_fraction")
         lowest = min(e.normal_stress for e in ends)
-        if not identifiable(r):
+        if not identifiable(r, self.closure_range):
             lines.append("  permanent closure (at zero stress): not identifiable from these data: "
                          f"the unloading stops at {lowest * 1e-6:.4g} MPa and the closure kept "
                          "there does not fix r (the branch exponent m reproduces it over r's whole "
@@ -189,7 +214,9 @@ class CycleCalibration:
         else:
             where = ("" if lowest == 0.0 else
                      f", extrapolated below the lowest unloaded stress {lowest * 1e-6:.4g} MPa")
-            lines.append("  permanent closure after each unloading (at zero stress" + where + "): "
+            frame = ("" if self.closure_offset == 0.0 else
+                     f"; from the virgin joint, Δ_0 = {self.closure_offset * 1e3:.4g} mm below the data's zero")
+            lines.append("  permanent closure after each unloading (at zero stress" + where + frame + "): "
                          + ", ".join(f"{p * 1e3:.4g} mm" for p in self.permanent_closures())
                          + f" (r = {r.value:.3g} of the largest closure)")
         return "\n".join(lines)
@@ -201,52 +228,65 @@ def _logit(r: float) -> float:
 
 def calibrate_cycles(cycles: LoadCycles, law: str, *, composite_modulus: Optional[float] = None,
                      summit_radius: Optional[float] = None, maximum_iterations: int = 500,
-                     initial: Optional[List[float]] = None) -> CycleCalibration:
-    """Fit a virgin ``law`` (a calibratable law of the registry) with unloading branches to
-    ``cycles``; see the module docstring. ``initial``: starting values in SI, the law's unknowns
-    then r and m (default: the law's own guess on the virgin points, r from the lowest unloaded
-    closure, m = 2)."""
+                     initial: Optional[List[float]] = None, fit_offset: bool = True) -> CycleCalibration:
+    """Fit a virgin ``law`` (a calibratable law of the registry) with unloading branches and the
+    seating offset Δ_0 (``fit_offset``) to ``cycles``; see the module docstring. ``initial``:
+    starting values in SI, the law's unknowns, then Δ_0 (with ``fit_offset``), r and m (default:
+    the law's own guess on the virgin points, Δ_0 the guessed law's closure at the first point
+    less the measured one, r from the lowest unloaded closure, m = 2)."""
     spec, given = calibration_spec(law, composite_modulus, summit_radius, "calibrate_cycles")
     npos = len(spec.unknowns)
+    nfit = npos + (1 if fit_offset else 0)          # the law's unknowns, then Δ_0
     labels = cycles.branches()
     virgin = labels == "loading"
     if initial is None:
         s_v, d_v = cycles.normal_stress[virgin], cycles.closure[virgin]
         start = list(spec.initial_guess(s_v, d_v, given, spec.build, False, closure_of))[:npos]
+        if fit_offset:
+            seated = closure_of(spec.build(start, given), cycles.normal_stress[:1])[0]
+            start.append(max(float(seated - cycles.closure[0]), 0.0))
         lowest = float(np.min(cycles.closure[labels == "unloading"]))
         r0 = min(max(lowest / max(float(np.max(cycles.closure)), 1e-300), 0.05), 0.9)
         start += [r0, 2.0]
     else:
         start = list(initial)
-    if len(start) != npos + 2:
-        raise ValueError(f"calibrate_cycles: {len(start)} initial values for {npos + 2} parameters")
-    if not (0.0 < start[npos] < 1.0 and start[npos + 1] > 1.0):
-        raise ValueError(f"calibrate_cycles: initial r = {start[npos]} must be in (0, 1) and "
-                         f"m = {start[npos + 1]} > 1")
+    if len(start) != nfit + 2:
+        raise ValueError(f"calibrate_cycles: {len(start)} initial values for {nfit + 2} parameters")
+    if not (0.0 < start[nfit] < 1.0 and start[nfit + 1] > 1.0):
+        raise ValueError(f"calibrate_cycles: initial r = {start[nfit]} must be in (0, 1) and "
+                         f"m = {start[nfit + 1]} > 1")
     scale = float(np.max(np.abs(cycles.closure))) or 1.0
 
+    # Fitted vector q: ln p for the law's parameters, Δ_0/scale (any sign while fitting), logit r,
+    # ln(m - 1).
     def unpack(q):
         values = [math.exp(x) for x in q[:npos]]
-        r = 1.0 / (1.0 + math.exp(-q[npos]))
-        return values, r, 1.0 + math.exp(q[npos + 1])
+        offset = q[npos] * scale if fit_offset else 0.0
+        r = 1.0 / (1.0 + math.exp(-q[nfit]))
+        return values, offset, r, 1.0 + math.exp(q[nfit + 1])
 
     def build(q):
-        values, r, m = unpack(q)
+        values, _, r, m = unpack(q)
         return NormalHysteresis(spec.build(values, given), r, m)
 
     def model(q):
         try:
-            return np.asarray(build(q).closure_path(cycles.normal_stress)) / scale
+            return (np.asarray(build(q).closure_path(cycles.normal_stress)) - unpack(q)[1]) / scale
         except ValueError:  # a trial beyond the law's admissible stress: steer the fit back
             return np.full(cycles.closure.size, 1e3)
 
-    q0 = [math.log(v) for v in start[:npos]] + [_logit(start[npos]), math.log(start[npos + 1] - 1.0)]
+    q0 = ([math.log(v) for v in start[:npos]] + ([start[npos] / scale] if fit_offset else [])
+          + [_logit(start[nfit]), math.log(start[nfit + 1] - 1.0)])
     result = _cpp_calibration.fit_curve(model, cycles.closure / scale, np.array(q0), None,
                                         maximum_iterations=maximum_iterations)
     q, se = result.parameters, result.standard_errors
-    values, r, m = unpack(q)
+    values, offset, r, m = unpack(q)
     params = [FittedParameter(u.name, u.symbol, values[j], values[j] * se[j], u.unit, u.scale)
               for j, u in enumerate(spec.unknowns)]
-    params.append(FittedParameter("permanent_fraction", "r", r, r * (1 - r) * se[npos], "-", 1.0))
-    params.append(FittedParameter("unloading_exponent", "m", m, (m - 1) * se[npos + 1], "-", 1.0))
-    return CycleCalibration(law, build(q), params, cycles, result.residuals * scale, given, result)
+    if fit_offset:
+        o = CLOSURE_OFFSET
+        params.append(FittedParameter(o.name, o.symbol, offset, se[npos] * scale, o.unit, o.scale))
+    params.append(FittedParameter("permanent_fraction", "r", r, r * (1 - r) * se[nfit], "-", 1.0))
+    params.append(FittedParameter("unloading_exponent", "m", m, (m - 1) * se[nfit + 1], "-", 1.0))
+    return CycleCalibration(law, build(q), params, cycles, result.residuals * scale, given, result,
+                            closure_offset=offset)

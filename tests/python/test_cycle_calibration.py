@@ -150,3 +150,59 @@ def test_cli_fits_cycles(tmp_path):
                           "barton_bandis", "--cycles"], capture_output=True, text=True)
     assert out.returncode == 0, out.stderr
     assert "r = 0.28" in out.stdout and "permanent closure after each unloading" in out.stdout
+
+
+# ---- the seating offset (issue 39, item 6) ----------------------------------------------------
+SEATING = 0.5e6                                 # the gauges are zeroed at the seating load [Pa]
+LAB_NOISE = 1e-6                                # closure noise of the laboratory-looking test [m]
+
+
+def lab_path():
+    """A laboratory-looking test: seated at 0.5 MPa, loaded in the usual steps to 10 MPa,
+    unloaded to the seating load, reloaded to 20 MPa and unloaded again; the closure written out
+    with the closed forms (H1-H2, the Barton-Bandis inverse) from the virgin joint, then counted
+    from the seating point as a laboratory reads it (its first value exactly 0)."""
+    first = np.array([0.5, 1, 2, 3, 4, 5, 6, 8, 10]) * 1e6
+    stress = np.r_[first, first[::-1][1:], np.array([1, 2, 4, 6, 8, 10, 12, 15, 20]) * 1e6,
+                   np.array([15, 10, 8, 6, 4, 3, 2, 1, 0.5]) * 1e6]
+    closure, dm, top = [], 0.0, 0.0
+    for s in stress:
+        if s >= top:
+            d = s * VM / (KNI * VM + s)
+            dm, top = max(dm, d), s
+        else:
+            d = R * dm + (dm - R * dm) * (s / top) ** (1 / M)
+        closure.append(d)
+    offset = SEATING * VM / (KNI * VM + SEATING)      # the law's closure at the data's zero
+    rng = np.random.default_rng(11)
+    measured = np.array(closure) - offset + rng.normal(0.0, LAB_NOISE, stress.size)
+    measured[0] = 0.0
+    return stress, measured, offset
+
+
+def test_a_seated_cycle_gives_back_its_offset_and_r():
+    stress, measured, offset = lab_path()
+    fit = calibrate_cycles(LoadCycles(stress, measured), "barton_bandis")
+    truth = {"initial_normal_stiffness": KNI, "maximum_closure": VM, "closure_offset": offset,
+             "permanent_fraction": R, "unloading_exponent": M}
+    for name, value in truth.items():
+        p = fit.parameter(name)
+        assert 0 < p.standard_error < 0.2 * abs(p.value), name
+        assert abs(p.value - value) < 3 * p.standard_error, (name, p.value, value, p.standard_error)
+    assert fit.not_identifiable() == []
+    assert max(fit.branch_rms().values()) < 2 * LAB_NOISE             # at the noise level
+    assert fit.closure_offset == fit.parameter("closure_offset").value
+    assert abs(fit.predicted_closure()[0]) < 3 * fit.parameter("closure_offset").standard_error
+    text = fit.report()
+    assert "Δ_0 = " in text and "below the data's zero" in text and "r = 0.2" in text
+
+
+def test_without_the_offset_a_seated_cycle_is_misfitted():
+    # what the calibration did before: the law through zero closure at the seating load; the
+    # virgin law absorbs the missing closure (K_ni 50 % too stiff) and misses the loading points
+    stress, measured, _ = lab_path()
+    fit = calibrate_cycles(LoadCycles(stress, measured), "barton_bandis", fit_offset=False)
+    k = fit.parameter("initial_normal_stiffness")
+    assert abs(k.value - KNI) > 3 * k.standard_error
+    assert fit.branch_rms()["loading"] > 5 * LAB_NOISE
+    assert "closure_offset" not in [p.name for p in fit.parameters]

@@ -14,8 +14,9 @@ weights the fit by 1/std². See rockjoint.calibration for what each law fits.
 
 With ``--cycles`` the file holds load cycles in test order (loading, unloading, reloading ...):
 the law is fitted as the virgin curve of a hysteretic law together with its unloading branches
-(permanent fraction r, branch exponent m; rockjoint.cycle_calibration, docs/hysteresis.md); the
-report gives the rms of each branch, the permanent closure of each cycle and the uncertainties.
+(permanent fraction r, branch exponent m; rockjoint.cycle_calibration, docs/hysteresis.md) and
+the seating offset Δ_0 (the law's closure where the gauges were zeroed; --no-fit-offset: none);
+the report gives the rms of each branch, the permanent closure of each cycle and the uncertainties.
 """
 from __future__ import annotations
 
@@ -58,9 +59,11 @@ def add_parser(subparsers) -> None:
                    help="substrate base radius r0 [mm] of the Tang base (default 1/(2√η))")
     off = p.add_mutually_exclusive_group()
     off.add_argument("--fit-offset", dest="fit_offset", action="store_true", default=None,
-                     help="also fit a closure offset Δ_0 (default for GW-type laws)")
+                     help="also fit a closure offset Δ_0 (default for GW-type laws and for "
+                          "--cycles: the seating offset)")
     off.add_argument("--no-fit-offset", dest="fit_offset", action="store_false",
-                     help="the curve starts at the law's datum (default for empirical laws)")
+                     help="the curve starts at the law's datum, the virgin joint at zero stress "
+                          "(default for empirical laws' loading curves)")
     p.add_argument("--cycles", action="store_true",
                    help="the file holds load cycles (test order): fit the law with unloading "
                         "branches (permanent closure, branch exponent)")
@@ -110,6 +113,7 @@ def run_cycles(args) -> int:
     e_star = None if args.composite_modulus is None else args.composite_modulus * GPA
     result = calibrate_cycles(read_load_cycles(args.curve), args.law, composite_modulus=e_star,
                               summit_radius=None if args.summit_radius is None
-                              else args.summit_radius * MM)
+                              else args.summit_radius * MM,
+                              fit_offset=True if args.fit_offset is None else args.fit_offset)
     print(result.report())
     return 0
