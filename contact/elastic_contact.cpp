@@ -1,5 +1,7 @@
 #include "elastic_contact.hpp"
 
+#include "contact_set.hpp"
+
 #include <rockjoint/constitutive/validation.hpp>
 
 #include <algorithm>
@@ -44,48 +46,6 @@ constexpr double direct_update_factor = 0.25;
 /// u is recomputed by FFT after this many carried updates (round-off does not accumulate).
 constexpr int carried_updates_limit = 50;
 
-/// Number of 4-connected components of the contact set (wrapping at the edges if periodic).
-int count_patches(const std::vector<double>& p, std::size_t rows, std::size_t cols, bool wrap)
-{
-  std::vector<unsigned char> seen(p.size(), 0);
-  std::vector<std::size_t> stack;
-  int patches = 0;
-  for (std::size_t start = 0; start < p.size(); ++start)
-  {
-    if (!(p[start] > 0.0) || seen[start])
-      continue;
-    ++patches;
-    stack.assign(1, start);
-    seen[start] = 1;
-    while (!stack.empty())
-    {
-      const std::size_t k = stack.back();
-      stack.pop_back();
-      const std::size_t i = k / cols, j = k % cols;
-      auto visit = [&](std::ptrdiff_t ii, std::ptrdiff_t jj)
-      {
-        if (wrap)
-        {
-          ii = (ii + std::ptrdiff_t(rows)) % std::ptrdiff_t(rows);
-          jj = (jj + std::ptrdiff_t(cols)) % std::ptrdiff_t(cols);
-        }
-        else if (ii < 0 || jj < 0 || ii >= std::ptrdiff_t(rows) || jj >= std::ptrdiff_t(cols))
-          return;
-        const std::size_t n = std::size_t(ii) * cols + std::size_t(jj);
-        if (p[n] > 0.0 && !seen[n])
-        {
-          seen[n] = 1;
-          stack.push_back(n);
-        }
-      };
-      visit(std::ptrdiff_t(i) - 1, std::ptrdiff_t(j));
-      visit(std::ptrdiff_t(i) + 1, std::ptrdiff_t(j));
-      visit(std::ptrdiff_t(i), std::ptrdiff_t(j) - 1);
-      visit(std::ptrdiff_t(i), std::ptrdiff_t(j) + 1);
-    }
-  }
-  return patches;
-}
 } // namespace
 
 std::size_t scanned_aperture(const topography::Surface& surface, const std::string& owner,
@@ -403,28 +363,27 @@ ContactState ElasticContact::solve(double mean_pressure, bool keep_fields)
   // spots change, and d - σ·c lost monotonicity under load (1024² bench joint: 0.0601 mm at
   // 13 MPa, 0.0565 mm at 30 MPa).
   st.closure = approach - mean_u;
-  st.contact_area_ratio = double(in_contact) / double(_valid_count);
   st.minimum_gap = std::numeric_limits<double>::infinity();
+  std::vector<double> g(n, std::numeric_limits<double>::quiet_NaN());
   for (std::size_t k = 0; k < n; ++k)
   {
     if (!_valid[k])
       continue;
-    const double g = _u[k] + _aperture[k] - approach;
-    st.complementarity = std::max(st.complementarity, std::abs(p[k] * g));
+    g[k] = _u[k] + _aperture[k] - approach;
+    st.complementarity = std::max(st.complementarity, std::abs(p[k] * g[k]));
     if (!(p[k] > 0.0))
-      st.minimum_gap = std::min(st.minimum_gap, g);
+      st.minimum_gap = std::min(st.minimum_gap, g[k]);
   }
-  st.contact_patches = count_patches(p, _rows, _cols, _half_space.kernel() == Kernel::periodic);
+  const ContactSet contact = contact_set(p, g, _valid);
+  st.contact_area_ratio = double(contact.count) / double(_valid_count);
+  st.contact_patches = count_patches(contact.member, _rows, _cols,
+                                     _half_space.kernel() == Kernel::periodic);
   if (keep_fields)
   {
-    const double nan = std::numeric_limits<double>::quiet_NaN();
     st.pressure.resize(n);
-    st.gap.resize(n);
     for (std::size_t k = 0; k < n; ++k)
-    {
-      st.pressure[k] = _valid[k] ? p[k] : nan;
-      st.gap[k] = _valid[k] ? std::max(_u[k] + _aperture[k] - approach, 0.0) : nan;
-    }
+      st.pressure[k] = _valid[k] ? p[k] : std::numeric_limits<double>::quiet_NaN();
+    st.gap = gap_field(g, contact, _valid);
   }
   return st;
 }

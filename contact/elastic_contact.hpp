@@ -41,17 +41,19 @@ struct ContactState
   double mean_pressure = 0.0; ///< σ [Pa], the prescribed mean of p over the scanned points
   double approach = 0.0;      ///< d [m], rigid approach from first contact (raw)
   double closure = 0.0;       ///< Δ [m], d net of the bulk deformation (see file comment)
-  /// A/A0: fraction of the scanned points in contact. Biased upward by about one node row at
-  /// the edges of every contact spot (a node is in or out; the true edge is inside the cell).
+  /// A/A0: fraction of the scanned points in the contact set (contact_set.hpp). Biased upward
+  /// by about one node row at the edges of every contact spot (a node is in or out; the
+  /// true edge is inside the cell).
   double contact_area_ratio = 0.0;
-  int contact_patches = 0;     ///< 4-connected contact spots (periodic wrap for that kernel)
+  int contact_patches = 0;     ///< 4-connected spots of the contact set (periodic wrap for that kernel)
   int iterations = 0;          ///< conjugate-gradient iterations of this load
   bool converged = false;      ///< the tolerance was met within maximum_iterations
   double relative_change = 0.0;   ///< last Σ|Δp| / Σ p
   double complementarity = 0.0;   ///< max p·g [Pa·m] over the grid
   double minimum_gap = 0.0;       ///< min g [m] off contact (>= -solver tolerance)
   std::vector<double> pressure;   ///< p [Pa], row-major (NaN where masked)
-  std::vector<double> gap;        ///< g [m] under load: the mechanical aperture (NaN where masked)
+  /// g [m] under load: the mechanical aperture, exactly 0 on the contact set (NaN where masked)
+  std::vector<double> gap;
 };
 
 /// The scanned points of an aperture field: `aperture` = e - min e over the valid (non-NaN)

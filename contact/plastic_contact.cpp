@@ -153,7 +153,7 @@ PlasticContactState PlasticContact::solve(double sigma)
 
   // Flatten the overlap at the capped points (plastic flow), then the state.
   const std::size_t n = _rows * _cols;
-  std::size_t contact = 0, capped = 0;
+  std::size_t capped = 0;
   double mean_u = 0.0;
   for (std::size_t k = 0; k < n; ++k)
   {
@@ -166,14 +166,19 @@ PlasticContactState PlasticContact::solve(double sigma)
       _aperture[k] -= g;
       _flattening_sum -= g;
     }
-    contact += _pressure[k] > 0.0;
     capped += _pressure[k] >= _hardness;
   }
   mean_u /= double(_valid_count);
   st.approach = d;
   st.mean_flattening = _flattening_sum / double(_valid_count);
   st.closure = d - mean_u - st.mean_flattening;
-  st.contact_area_ratio = double(contact) / double(_valid_count);
+  // The gap of the final pressure on the flattened walls (_u is the last iteration's, one step
+  // behind p), and the contact set it defines with p (contact_set.hpp).
+  _half_space.displacement(_pressure, _u);
+  for (std::size_t k = 0; k < n; ++k)
+    _g[k] = _valid[k] ? _u[k] + _aperture[k] - d : 0.0;
+  _contact = contact_set(_pressure, _g, _valid);
+  st.contact_area_ratio = double(_contact.count) / double(_valid_count);
   st.plastic_area_ratio = double(capped) / double(_valid_count);
   st.evaluations = evaluations;
   st.iterations = _iterations - iterations_before;
@@ -187,6 +192,13 @@ double PlasticContact::unloaded_closure() const
     if (_valid[k])
       d0 = std::min(d0, _aperture[k]);
   return d0 - _flattening_sum / double(_valid_count);
+}
+
+std::vector<double> PlasticContact::gap() const
+{
+  if (_contact.member.empty())
+    return {};
+  return gap_field(_g, _contact, _valid);
 }
 
 std::vector<double> PlasticContact::pressure() const

@@ -14,6 +14,7 @@
 /// elastic, reloading retraces it up to the previous maximum, and a permanent closure remains.
 /// The closure datum is the original walls': Δ = mean(e0) - mean(g) = d - mean(K p) - mean(w),
 /// w the flattening, as ElasticContact's (H = +inf gives its answer: an independent check of both).
+#include "contact_set.hpp"
 #include "elastic_contact.hpp"
 #include "half_space.hpp"
 
@@ -30,7 +31,8 @@ struct PlasticContactState
   double mean_pressure = 0.0;      ///< σ [Pa]
   double approach = 0.0;           ///< d [m] from the original walls' first contact
   double closure = 0.0;            ///< Δ [m] (see the file comment)
-  double contact_area_ratio = 0.0; ///< fraction of the scanned points with p > 0
+  /// fraction of the scanned points in the contact set (contact_set.hpp)
+  double contact_area_ratio = 0.0;
   double plastic_area_ratio = 0.0; ///< fraction at the cap H
   double mean_flattening = 0.0;    ///< mean(w) so far [m]
   int evaluations = 0;             ///< fixed-d solves of this load
@@ -55,6 +57,11 @@ public:
   /// p [Pa] of the last solve (row-major, NaN where masked).
   std::vector<double> pressure() const;
 
+  /// Gap g [m] under the last load on the flattened walls (row-major, NaN where masked): exactly
+  /// 0 on the contact set (contact_set.hpp), the mechanical aperture a flow model needs. Empty
+  /// before the first solve.
+  std::vector<double> gap() const;
+
 private:
   /// σ(d): the box-constrained minimisation at fixed approach d, warm-started from _pressure.
   double mean_pressure_at(double approach);
@@ -66,6 +73,7 @@ private:
   std::vector<double> _aperture;           ///< e0 + w (shifted: min e0 = 0 over valid points)
   std::vector<unsigned char> _valid;
   std::vector<double> _pressure, _u, _g, _t, _r;
+  ContactSet _contact;                     ///< of the last solve
   double _flattening_sum = 0.0;
   double _approach = 0.0;                  ///< d of the last solve
   int _iterations = 0;

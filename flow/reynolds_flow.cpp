@@ -72,6 +72,15 @@ void check_field(std::span<const double> aperture, std::size_t rows, std::size_t
     fail("every aperture is NaN: no scanned point");
 }
 
+/// Cells whose conductance k = e³/12 is below this fraction of the largest cell's are closed
+/// (e < 1e-4 e_max): the double-precision system cannot resolve them. A region of open cells
+/// that reaches the inlet (or its pinned cell) only through such cells has a pivot of their
+/// size computed by cancellation of O(1) terms, so it comes out as round-off, possibly
+/// negative: CHOLMOD stopped ("not positive definite") and LDLᵀ returned T < 0 on fields with
+/// 40-70 % clustered cells at e <= 1e-9 m (issue 39; tests/python/test_flow_contact_set.py).
+/// What they carry is below 1e-12 k_max per unit gradient, far under any T this solver reports.
+constexpr double resolved_conductance = 1e-12;
+
 /// Harmonic mean of two cell conductances: the two half cells in series (file comment of the
 /// header); 0 if either cell is closed.
 double face_conductance(double a, double b)
@@ -143,14 +152,18 @@ bool on_outlet(const Grid& g, const Load& load, std::size_t k)
 System assemble(const Grid& g, std::vector<unsigned char> active, const OpenRegions& regions,
                 const Load* sealed_load)
 {
+  // Periodic: each region's most conductive cell is pinned (φ = 0), the best-conditioned choice.
+  std::vector<std::size_t> pins(regions.first_cell);
+  for (std::size_t k = 0; k < g.rows * g.cols; ++k)
+    if (regions.label[k] >= 0 && g.cell[k] > g.cell[pins[std::size_t(regions.label[k])]])
+      pins[std::size_t(regions.label[k])] = k;
   const std::size_t n = g.rows * g.cols;
   System s;
   s.active = std::move(active);
   s.unknown.assign(n, 0);
   for (std::size_t k = 0; k < n; ++k)
   {
-    const bool pinned = g.periodic && s.active[k]
-                        && regions.first_cell[std::size_t(regions.label[k])] == k;
+    const bool pinned = g.periodic && s.active[k] && pins[std::size_t(regions.label[k])] == k;
     s.unknown[k] = s.active[k] && !pinned;
     s.size += s.unknown[k];
   }
@@ -265,6 +278,23 @@ std::array<double, 2> mean_flux(const Grid& g, const System& s, const Load& load
     q[std::size_t(load.axis)] = 0.5 * (inflow + outflow) / width;
   }
   return q;
+}
+
+/// A transmissivity that is not finite, or a negative principal term, comes from a pressure
+/// system that was not solved: an error, never an aperture (issue 39: LDLᵀ gave T = -3e-27 m³).
+void check_transmissivity(const FlowResult& r)
+{
+  static constexpr const char* name[4] = {"T_xx", "T_xy", "T_yx", "T_yy"};
+  for (std::size_t i = 0; i < 4; ++i)
+    if (!std::isfinite(r.transmissivity[i]) || ((i == 0 || i == 3) && r.transmissivity[i] < 0.0))
+    {
+      std::ostringstream msg;
+      msg.precision(6);
+      msg << "flow::transmissivity: " << name[i] << " = " << r.transmissivity[i]
+          << " m³ is not a transmissivity (finite, and >= 0 on the diagonal): the pressure system"
+          << " was not solved (relative residual " << r.relative_residual << ")";
+      throw std::runtime_error(msg.str());
+    }
 }
 
 struct Solved
@@ -395,7 +425,8 @@ FlowResult ReynoldsFlow::transmissivity(std::span<const double> aperture)
   for (std::size_t k = 0; k < n; ++k)
   {
     const double e = aperture[k];
-    g.cell[k] = std::isnan(e) ? 0.0 : (e / e_max) * (e / e_max) * (e / e_max);
+    const double c = std::isnan(e) ? 0.0 : (e / e_max) * (e / e_max) * (e / e_max);
+    g.cell[k] = c >= resolved_conductance ? c : 0.0;
     is_open[k] = g.cell[k] > 0.0;
   }
   g.face_x.assign(n, 0.0);
@@ -485,6 +516,7 @@ FlowResult ReynoldsFlow::transmissivity(std::span<const double> aperture)
   }
   for (std::size_t i = 0; i < 4; ++i)
     result.transmissivity[i] = g.k_max * t[i];
+  check_transmissivity(result);
   return result;
 }
 

@@ -27,6 +27,12 @@
 ///   through the half cell next to them; no flow across the two sides parallel to it.
 /// Regions of open cells that cannot carry a mean flow (connectivity.hpp) are left out.
 ///
+/// Closed cells: e = 0 (a contact spot: the contact solvers give exactly 0 on their contact set,
+/// contact/contact_set.hpp), NaN, and open cells whose k is below 1e-12 of the largest cell's
+/// (e < 1e-4 e_max), which the double-precision system cannot resolve (reynolds_flow.cpp). They
+/// are removed from the system, not given a tiny conductance. A transmissivity that comes out
+/// non-finite or with a negative diagonal term is an error (std::runtime_error), never a result.
+///
 /// Linear solver (docs/flow.md, bench/results/flow.md): the matrix is the 5-point
 /// finite-volume Laplacian, symmetric positive definite once the floating regions are left out
 /// or pinned. It is stored on the whole grid, a cell outside the system as an identity row, so
@@ -76,8 +82,10 @@ struct FlowResult
   /// flux inside the grid, biased by the sealed sides and not symmetric in general.
   std::array<double, 4> transmissivity{};
   double mechanical_aperture = 0.0; ///< mean of e over the scanned points, contact spots as 0 [m]
-  double open_fraction = 0.0;       ///< fraction of the scanned points with e > 0 [-]
-  /// an open path carries flow along x, y (sealed sides: inlet to outlet; periodic: winding)
+  /// fraction of the scanned points with e > 0 [-] (a contact solution's gap: 1 - A/A0)
+  double open_fraction = 0.0;
+  /// a path of open (resolved) cells carries flow along x, y (sealed sides: inlet to outlet;
+  /// periodic: winding); T_xx > 0 exactly when percolates[0], T_yy likewise
   std::array<bool, 2> percolates{};
   std::array<int, 2> iterations{}; ///< CG iterations under each gradient (0: direct solver)
   /// largest |A p - b| / |b| of the pressure systems solved (0 if none was solved)
@@ -109,7 +117,8 @@ public:
   /// Transmissivity of the aperture field `aperture` [m] (rows x cols, row-major like numpy:
   /// entry (i, j) at x = j h_x, y = i h_y; NaN = masked, not scanned, impermeable; 0 = closed).
   /// Throws std::invalid_argument, naming the problem, for a size that is not rows x cols, a
-  /// negative or infinite aperture (its row, column and value) or no scanned point.
+  /// negative or infinite aperture (its row, column and value) or no scanned point;
+  /// std::runtime_error for a T that is not finite or has a negative diagonal term.
   FlowResult transmissivity(std::span<const double> aperture);
 
   std::size_t rows() const { return _rows; }

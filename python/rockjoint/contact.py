@@ -81,8 +81,9 @@ def closure_curve(aperture: Surface, composite_modulus: float, stresses: Sequenc
     order), plastic flattening persists from load to load, and `unloaded_closure` is the
     permanent closure when the load is removed at the end (docs/contact.md).
     `flow`: also the transmissivity of the gap field at each load and at first contact (elastic
-    walls; the same boundary as the kernel: periodic, or sealed sides for an isolated scan;
-    `flow_solver` as rockjoint.flow.transmissivity's `solver`; docs/flow.md).
+    or elastic-plastic walls: the gap is exactly 0 on each load's contact set; the same boundary
+    as the kernel: periodic, or sealed sides for an isolated scan; `flow_solver` as
+    rockjoint.flow.transmissivity's `solver`; docs/flow.md).
     Raises ValueError for bad input, RuntimeError if a load does not converge."""
     stresses = np.asarray(stresses, dtype=float).ravel()
     if stresses.size == 0 or not np.all(np.isfinite(stresses)) or np.any(stresses <= 0):
@@ -92,18 +93,16 @@ def closure_curve(aperture: Surface, composite_modulus: float, stresses: Sequenc
         raise ValueError(f"closure_curve: hardness = {hardness} Pa must be > 0 (inf: elastic walls)")
     rows, cols = aperture.shape
     options = _cpp.ContactOptions(tolerance, maximum_iterations)
-    if flow and np.isfinite(hardness):
-        raise ValueError("closure_curve: flow=True is for elastic walls (hardness = inf): the "
-                         "elastic-plastic solver does not return the gap field")
     # one flow problem for every load: its symbolic factorisation is made once
     flow_of = ApertureFlow((rows, cols), (aperture.spacing_x, aperture.spacing_y),
                            periodic=periodic, **({} if flow_solver is None else {"solver": flow_solver})
                            ) if flow else None
     if np.isfinite(hardness):
-        return _plastic_curve(aperture, composite_modulus, stresses, kernel, float(hardness), options,
-                              keep_fields, periodic, tolerance)
+        curve = _plastic_curve(aperture, composite_modulus, stresses, kernel, float(hardness),
+                               options, keep_fields or flow, periodic, tolerance)
+        return _with_flow(curve, aperture, flow_of, keep_fields) if flow else curve
     solver = _cpp.ElasticContact(aperture, float(composite_modulus), kernel, options)
-    states, pressure, gap, flows = [], [], [], []
+    states, pressure, gap = [], [], []
     for i, s in enumerate(stresses):
         st, p, g = solver.solve(float(s), keep_fields or flow, rows, cols)
         if not st.converged:
@@ -113,29 +112,14 @@ def closure_curve(aperture: Surface, composite_modulus: float, stresses: Sequenc
         log.info("BEM σ = %.4g MPa: Δ = %.5g mm, A/A0 = %.4g, %d iterations", s * 1e-6,
                  st.closure * 1e3, st.contact_area_ratio, st.iterations)
         states.append(st)
-        if keep_fields:
+        if keep_fields or flow:
             pressure.append(p)
             gap.append(g)
-        if flow:
-            flows.append(flow_of(g))
 
     def column(name):
         return np.array([getattr(st, name) for st in states])
 
-    flow_columns = {}
-    if flow:
-        first = aperture.heights
-        first = first - np.nanmin(first)  # the closure's datum: first contact, min e = 0
-        tensors = np.array([f.tensor for f in flows])
-        flow_columns = dict(
-            transmissivity_xx=tensors[:, 0, 0], transmissivity_yy=tensors[:, 1, 1],
-            transmissivity_xy=0.5 * (tensors[:, 0, 1] + tensors[:, 1, 0]),
-            hydraulic_aperture=np.array([f.hydraulic_aperture for f in flows]),
-            mechanical_aperture=np.array([f.mechanical_aperture for f in flows]),
-            initial_flow=flow_of(first),
-            flow_results=flows)
-
-    return ClosureCurve(stress=stresses, closure=column("closure"), approach=column("approach"),
+    curve = ClosureCurve(stress=stresses, closure=column("closure"), approach=column("approach"),
                         contact_area_ratio=column("contact_area_ratio"),
                         contact_patches=column("contact_patches"),
                         iterations=column("iterations"),
@@ -147,17 +131,40 @@ def closure_curve(aperture: Surface, composite_modulus: float, stresses: Sequenc
                         spacing=max(aperture.spacing_x, aperture.spacing_y),
                         shape=(rows, cols), periodic=periodic, tolerance=tolerance,
                         hardness=float(hardness), unloaded_closure=0.0,
-                        pressure=pressure if keep_fields else None,
-                        gap=gap if keep_fields else None, _states=states, **flow_columns)
+                        pressure=pressure, gap=gap, _states=states)
+    return _with_flow(curve, aperture, flow_of, keep_fields) if flow else _fields(curve, keep_fields)
+
+
+def _fields(curve: ClosureCurve, keep_fields: bool) -> ClosureCurve:
+    """The curve without its pressure and gap fields unless they were asked for."""
+    if not keep_fields:
+        curve.pressure = curve.gap = None
+    return curve
+
+
+def _with_flow(curve: ClosureCurve, aperture: Surface, flow_of: ApertureFlow,
+               keep_fields: bool) -> ClosureCurve:
+    """The flow columns of `curve` from its gap fields (exactly 0 on each load's contact set, so
+    the flow's open fraction is 1 - A/A0), then the fields dropped unless kept."""
+    flows = [flow_of(g) for g in curve.gap]
+    first = aperture.heights
+    first = first - np.nanmin(first)  # the closure's datum: first contact, min e = 0
+    tensors = np.array([f.tensor for f in flows])
+    curve.transmissivity_xx, curve.transmissivity_yy = tensors[:, 0, 0], tensors[:, 1, 1]
+    curve.transmissivity_xy = 0.5 * (tensors[:, 0, 1] + tensors[:, 1, 0])
+    curve.hydraulic_aperture = np.array([f.hydraulic_aperture for f in flows])
+    curve.mechanical_aperture = np.array([f.mechanical_aperture for f in flows])
+    curve.initial_flow, curve.flow_results = flow_of(first), flows
+    return _fields(curve, keep_fields)
 
 
 def _plastic_curve(aperture, composite_modulus, stresses, kernel, hardness, options, keep_fields,
                    periodic, tolerance) -> ClosureCurve:
     """closure_curve for elastic-perfectly-plastic walls (PlasticContact): the stresses are a load
-    path; gap, complementarity and patch counts are not computed (NaN)."""
+    path; complementarity and patch counts are not computed (NaN)."""
     rows, cols = aperture.shape
     solver = _cpp.PlasticContact(aperture, float(composite_modulus), kernel, hardness, options)
-    states, pressure = [], []
+    states, pressure, gap = [], [], []
     for i, s in enumerate(stresses):
         st = solver.solve(float(s))
         if not st.converged:
@@ -168,6 +175,7 @@ def _plastic_curve(aperture, composite_modulus, stresses, kernel, hardness, opti
         states.append(st)
         if keep_fields:
             pressure.append(solver.pressure(rows, cols))
+            gap.append(solver.gap(rows, cols))
     col = lambda name: np.array([getattr(st, name) for st in states])  # noqa: E731
     nan = np.full(len(states), np.nan)
     return ClosureCurve(stress=stresses, closure=col("closure"), approach=col("approach"),
@@ -179,7 +187,8 @@ def _plastic_curve(aperture, composite_modulus, stresses, kernel, hardness, opti
                         spacing=max(aperture.spacing_x, aperture.spacing_y), shape=(rows, cols),
                         periodic=periodic, tolerance=tolerance, hardness=hardness,
                         unloaded_closure=solver.unloaded_closure(),
-                        pressure=pressure if keep_fields else None, _states=states)
+                        pressure=pressure if keep_fields else None,
+                        gap=gap if keep_fields else None, _states=states)
 
 
 def exact_elastic_law(curve: ClosureCurve, residual_stiffness: Optional[float] = None,

@@ -40,8 +40,14 @@ DEFAULT_SOLVER = "cholesky"
 
 
 def hydraulic_aperture(transmissivity) -> Union[float, np.ndarray]:
-    """e_h = (12 T)^(1/3) [m] of a transmissivity T [m³] (parallel plates: their spacing)."""
-    return np.cbrt(12.0 * np.asarray(transmissivity, dtype=float))
+    """e_h = (12 T)^(1/3) [m] of a transmissivity T [m³] (parallel plates: their spacing). A
+    negative or non-finite T is not a transmissivity (a pressure system that was not solved):
+    ValueError, never a negative aperture."""
+    t = np.asarray(transmissivity, dtype=float)
+    if not np.all(np.isfinite(t) & (t >= 0)):
+        bad = float(t[~(np.isfinite(t) & (t >= 0))].ravel()[0])
+        raise ValueError(f"hydraulic_aperture: transmissivity {bad:g} m³ is not finite and >= 0")
+    return np.cbrt(12.0 * t)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -50,8 +56,8 @@ class Transmissivity:
 
     tensor: np.ndarray           # T [m³], 2 x 2: q̄ = -(T/μ) ∇p̄ (x, y)
     mechanical_aperture: float   # mean aperture over the scanned points, contact spots as 0 [m]
-    open_fraction: float         # scanned points with e > 0 [-]
-    percolates: Tuple[bool, bool]  # an open path carries flow along x, y
+    open_fraction: float         # scanned points with e > 0 [-] (a contact gap: 1 - A/A0)
+    percolates: Tuple[bool, bool]  # an open path carries flow along x, y (docs/flow.md)
     iterations: Tuple[int, int]  # CG iterations per gradient (0: direct solver)
     relative_residual: float     # largest |A p - b|/|b| of the pressure systems
     periodic: bool

@@ -98,7 +98,13 @@ void declare_contact(py::module_& m)
           "pressure",
           [](const PlasticContact& c, std::size_t rows, std::size_t cols)
           { return field(c.pressure(), rows, cols); },
-          py::arg("rows"), py::arg("cols"));
+          py::arg("rows"), py::arg("cols"))
+      .def(
+          "gap",
+          [](const PlasticContact& c, std::size_t rows, std::size_t cols)
+          { return field(c.gap(), rows, cols); },
+          py::arg("rows"), py::arg("cols"),
+          "g [m] under the last load, exactly 0 on the contact set (NaN where masked)");
 
   py::class_<ContactOptions>(m, "ContactOptions")
       .def(py::init(

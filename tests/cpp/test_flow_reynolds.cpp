@@ -2,7 +2,7 @@
 // parallel plates (e_h = e), apertures varying across the flow only (arithmetic mean of e³) and
 // along it only (harmonic mean), a separable conductance k1(x) k2(y) (p = p(x) is exact), the
 // two-phase checkerboard (Dykhne 1971, Keller 1964: √(k1 k2)); a smooth field converges at second
-// order; T is symmetric; pockets, closed paths and masked points; bad input.
+// order; T is symmetric; pockets, closed paths, masked points and near-zero cells; bad input.
 #include "expect_error.hpp"
 
 #include <rockjoint/flow/reynolds_flow.hpp>
@@ -205,6 +205,30 @@ TEST_P(FlowCases, MaskedPointsAreImpermeable)
     EXPECT_NEAR(a.transmissivity[k], b.transmissivity[k], 1e-9 * b.transmissivity[3]);
   EXPECT_GT(a.mechanical_aperture, b.mechanical_aperture); // the masked points are not zeros
   EXPECT_DOUBLE_EQ(a.open_fraction, 1.0);
+}
+
+/// Two blocks of open cells joined only by columns of near-zero cells (1e-13 m beside 1e-4 m:
+/// the residual gaps a contact solver leaves at its contact points, issue 39). Those cells'
+/// conductance is 1e-27 of the blocks': the system cannot resolve it, and a block that reaches
+/// the inlet or the pinned cell only through them made CHOLMOD stop and LDLᵀ return T < 0.
+/// They are closed: across them T_xx = 0 (the exact value, ~1e-40 m³, is below any resolution),
+/// along them the blocks are layers, T_yy = (14/16) e³/12; the field stays 100 % open.
+TEST_P(FlowCases, BlocksJoinedOnlyByNearZeroCellsCarryNothingAcrossThem)
+{
+  const std::size_t rows = 16, cols = 16;
+  const double e = 1e-4, h = 1e-4;
+  const auto f = field(rows, cols, [&](std::size_t i, std::size_t j)
+                       { return j == 3 || j == 11 ? 1e-13 * double(1 + i % 3) : e; });
+  const FlowResult r = solve(f, rows, cols, h, h, GetParam());
+  ASSERT_TRUE(r.converged);
+  EXPECT_EQ(r.transmissivity[0], 0.0);
+  EXPECT_EQ(r.transmissivity[2], 0.0);
+  const double layers = 14.0 / 16.0 * cube(e) / 12.0;
+  EXPECT_NEAR(r.transmissivity[3], layers, 1e-10 * layers);
+  EXPECT_NEAR(r.transmissivity[1], 0.0, 1e-10 * layers);
+  EXPECT_FALSE(r.percolates[0]);
+  EXPECT_TRUE(r.percolates[1]);
+  EXPECT_DOUBLE_EQ(r.open_fraction, 1.0);
 }
 
 INSTANTIATE_TEST_SUITE_P(Boundaries, FlowCases,

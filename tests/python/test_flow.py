@@ -81,8 +81,6 @@ def test_sealed_sides_closure_curve_has_flow_too():
 def test_existing_api_unchanged_without_flow():
     c = contact.closure_curve(synthetic_joint(32), E_STAR, STRESSES[:2])
     assert c.transmissivity_xx is None and c.initial_flow is None and c.gap is None
-    with pytest.raises(ValueError, match="elastic walls"):
-        contact.closure_curve(synthetic_joint(32), E_STAR, STRESSES[:2], hardness=5e9, flow=True)
 
 
 def test_walls_law_goes_through_the_curve_and_falls_monotonically(curve):
