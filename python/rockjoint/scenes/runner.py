@@ -44,6 +44,8 @@ class StageRow:
     per_set: dict = dataclasses.field(default_factory=dict)  # set -> (max closure [m], max σ_n [Pa])
     slipping_per_set: dict = dataclasses.field(default_factory=dict)  # set -> slipping points
     smeared: tuple = ()            # the sets of per_set that are smeared (equivalent continuum)
+    #: discrete sets with points past their table (the model's own check, from the points' status)
+    past_table: tuple = ()
     #: outputs.flow: {boundary with a head: flow into the rock there [m³/s; m²/s per metre in 2D]};
     #: None: no flow asked for, or the intact rock has no permeability
     flow_rates: dict | None = None
@@ -174,6 +176,7 @@ def _record(scene, plan, model, label, stage, solution, transmissivity=None) -> 
     umax = model.comm.allreduce(float(np.linalg.norm(u, axis=1).max(initial=0.0)), op=_max())
     row = StageRow(label, stage, solution.newton_iterations, monitors, umax)
     state = solution.gather_joints()
+    row.past_table = tuple(sorted({geometry.joint_set_of(scene, n) for n in solution.beyond_law_range()}))
     if np.asarray(state.get("closure", [])).size:
         row.max_closure = float(np.max(state["closure"]))
         row.max_normal_stress = float(np.max(state["normal_stress"]))
@@ -202,15 +205,18 @@ def _record(scene, plan, model, label, stage, solution, transmissivity=None) -> 
 
 
 def beyond_tables(rows, tables: dict) -> list:
-    """Words for every (stage, set) whose largest normal stress passed its table's last knot:
-    the answer there is the table's linear continuation, not the law."""
-    out = []
+    """Words for every (stage, set) past its table's last knot: the answer there is the table's
+    linear continuation, not the law. Discrete joints are found and reported by the model itself
+    after every stage (fem_coupling.law_range, the check of every path, from the points' status):
+    here only the scene's remedy is added; a smeared set has no such status, so its largest σ_n
+    is compared with its table's range here."""
+    out = [f"joint set {name}: past its table in stage '{row.stage}' (the model's warning above names the "
+           "points and σ_n); raise plan: {table_max_stress: ...}" for row in rows for name in row.past_table]
     for row in rows:
         for name, (_, sn) in row.per_set.items():
             top = curve_table(tables[name]).table_maximum_stress
-            if sn > top * (1.0 + 1e-9):
-                kind = "smeared joint set" if name in row.smeared else "joint set"
-                out.append(f"{kind} {name}: σ_n reaches {sn * 1e-6:.4g} MPa in stage '{row.stage}', beyond "
+            if name in row.smeared and sn > top * (1.0 + 1e-9):
+                out.append(f"smeared joint set {name}: σ_n reaches {sn * 1e-6:.4g} MPa in stage '{row.stage}', beyond "
                            f"its table (0 - {top * 1e-6:.4g} MPa): the response there is the table's linear "
                            "continuation, not the law; raise plan: {table_max_stress: ...}")
     return out
