@@ -44,9 +44,9 @@ def _no_newton_solver(self):
 
 
 class JointedNonlinearProblem(JointedSNESProblem):
-    """The user's nonlinear problem F(u; v) = 0 plus the joints, solved by PETSc SNES: DOLFINx
-    0.11's ``dolfinx.fem.petsc.NonlinearProblem`` (same constructor and attributes) with the
-    joint-aware Jacobian matrix, joint forces in the residual, a non-finite joint traction
+    """The user's nonlinear problem F(u; v) = 0 plus the joints, solved by PETSc SNES, with the
+    constructor keywords and attributes of DOLFINx 0.11's ``dolfinx.fem.petsc.NonlinearProblem``;
+    the joint-aware Jacobian matrix, joint forces in the residual, a non-finite joint traction
     reported to SNES as a function-domain error, and the closure limiter as a line-search
     pre-check (snes_problem.JointedSNESProblem), and the range check after every solve. The same
     on DOLFINx 0.9. Not a subclass of DOLFINx's class (the module docstring says why).
