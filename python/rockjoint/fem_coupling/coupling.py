@@ -9,7 +9,6 @@ adds the joints:
     #            b.ghostUpdate(ADD, REVERSE); set_bc(...)
     # Jacobian:  A.zeroEntries(); coupling.add_jacobian(u, A); assemble_matrix(A, a, bcs); A.assemble()
     alpha = coupling.admissible_step(u, du)       # closure limiter along u + alpha du
-
     coupling.commit_state()                       # after a converged solve: accept the state, and
                                                   # warn (or raise) if a law was driven past its range
     coupling.summary(u)                           # {joint: JointSummary} over all ranks
@@ -27,23 +26,19 @@ of its remaining room to a law's maximum closure.
 """
 from __future__ import annotations
 
-import logging
-from typing import Callable, Iterable, Mapping, Sequence
+from typing import Iterable, Mapping, Sequence
 
 import numpy as np
 from dolfinx import cpp as _dcpp
 from dolfinx import fem
-from dolfinx.fem import petsc as fem_petsc
 from mpi4py import MPI
 from petsc4py import PETSc
 
 from ..joint import joint_behaviours, symmetric_tangent
-from .compat import create_vector, la_petsc
+from .compat import la_petsc
 from .distributed_mesh import DistributedJointMesh, JointPairs, names_of
 from .interface import JointInterface
 from .law_range import check_beyond_range, check_range, summarize
-
-log = logging.getLogger(__name__)
 
 __all__ = ["JointCoupling", "joint_behaviours", "supported_dofs"]
 
