@@ -21,6 +21,7 @@ require_fe()
 from mpi4py import MPI  # noqa: E402
 
 import rockjoint  # noqa: E402
+from rockjoint.continuum import EquivalentContinuum, JointSet  # noqa: E402
 from rockjoint.fem_coupling import (BeyondRangeError, JointCoupling, JointedRockModel, NewtonOptions,  # noqa: E402
                                     RangeWarning, ShearState, Status)
 
@@ -168,3 +169,23 @@ def test_the_range_is_read_through_behaviours_and_hysteresis():
         assert "linear continuation" in law_range(law)[1]
     # a law with a finite maximum closure and σ = inf there: the closure only
     assert law_range(rockjoint.ExponentialLaw(1e-3, 1e6))[0] == "its law (exponential) is valid below closure 1 mm"
+
+
+def test_smeared_sets_past_their_table_warn_by_the_same_check(dmesh):
+    """JointedRockModel(continuum=...): a horizontal set smeared in the lower block, its table to
+    2 MPa, under the uniaxial 10 MPa (σ_n = 10 MPa on the set, closed form): the stage warns for the
+    smeared set as for the discrete joint, from the set's law status at its closure."""
+    bed = joint_behaviours({"bed": 0}, {"bed": case.SHORT}, shear_stiffness=1e9)[0]
+    model = JointedRockModel(dmesh, rock=(case.E, case.NU), joints={"joint_1": case.LONG}, shear_stiffness=1e9,
+                             plane="strain", newton=NewtonOptions(verbose=False),
+                             continuum={"block_1": EquivalentContinuum(2, case.E, case.NU,
+                                                                      [JointSet([0.0, 1.0], 0.5, bed, label="bed")])})
+    model.fix("bottom", "y")
+    model.fix("left", "x")
+    model.add_traction("top", (0.0, -case.LOAD))
+    with warnings.catch_warnings(record=True) as record:
+        warnings.simplefilter("always")
+        model.solve(name="load")
+    (message,) = range_warnings(record)   # the discrete joint's LONG table covers the load
+    assert "in stage 'load' (smeared joint sets): joint 'bed':" in message, message
+    assert "σ_n reaches 10 MPa where its table covers σ_n 0 - 2 MPa" in message, message

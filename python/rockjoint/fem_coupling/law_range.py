@@ -73,7 +73,7 @@ class JointSummary:
     max_shear_traction: float  #: largest |τ| [Pa]
     #: {status name: points} (rockjoint.Status names), every status listed
     status: dict = field(default_factory=dict)
-    #: {shear state name: points} (ShearState: stick, slip, open)
+    #: {shear state name: points} (ShearState: stick, slip, open; empty for smeared sets)
     shear_state: dict = field(default_factory=dict)
 
     @property
@@ -90,8 +90,9 @@ def summarize(comm, state: Mapping, joint_tags: Mapping[str, int]) -> dict:
     closure, sn = np.asarray(state["closure"]), np.asarray(state["normal_stress"])
     tau = np.asarray(state["shear_traction"], dtype=float)   # (points, gdim - 1)
     tau = np.linalg.norm(tau.reshape(tags.size, -1), axis=1) if tags.size else np.zeros(0)
+    shear = state.get("shear_state")   # none for smeared sets
     codes = [(np.asarray(state["status"]), s) for s in _STATUSES] + \
-        [(np.asarray(state["shear_state"]), s) for s in _SHEAR_STATES]
+        ([(np.asarray(shear), s) for s in _SHEAR_STATES] if shear is not None else [])
     n, k = len(names), len(_STATUSES)
     lows, highs = np.full(2 * n, np.inf), np.full(3 * n, -np.inf)
     counts = np.zeros((n, 1 + len(codes)), dtype=np.int64)
@@ -111,7 +112,8 @@ def summarize(comm, state: Mapping, joint_tags: Mapping[str, int]) -> dict:
                                                           highs[2 * n + i])]
         out[name] = JointSummary(name, points, *ext,
                                  {s.name: int(c) for s, c in zip(_STATUSES, counts[i, 1:k + 1])},
-                                 {s.name: int(c) for s, c in zip(_SHEAR_STATES, counts[i, k + 1:])})
+                                 {s.name: int(c) for s, c in zip(_SHEAR_STATES if shear is not None else [],
+                                                                 counts[i, k + 1:])})
     return out
 
 

@@ -17,7 +17,7 @@ from dolfinx import fem
 from petsc4py import PETSc
 
 from .distributed_mesh import names_of
-from .law_range import summarize
+from .law_range import check_range, summarize
 from .newton import StepReport, solve_load_path
 
 log = logging.getLogger(__name__)
@@ -79,6 +79,10 @@ def stage_result(model, problem, name: str, reports: list, elapsed: float) -> St
     result = StageResult(disp, state, reports, model, name, problem.reactions(), elapsed)
     # Never silent: past a table's last knot the answer is its linear continuation, not the law.
     problem.coupling.check_range(where=f"in stage {name!r}")  # the state just evaluated at u
+    if model.smeared is not None:   # the smeared sets, by the same check
+        state, sets, behaviours = model.smeared.point_state()
+        check_range(model.comm, summarize(model.comm, state, sets), behaviours, model.beyond_range,
+                    f"in stage {name!r} (smeared joint sets)")
     return result
 
 
