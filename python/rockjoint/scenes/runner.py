@@ -132,40 +132,25 @@ def _strength(spec):
 
 
 def smeared_state(scene, plan, model) -> dict:
-    """{smeared set: (max closure [m], max σ_n [Pa], slipping points)} over all ranks: closure
-    -j_n of the set's converged jumps, σ_n = -n·σ·n of the converged stress at every quadrature
-    point, slipping where τ reaches c + σ_n tan φ (sets the plan lets slip)."""
+    """{smeared set: (max closure [m], max σ_n [Pa], slipping points)} over all ranks, from the
+    sets' converged point state (SmearedBlocks.point_state: closure -j_n, σ_n = -n·σ·n, |τ|),
+    slipping where τ reaches c + σ_n tan φ (sets the plan lets slip)."""
     sm = getattr(model, "smeared", None)
     if sm is None:
         return {}
-    dim = sm.gdim
-    local = {}
-    for tag, pts in sm.points.items():
-        voigt = sm.committed_stress(tag)
-        sigma = np.zeros((voigt.shape[0], dim, dim))
-        pairs = [(0, 0), (1, 1), (0, 1)] if dim == 2 else [(0, 0), (1, 1), (2, 2), (1, 2), (0, 2), (0, 1)]
-        for k, (a, b) in enumerate(pairs):
-            sigma[:, a, b] = sigma[:, b, a] = voigt[:, k]
-        for k, js in enumerate(pts.material.sets):
-            n = np.asarray(js.normal[:dim])
-            t = sigma @ n
-            sn = -(t @ n)
-            tau = np.linalg.norm(t + sn[:, None] * n, axis=1)
-            closure = -np.asarray(pts.set_state(k)["jump"])[:, 0]
-            strength = scene.data["joints"][js.label].get("strength") if plan.slip.get(js.label) else None
-            slipping = 0
-            if strength is not None and sn.size:
-                cap = stresses.shear_capacity(strength, np.maximum(sn, 0.0))
-                slipping = int(np.sum((cap > 0) & (tau >= (1.0 - 1e-6) * cap)))
-            c0, s0, n0 = local.get(js.label, (-np.inf, -np.inf, 0))
-            local[js.label] = (max(c0, float(closure.max(initial=-np.inf))),
-                               max(s0, float(sn.max(initial=-np.inf))), n0 + slipping)
-    names = sorted(set().union(*model.comm.allgather(set(local))))
+    state, sets, _ = sm.point_state()
     out = {}
-    for name in names:
-        c, s, n = local.get(name, (-np.inf, -np.inf, 0))
-        out[name] = (model.comm.allreduce(c, op=MPI.MAX), model.comm.allreduce(s, op=MPI.MAX),
-                     model.comm.allreduce(n, op=MPI.SUM))
+    for name, tag in sorted(sets.items()):
+        at = state["tag"] == tag
+        closure, sn, tau = state["closure"][at], state["normal_stress"][at], state["shear_traction"][at]
+        strength = scene.data["joints"][name].get("strength") if plan.slip.get(name) else None
+        slipping = 0
+        if strength is not None and sn.size:
+            cap = stresses.shear_capacity(strength, np.maximum(sn, 0.0))
+            slipping = int(np.sum((cap > 0) & (tau >= (1.0 - 1e-6) * cap)))
+        out[name] = (model.comm.allreduce(float(closure.max(initial=-np.inf)), op=MPI.MAX),
+                     model.comm.allreduce(float(sn.max(initial=-np.inf)), op=MPI.MAX),
+                     model.comm.allreduce(slipping, op=MPI.SUM))
     return out
 
 
