@@ -53,13 +53,19 @@ py::object inverse_array(const ClosureLaw& law, const DoubleArray& stress)
 
 void declare_laws(py::module_& m)
 {
-  py::enum_<Status>(m, "Status", "Outcome of one law evaluation")
-      .value("contact", Status::contact)
-      .value("open", Status::open)
-      .value("validity_limit", Status::validity_limit)
-      .value("beyond_maximum_closure", Status::beyond_maximum_closure)
-      .value("invalid_closure", Status::invalid_closure)
-      .value("quadrature_not_converged", Status::quadrature_not_converged);
+  // The per-point status codes of a joint's state (`coupling.state(u)["status"]`) are these
+  // values; docs/user-model.md ("Joint point status") explains each, as closure_law.hpp does.
+  py::enum_<Status>(m, "Status", "Outcome of one law evaluation (the per-point status code of a joint)")
+      .value("contact", Status::contact, "0: closure Δ > 0 inside the law's domain")
+      .value("open", Status::open, "1: Δ <= 0, the joint is open (zero response, or the residual stiffness)")
+      .value("validity_limit", Status::validity_limit,
+             "2: past the law's range: a table beyond its last knot (its linear continuation), "
+             "a Tang & Jiao law at its cap (response frozen)")
+      .value("beyond_maximum_closure", Status::beyond_maximum_closure,
+             "3: Δ at or past the law's maximum closure: σ = k = +inf")
+      .value("invalid_closure", Status::invalid_closure, "4: Δ is NaN: the response is NaN")
+      .value("quadrature_not_converged", Status::quadrature_not_converged,
+             "5: an integral of the law missed its tolerance: best estimate returned");
 
   py::class_<Parameter>(m, "Parameter")
       .def_readonly("name", &Parameter::name)

@@ -21,7 +21,7 @@ from mpi4py import MPI  # noqa: E402
 
 import rockjoint  # noqa: E402
 from rockjoint import meshes  # noqa: E402
-from rockjoint.fem_coupling import JointedRockModel, NewtonOptions  # noqa: E402
+from rockjoint.fem_coupling import JointedRockModel, NewtonOptions, RangeWarning  # noqa: E402
 from rockjoint.fem_coupling.distributed_mesh import distribute  # noqa: E402
 
 E, NU = 20e9, 0.25
@@ -146,7 +146,8 @@ def test_a_table_driven_past_its_range_is_reported_not_silent(caplog):
     table = rockjoint.tabulate(law, max_stress=5e6)
     model = column_model(2, table, newton=NewtonOptions(verbose=False))
     model.add_traction("top", (0.0, -8e6))
-    with caplog.at_level(logging.WARNING, logger="rockjoint.fem_coupling.model"):
+    with caplog.at_level(logging.WARNING, logger="rockjoint.fem_coupling.model"), \
+            pytest.warns(RangeWarning, match="joint 'joint_1'"):
         sol = model.solve()
     beyond = sol.beyond_law_range()
     assert set(beyond) == {f"joint_{i + 1}" for i in range(len(JOINTS))}

@@ -21,7 +21,8 @@ from petsc4py import PETSc  # noqa: E402
 
 import rockjoint  # noqa: E402
 from rockjoint import meshes  # noqa: E402
-from rockjoint.fem_coupling import JointCoupling, JointedNonlinearProblem, distribute, supported_dofs  # noqa: E402
+from rockjoint.fem_coupling import (JointCoupling, JointedNonlinearProblem, NewtonSolverError, distribute,  # noqa: E402
+                                    supported_dofs)
 from rockjoint.meshes.builders import _ensure_gmsh  # noqa: E402
 
 import user_model_case as case  # noqa: E402
@@ -81,6 +82,25 @@ def test_the_problem_has_the_nonlinear_problem_interface_of_dolfinx_0_11(dmesh2)
     problem.solve()
     assert problem.solver.getIterationNumber() == 0
     np.testing.assert_array_equal(problem.u.x.array, first)
+
+
+# DOLFINx's NewtonSolver.__del__ destroys self._A, which its __init__ never set once refused.
+@pytest.mark.filterwarnings("ignore::pytest.PytestUnraisableExceptionWarning")
+def test_dolfinx_newton_solver_is_refused_with_a_clear_error(dmesh2):
+    """JointedNonlinearProblem is not DOLFINx's NonlinearProblem (docs/user-model.md says why):
+    dolfinx.nls.petsc.NewtonSolver (0.9's, and 0.11's deprecated one) would build its own matrix
+    from problem.a without the cross-joint couplings. It gets a TypeError saying what to call,
+    not a bare AttributeError from inside DOLFINx; hasattr still answers False."""
+    import warnings
+    from dolfinx.nls.petsc import NewtonSolver
+    problem = case.user_problem(dmesh2)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DeprecationWarning)   # 0.11 deprecates NewtonSolver
+        with pytest.raises(NewtonSolverError, match=r"solved by PETSc SNES: call problem\.solve\(\)"):
+            NewtonSolver(COMM, problem)
+    assert issubclass(NewtonSolverError, TypeError)
+    assert not hasattr(problem, "a") and not hasattr(problem, "L")
+    assert problem.coupling.V is problem.u.function_space
 
 
 def test_a_saved_table_is_read_by_path(dmesh2, tmp_path):

@@ -53,8 +53,11 @@ def test_sliding_block_names_the_set_and_its_mobilised_friction(tmp_path):
 def test_a_joint_past_its_table_is_named_with_its_stress(tmp_path):
     code, out, err = run("past_table", tmp_path)
     assert code == 0, out + err
-    assert ("warning: joint set joint: σ_n reaches 10 MPa in stage 'load', beyond its table "
-            "(0 - 5 MPa)") in out + err
+    # the model's own check (fem_coupling.law_range), then the scene's remedy
+    assert ("joint 'joint_1': 12 of 12 points past the range of its law; σ_n reaches 10 MPa where its "
+            "table covers σ_n 0 - 5 MPa") in out + err
+    assert ("warning: joint set joint: past its table in stage 'load' (the model's warning above names "
+            "the points and σ_n); raise plan: {table_max_stress: ...}") in out + err
 
 
 def test_supports_that_leave_a_rotation_free_are_a_bad_scene(tmp_path):

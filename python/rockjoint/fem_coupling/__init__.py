@@ -16,7 +16,9 @@ from ..joint import joint_behaviours  # noqa: F401  (no FE stack; here for FE us
 # ImportError here instead of silently removing JointedRockModel and friends.
 _HAS_FE = find_spec("rockjoint._rockjoint_fem_coupling") is not None
 if _HAS_FE or fe_required():
-    from .coupling import JointCoupling, JointedNonlinearProblem, supported_dofs  # noqa: F401
+    from .coupling import JointCoupling, supported_dofs  # noqa: F401
+    from .nonlinear_problem import JointedNonlinearProblem, NewtonSolverError  # noqa: F401
+    from .law_range import BeyondRangeError, JointSummary, RangeWarning, Status  # noqa: F401
     from .darcy import DarcyFlow, darcy_flow, equivalent_permeability  # noqa: F401
     from .joint_flow import Fluid, NetworkFlow, network_flow  # noqa: F401
     from .interface import JointInterface, QuadratureRule  # noqa: F401
@@ -32,7 +34,8 @@ if _HAS_FE or fe_required():
                          ShearState, StrengthModel, barton_bandis_shear_stiffness,
                          closure_at_normal_stress, joint_response, make_strength)
 else:
-    _FE_NAMES = {"JointCoupling", "JointedNonlinearProblem", "supported_dofs",
+    _FE_NAMES = {"JointCoupling", "JointedNonlinearProblem", "NewtonSolverError", "supported_dofs",
+                 "BeyondRangeError", "JointSummary", "RangeWarning", "Status",
                  "JointInterface", "QuadratureRule", "LinearSolveError", "InSituStress", "Load",
                  "Support", "JointedRockModel", "JointedProblem", "Stage", "StageResult",
                  "ConvergenceError", "NewtonOptions", "DarcyFlow", "darcy_flow",

@@ -9,10 +9,12 @@ adds the joints:
     #            b.ghostUpdate(ADD, REVERSE); set_bc(...)
     # Jacobian:  A.zeroEntries(); coupling.add_jacobian(u, A); assemble_matrix(A, a, bcs); A.assemble()
     alpha = coupling.admissible_step(u, du)       # closure limiter along u + alpha du
+    coupling.commit_state()                       # after a converged solve: accept the state, and
+                                                  # warn (or raise) if a law was driven past its range
+    coupling.summary(u)                           # {joint: JointSummary} over all ranks
 
-or, with a UFL residual F(u; v), :class:`JointedNonlinearProblem`: DOLFINx 0.11's SNES-based
-``dolfinx.fem.petsc.NonlinearProblem`` with the joints added (same constructor, ``solve()``,
-``solver``, ``F``, ``J``, ``A``, ``b``, ``x``, ``u``).
+or, with a UFL residual F(u; v), nonlinear_problem.JointedNonlinearProblem (solved by SNES, with
+the keywords and attributes of DOLFINx 0.11's ``dolfinx.fem.petsc.NonlinearProblem``).
 
 What this module takes care of (docs/fem.md, pitfalls 3-7): dofs of each pair from ``V.dofmap``
 (P1/P2, any dof numbering: never node·gdim + c); the cross-joint couplings in the matrix's
@@ -24,26 +26,21 @@ of its remaining room to a law's maximum closure.
 """
 from __future__ import annotations
 
-import logging
-from typing import Callable, Iterable, Mapping, Sequence
+from typing import Iterable, Mapping, Sequence
 
 import numpy as np
-import ufl
 from dolfinx import cpp as _dcpp
 from dolfinx import fem
-from dolfinx.fem import petsc as fem_petsc
 from mpi4py import MPI
 from petsc4py import PETSc
 
 from ..joint import joint_behaviours, symmetric_tangent
-from .compat import create_vector, la_petsc
+from .compat import la_petsc
 from .distributed_mesh import DistributedJointMesh, JointPairs, names_of
 from .interface import JointInterface
-from .snes_problem import JointedSNESProblem
+from .law_range import check_beyond_range, check_range, summarize
 
-log = logging.getLogger(__name__)
-
-__all__ = ["JointCoupling", "JointedNonlinearProblem", "joint_behaviours", "supported_dofs"]
+__all__ = ["JointCoupling", "joint_behaviours", "supported_dofs"]
 
 
 def supported_dofs(V: fem.FunctionSpace, bcs: Iterable[fem.DirichletBC]) -> np.ndarray:
@@ -55,7 +52,7 @@ def supported_dofs(V: fem.FunctionSpace, bcs: Iterable[fem.DirichletBC]) -> np.n
     for i, bc in enumerate(bcs):
         if not isinstance(bc, fem.DirichletBC):
             raise TypeError(f"bcs[{i}] must be a dolfinx.fem.DirichletBC, got {type(bc).__name__}")
-        if not _same_space(bc.function_space, V):
+        if not same_space(bc.function_space, V):
             raise ValueError(f"bcs[{i}] constrains a function space that is not the displacement space "
                              "V (or one of its components V.sub(i))")
         idx, _ = bc.dof_indices()
@@ -67,7 +64,7 @@ def supported_dofs(V: fem.FunctionSpace, bcs: Iterable[fem.DirichletBC]) -> np.n
     return mask
 
 
-def _same_space(W, V) -> bool:
+def same_space(W, V) -> bool:
     """W (Python or C++ function space) is V or a component V.sub(i) of it."""
     return V._cpp_object.contains(getattr(W, "_cpp_object", W))
 
@@ -83,13 +80,17 @@ class JointCoupling:
     quadrature: "nodal" (default; smooth tractions for stiff joints) or "gauss" (P1 only).
     bcs: the Dirichlet conditions of the problem; their dofs' rows and columns are left out of the
         joint Jacobian and rows out of the joint residual (see set_supports).
+    beyond_range: "warn" (default) or "raise": what check_range does when a joint law answered
+        past its range (a table beyond its last knot): a RangeWarning on rank 0, or
+        BeyondRangeError on every rank (law_range.py).
     Arrays: "local" means this rank's unrolled dofs of V, ghosts included (u.x.array layout).
     """
 
     def __init__(self, V: fem.FunctionSpace, joints: DistributedJointMesh | JointPairs,
                  laws: Mapping[str, object], *, joint_tags: Mapping[str, int] | None = None,
                  shear_stiffness=0.0, shear_stiffness_ratio=None, residual_stiffness=0.0,
-                 strength=None, quadrature: str = "nodal", bcs: Sequence[fem.DirichletBC] = ()):
+                 strength=None, quadrature: str = "nodal", bcs: Sequence[fem.DirichletBC] = (),
+                 beyond_range: str = "warn"):
         gdim = V.mesh.geometry.dim
         element = V.ufl_element()
         if V.dofmap.index_map_bs != gdim or element.family_name not in ("P", "Q") \
@@ -130,6 +131,8 @@ class JointCoupling:
                                            shear_stiffness_ratio=shear_stiffness_ratio,
                                            residual_stiffness=residual_stiffness, strength=strength)
         self.interface = JointInterface(V, pairs, self.behaviours, quadrature)
+        self.beyond_range = check_beyond_range(beyond_range)
+        self._evaluated = self._checked = 0  # point-state evaluations: all, and at the last check
         imap, bs = V.dofmap.index_map, V.dofmap.index_map_bs
         self._imap, self._bs = imap, bs
         self.num_local_dofs = (imap.size_local + imap.num_ghosts) * bs
@@ -159,7 +162,7 @@ class JointCoupling:
         dolfinx.fem.petsc.create_matrix(a)."""
         if not isinstance(a, fem.Form):
             raise TypeError(f"a must be a compiled bilinear form (dolfinx.fem.form(...)), got {type(a).__name__}")
-        if a.rank != 2 or any(W.component() or not _same_space(W, self.V) for W in a.function_spaces):
+        if a.rank != 2 or any(W.component() or not same_space(W, self.V) for W in a.function_spaces):
             raise ValueError("a must be a bilinear form on V × V (the coupling's displacement space)")
         pattern = fem.create_sparsity_pattern(a)
         self.insert_sparsity(pattern)
@@ -177,6 +180,7 @@ class JointCoupling:
         r = self._residual
         r[:] = 0.0
         finite = bool(self.interface.add_residual(u_local, r))
+        self._evaluated += 1
         r[self.supported != 0] = 0.0
         if isinstance(b, PETSc.Vec):
             with b.localForm() as loc:
@@ -223,8 +227,12 @@ class JointCoupling:
         j0 + Q [[u]]; a joint pre-closed to Δ0 has j0[:, 0] = -Δ0 (in-situ state)."""
         self.interface.set_initial_jump(initial_jump)
 
-    def commit_state(self) -> None:
-        """Accept the joints' trial state (slip history) after a converged solve or load step."""
+    def commit_state(self, check_range: bool = True) -> None:
+        """Accept the joints' trial state (slip history) after a converged solve or load step.
+        check_range: first check_range() on the state of the last residual (unless checked since);
+        collective then. JointedRockModel passes False and checks once per stage."""
+        if check_range and self._checked != self._evaluated:
+            self.check_range()
         self.interface.commit_state()
 
     def revert_state(self) -> None:
@@ -235,11 +243,29 @@ class JointCoupling:
         """Virgin point state everywhere (no slip, no dilation, bonds intact): a new analysis."""
         self.interface.reset_state()
 
-    def state(self, u) -> dict:
+    def state(self, u=None) -> dict:
         """Joint point state at u on this rank: coordinates, tag, closure [m], normal_stress [Pa,
-        compression +], shear_traction [Pa], status, normal (see JointInterface.state)."""
-        self.interface.update_state(self._local(u, "u"))
+        compression +], shear_traction [Pa], status (rockjoint.Status codes), normal (see
+        JointInterface.state). u None: the state of the last residual evaluated."""
+        if u is not None:
+            self.interface.update_state(self._local(u, "u"))
+            self._evaluated += 1
         return self.interface.state()
+
+    def summary(self, u=None) -> dict:
+        """{joint name: law_range.JointSummary} at u (None: the last residual's state) over all
+        ranks, the same on every rank: points, min/max closure [m] and normal stress [Pa], max
+        |shear traction| [Pa], points per status. Collective."""
+        return summarize(self.V.mesh.comm, self.state(u), self.joint_tags)
+
+    def check_range(self, u=None, where: str = "") -> list:
+        """After a solve: the joints whose law answered past its range at u (None: the last
+        residual's state) are reported as `beyond_range` says (a RangeWarning on rank 0, or
+        BeyondRangeError on every rank); returns the messages (empty: all inside). Collective."""
+        summaries = self.summary(u)
+        self._checked = self._evaluated
+        laws = {name: self.behaviours[tag] for name, tag in self.joint_tags.items()}
+        return check_range(self.V.mesh.comm, summaries, laws, self.beyond_range, where)
 
     # ---- helpers -------------------------------------------------------------------------
     def _check_size(self, arr, what: str) -> np.ndarray:
@@ -252,7 +278,7 @@ class JointCoupling:
     def _local(self, v, what: str) -> np.ndarray:
         """Local values (ghosts included) of a Function of V, a PETSc Vec of V or a local array."""
         if isinstance(v, fem.Function):
-            if v.function_space.component() or not _same_space(v.function_space, self.V):
+            if v.function_space.component() or not same_space(v.function_space, self.V):
                 raise ValueError(f"{what} must be a Function of the coupling's space V")
             return v.x.array
         if isinstance(v, PETSc.Vec):
@@ -265,141 +291,3 @@ class JointCoupling:
             with self._work.localForm() as loc:
                 return loc.array.copy()
         return self._check_size(v, what)
-
-
-class JointedNonlinearProblem(JointedSNESProblem):
-    """The user's nonlinear problem F(u; v) = 0 plus the joints, solved by PETSc SNES: DOLFINx
-    0.11's ``dolfinx.fem.petsc.NonlinearProblem`` (same constructor and attributes) with the
-    joint-aware Jacobian matrix, joint forces in the residual, a non-finite joint traction
-    reported to SNES as a function-domain error, and the closure limiter as a line-search
-    pre-check (snes_problem.JointedSNESProblem). The same on DOLFINx 0.9.
-
-        problem = JointedNonlinearProblem(F, u, coupling, bcs=bcs, petsc_options_prefix="slope_",
-                                          petsc_options={"snes_rtol": 1e-10, "ksp_type": "preonly",
-                                                         "pc_type": "lu"})
-        problem.solve()                               # u updated in place
-        assert problem.solver.getConvergedReason() > 0
-
-    F: the UFL residual (internal minus external virtual work); u: the displacement Function on
-    the coupling's V; coupling: the JointCoupling of the joints; bcs: Dirichlet conditions (also
-    given to the coupling); J: the Jacobian form (default: the derivative of F in u);
-    petsc_options_prefix: the SNES's options prefix (required, as in DOLFINx 0.11: options on
-    the command line reach it); petsc_options: {option: value} without the leading dash, set on
-    the SNES (and its KSP/PC) under that prefix; closure_fraction: the limiter's fraction of a
-    closure's remaining room to the law's maximum closure. For a linear-elastic bulk F is linear
-    in u and only the joints make the problem nonlinear.
-    """
-
-    def __init__(self, F: ufl.Form, u: fem.Function, coupling: JointCoupling, *,
-                 petsc_options_prefix: str, bcs: Sequence[fem.DirichletBC] | None = None,
-                 J: ufl.Form | None = None, petsc_options: Mapping[str, object] | None = None,
-                 closure_fraction: float = 0.95, form_compiler_options: dict | None = None,
-                 jit_options: dict | None = None):
-        if not isinstance(coupling, JointCoupling):
-            raise TypeError(f"coupling must be a JointCoupling, got {type(coupling).__name__}")
-        if not isinstance(u, fem.Function) or u.function_space.component() \
-                or not _same_space(u.function_space, coupling.V):
-            raise ValueError("u must be a Function of the coupling's displacement space V")
-        if not (0.0 < closure_fraction < 1.0):
-            raise ValueError(f"closure_fraction = {closure_fraction} must be in (0, 1)")
-        if not isinstance(petsc_options_prefix, str) or not petsc_options_prefix:
-            raise ValueError("petsc_options_prefix must be a non-empty string (as for DOLFINx's "
-                             "NonlinearProblem), e.g. 'jointed_'")
-        self.u, self.coupling, self.bcs = u, coupling, list(bcs or [])
-        self.closure_fraction = closure_fraction
-        coupling.set_supports(self.bcs)
-        params = dict(form_compiler_options=form_compiler_options or {}, jit_options=jit_options or {})
-        self._L = fem.form(F, **params)
-        if J is None:
-            J = ufl.derivative(F, u, ufl.TrialFunction(u.function_space))
-        self._a = fem.form(J, **params)
-        self._A = None
-        #: True if the last residual had a non-finite joint traction
-        self.nonfinite = False
-        self._snes = self.snes_solver(petsc_options=petsc_options, options_prefix=petsc_options_prefix)
-        self._x = self.vector()
-
-    @property
-    def F(self) -> fem.Form:
-        """The compiled residual form."""
-        return self._L
-
-    @property
-    def J(self) -> fem.Form:
-        """The compiled Jacobian form."""
-        return self._a
-
-    @property
-    def A(self) -> PETSc.Mat:
-        """The Jacobian matrix (joint-aware sparsity)."""
-        return self.matrix()
-
-    @property
-    def b(self) -> PETSc.Vec:
-        """The residual vector SNES evaluates into."""
-        return self._snes.getFunction()[0]
-
-    @property
-    def x(self) -> PETSc.Vec:
-        """The solution vector SNES iterates on (does not share memory with u)."""
-        return self._x
-
-    @property
-    def solver(self) -> PETSc.SNES:
-        """The SNES."""
-        return self._snes
-
-    def solve(self) -> fem.Function:
-        """Solve from the current u; u holds the last iterate afterwards (converged or not: check
-        ``solver.getConvergedReason() > 0``, or set ``snes_error_if_not_converged``)."""
-        self.u.x.petsc_vec.copy(self._x)
-        self._snes.solve(None, self._x)
-        self._copy_into_u(self._x)
-        return self.u
-
-    def matrix(self) -> PETSc.Mat:
-        """The Jacobian matrix with the cross-joint couplings (created once, then reused)."""
-        if self._A is None:
-            self._A = self.coupling.create_matrix(self._a)
-        return self._A
-
-    def vector(self) -> PETSc.Vec:
-        """A residual vector (ghosted, layout of V)."""
-        return create_vector(self.u.function_space)
-
-    def load_norm(self) -> float:
-        """‖F(0)‖, the residual norm at u = 0 (the load, supports applied; u is left unchanged).
-        An absolute tolerance from it ({"snes_atol": 1e-10 * load_norm()}) measures the residual
-        against the load, whatever the starting u."""
-        saved = self.u.x.array.copy()
-        self.u.x.array[:] = 0.0
-        b = self.vector()
-        try:
-            self.residual(self.u.x.petsc_vec, b)
-            return b.norm()
-        finally:
-            self.u.x.array[:] = saved
-            b.destroy()
-
-    # ---- assembly (JointedSNESProblem) ----------------------------------------------------
-    def assemble_residual(self, b: PETSc.Vec) -> bool:
-        """Bulk form, joints (before lifting and the reverse ghost update), Dirichlet rows."""
-        x = self.u.x.petsc_vec
-        with b.localForm() as loc:
-            loc.set(0.0)
-        fem_petsc.assemble_vector(b, self._L)
-        finite = self.coupling.add_residual(self.u, b)
-        fem_petsc.apply_lifting(b, [self._a], bcs=[self.bcs], x0=[x], alpha=-1.0)
-        b.ghostUpdate(addv=PETSc.InsertMode.ADD, mode=PETSc.ScatterMode.REVERSE)
-        fem_petsc.set_bc(b, self.bcs, x, -1.0)
-        if not finite and self.u.function_space.mesh.comm.rank == 0:
-            log.info("joint traction not finite: a closure reached a law's maximum closure; the "
-                     "step is cut (SNES function-domain error)")
-        return finite
-
-    def assemble_jacobian(self, A: PETSc.Mat) -> None:
-        """Joint blocks first, then the bulk form and the Dirichlet rows."""
-        A.zeroEntries()
-        self.coupling.add_jacobian(self.u, A)
-        fem_petsc.assemble_matrix(A, self._a, self.bcs)
-        A.assemble()

@@ -111,6 +111,11 @@ class DistributedJointMesh:
         """Tag of the joint ``name`` (KeyError listing the available joints)."""
         return _tag(self.names, "joints", name)
 
+    def boundary_tag(self, name: str) -> int:
+        """Tag of the boundary ``name`` in ``boundaries`` (KeyError listing the available
+        boundaries), e.g. for ``ufl.Measure("ds", subdomain_data=dmesh.boundaries)(tag)``."""
+        return _tag(self.names, "boundaries", name)
+
     def partition_balance(self) -> dict:
         """How the work is shared (collective; the same dict on every rank): per rank the owned
         cells, owned vertices and joint pairs, and the imbalance max/mean of the owned cells
@@ -140,11 +145,14 @@ class DistributedJointMesh:
         return owners
 
 
+_SINGULAR = {"blocks": "block", "joints": "joint", "boundaries": "boundary"}
+
+
 def _tag(names: dict, kind: str, name: str) -> int:
     for tag, n in names[kind].items():
         if n == name:
             return int(tag)
-    raise KeyError(f"no {kind[:-1]} named {name!r}; available: {sorted(names[kind].values())}")
+    raise KeyError(f"no {_SINGULAR[kind]} named {name!r}; available: {sorted(names[kind].values())}")
 
 
 def distribute(jointed_mesh: JointedMesh | None, comm, owners=None) -> DistributedJointMesh:
@@ -423,6 +431,5 @@ def lookup(dmesh, kind: str, name: str) -> int:
     """The tag of a named group, or ValueError listing the available names."""
     names = names_of(dmesh, kind)
     if name not in names:
-        singular = {"blocks": "block", "joints": "joint", "boundaries": "boundary"}[kind]
-        raise ValueError(f"unknown {singular} {name!r}; available {kind}: {sorted(names)}")
+        raise ValueError(f"unknown {_SINGULAR[kind]} {name!r}; available {kind}: {sorted(names)}")
     return names[name]

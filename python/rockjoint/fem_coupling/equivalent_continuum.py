@@ -202,6 +202,35 @@ class SmearedBlocks:
         smeared block `tag` on this rank, (points, strain size)."""
         return np.asarray(self._committed[tag][0]).reshape(-1, self.nv)
 
+    def point_state(self) -> tuple:
+        """(state, {set label: tag}, {set label: JointBehaviour}) of the smeared sets at their
+        converged state on this rank, shaped as JointInterface.state for law_range.summarize:
+        per quadrature point and set, closure -j_n [m] of the converged jump, σ_n = -n·σ·n [Pa]
+        of the converged stress (traction continuity: the set's own normal stress), shear
+        traction |σ·n + σ_n n| [Pa] and the status of the set's law at that closure (no shear
+        state). Set labels and tags are the same on every rank."""
+        pairs = [(0, 0), (1, 1), (0, 1)] if self.gdim == 2 else [(0, 0), (1, 1), (2, 2), (1, 2), (0, 2), (0, 1)]
+        labels, behaviours, parts = {}, {}, []
+        for tag in sorted(self.points):
+            pts = self.points[tag]
+            voigt = self.committed_stress(tag)
+            sigma = np.zeros((voigt.shape[0], self.gdim, self.gdim))
+            for k, (a, b) in enumerate(pairs):
+                sigma[:, a, b] = sigma[:, b, a] = voigt[:, k]
+            for k, js in enumerate(pts.material.sets):
+                labels.setdefault(js.label, len(labels))
+                behaviours.setdefault(js.label, js.behaviour)
+                n = np.asarray(js.normal[:self.gdim])
+                t = sigma @ n
+                sn = -(t @ n)
+                closure = -np.asarray(pts.set_state(k)["jump"])[:, 0]
+                status = js.behaviour.law.evaluate(closure)[3] if closure.size else np.zeros(0)
+                parts.append((np.full(closure.size, labels[js.label]), closure, sn,
+                              np.linalg.norm(t + sn[:, None] * n, axis=1), np.asarray(status, dtype=np.int32)))
+        keys = ("tag", "closure", "normal_stress", "shear_traction", "status")
+        state = {key: np.concatenate([p[i] for p in parts]) if parts else np.zeros(0) for i, key in enumerate(keys)}
+        return state, labels, behaviours
+
     def reset_state(self) -> None:
         """Back to the virgin state (no in-situ stress, no slip, sets unloaded): a restarted model."""
         nv = self.nv

@@ -33,6 +33,7 @@ from .distributed_mesh import lookup, names_of
 from .elastic_blocks import ElasticBlocks
 from .equivalent_continuum import SmearedBlocks
 from .in_situ import STANDARD_GRAVITY, InSituStress
+from .law_range import check_beyond_range
 from .linear_solver import LinearSolver
 from .load_path import LoadPath
 from .loads import Load, Support
@@ -83,6 +84,7 @@ class JointedRockModel:
     continuum: {block name: rockjoint.continuum.EquivalentContinuum} (its E, ν those of
         the block): joint sets smeared in these blocks (docs/equivalent-continuum.md); the other
         blocks stay elastic and may hold discrete joints. Plane strain in 2D.
+    beyond_range: "warn" (a RangeWarning) or "raise" (BeyondRangeError): a law past its range (law_range.py).
 
     Composed of: blocks (ElasticBlocks), load_path (LoadPath), smeared (SmearedBlocks or None)
     and the problem (problem.JointedProblem: F, J, joints, linear solver) that the project's
@@ -95,7 +97,7 @@ class JointedRockModel:
                  quadrature: str = "nodal", linear_solver: str = "auto",
                  newton: NewtonOptions | None = None, petsc_options: dict | None = None,
                  options_prefix: str | None = None, density=None, gravity=STANDARD_GRAVITY,
-                 continuum: dict | None = None):
+                 continuum: dict | None = None, beyond_range: str = "warn"):
         t0 = time.perf_counter()
         self.dmesh = dmesh
         self.mesh = dmesh.mesh
@@ -103,10 +105,9 @@ class JointedRockModel:
         self.gdim = self.mesh.geometry.dim
         self.degree = check_element(element_degree, quadrature)
         self.plane = check_plane(self.gdim, plane)
-        self.quadrature = quadrature
+        self.quadrature, self.beyond_range = quadrature, check_beyond_range(beyond_range)
         self.newton_options = newton or NewtonOptions()
-        self._solver_settings = (linear_solver, check_petsc_options(petsc_options),
-                                 check_options_prefix(options_prefix))
+        self._solver_settings = (linear_solver, check_petsc_options(petsc_options), check_options_prefix(options_prefix))
         self.rock = check_rock(dmesh, rock)  #: {block tag: (E [Pa], ν)}
         #: {joint tag: JointBehaviour} (rockjoint.joint)
         self.behaviours = joint_behaviours(names_of(dmesh, "joints"), joints or {}, shear_stiffness=shear_stiffness,
@@ -208,7 +209,7 @@ class JointedRockModel:
             t0 = time.perf_counter()
             p.connect(JointCoupling(self.V, self.dmesh, {n: self.behaviours[t] for n, t in
                                                          names_of(self.dmesh, "joints").items()},
-                                    quadrature=self.quadrature),
+                                    quadrature=self.quadrature, beyond_range=self.beyond_range),
                       make_linear_solver(self.V, *self._solver_settings,
                                          symmetric=symmetric_tangent(self.behaviours) and self.smeared is None),
                       bool(self.behaviours))

@@ -247,8 +247,9 @@ class JointedProblem(JointedSNESProblem):
             self.smeared.revert_state()
 
     def commit_state(self) -> None:
-        """A load step converged: the joints' trial state becomes their converged state."""
-        self.coupling.commit_state()
+        """A load step converged: the joints' trial state becomes their converged state (the
+        range of their laws is checked once per stage, by stages.stage_result)."""
+        self.coupling.commit_state(check_range=False)
         if self.smeared is not None:
             self.smeared.commit_state()
         if self.clock is not None:

@@ -16,8 +16,8 @@ import numpy as np
 from dolfinx import fem
 from petsc4py import PETSc
 
-from .. import _rockjoint
 from .distributed_mesh import names_of
+from .law_range import check_range, summarize
 from .newton import StepReport, solve_load_path
 
 log = logging.getLogger(__name__)
@@ -45,19 +45,16 @@ class StageResult:
     def newton_iterations(self) -> int:
         return sum(r.iterations for r in self.reports)
 
+    def summary(self) -> dict:
+        """{joint name: law_range.JointSummary} of the stage's joint state over all ranks (the
+        same on every rank; collective)."""
+        return summarize(self.model.comm, self.joints, names_of(self.model.dmesh, "joints"))
+
     def beyond_law_range(self) -> dict:
         """{joint name: number of points (all ranks)} whose law answered outside its range:
         status validity_limit (a table driven past its last knot, continued linearly; a Tang &
-        Jiao law at its cap). Empty when every point is inside its law's range."""
-        status = np.asarray(self.joints["status"])
-        tags = np.asarray(self.joints["tag"])
-        limit = int(_rockjoint.constitutive.Status.validity_limit)
-        out = {}
-        for name, tag in names_of(self.model.dmesh, "joints").items():
-            count = self.model.comm.allreduce(int(np.count_nonzero((status == limit) & (tags == tag))))
-            if count:
-                out[name] = count
-        return out
+        Jiao law at its cap). Empty when every point is inside its law's range. Collective."""
+        return {name: s.beyond_range for name, s in self.summary().items() if s.beyond_range}
 
 
 @dataclass
@@ -71,20 +68,21 @@ class Stage:
 
 
 def stage_result(model, problem, name: str, reports: list, elapsed: float) -> StageResult:
-    """The StageResult of the stage `problem` just solved; a warning (rank 0) where a joint law
-    was driven past its range."""
+    """The StageResult of the stage `problem` just solved; where a joint law was driven past its
+    range, a RangeWarning (rank 0) or BeyondRangeError (every rank), as the model's beyond_range
+    says (law_range.check_range, through the coupling: the check of every path)."""
     # Re-evaluated from the state just committed: a point that slid in the last step sits on
     # its strength and reads "slip" (joint_slip.cpp labels by where τ is).
     state = problem.coupling.state(problem.u)
     disp = fem.Function(problem.u.function_space, name="displacement")
     disp.x.array[:] = problem.u.x.array
     result = StageResult(disp, state, reports, model, name, problem.reactions(), elapsed)
-    beyond = result.beyond_law_range()
-    if beyond and problem.comm.rank == 0:
-        # Never silent: the answer there is the table's linear continuation, not the law.
-        log.warning("joint law driven past its range (status validity_limit) at %s; the "
-                    "response there is the table's linear continuation: tabulate to a higher "
-                    "maximum stress", ", ".join(f"{n} ({c} points)" for n, c in beyond.items()))
+    # Never silent: past a table's last knot the answer is its linear continuation, not the law.
+    problem.coupling.check_range(where=f"in stage {name!r}")  # the state just evaluated at u
+    if model.smeared is not None:   # the smeared sets, by the same check
+        state, sets, behaviours = model.smeared.point_state()
+        check_range(model.comm, summarize(model.comm, state, sets), behaviours, model.beyond_range,
+                    f"in stage {name!r} (smeared joint sets)")
     return result
 
 

@@ -44,6 +44,8 @@ class StageRow:
     per_set: dict = dataclasses.field(default_factory=dict)  # set -> (max closure [m], max σ_n [Pa])
     slipping_per_set: dict = dataclasses.field(default_factory=dict)  # set -> slipping points
     smeared: tuple = ()            # the sets of per_set that are smeared (equivalent continuum)
+    #: discrete sets with points past their table (the model's own check, from the points' status)
+    past_table: tuple = ()
     #: outputs.flow: {boundary with a head: flow into the rock there [m³/s; m²/s per metre in 2D]};
     #: None: no flow asked for, or the intact rock has no permeability
     flow_rates: dict | None = None
@@ -130,40 +132,25 @@ def _strength(spec):
 
 
 def smeared_state(scene, plan, model) -> dict:
-    """{smeared set: (max closure [m], max σ_n [Pa], slipping points)} over all ranks: closure
-    -j_n of the set's converged jumps, σ_n = -n·σ·n of the converged stress at every quadrature
-    point, slipping where τ reaches c + σ_n tan φ (sets the plan lets slip)."""
+    """{smeared set: (max closure [m], max σ_n [Pa], slipping points)} over all ranks, from the
+    sets' converged point state (SmearedBlocks.point_state: closure -j_n, σ_n = -n·σ·n, |τ|),
+    slipping where τ reaches c + σ_n tan φ (sets the plan lets slip)."""
     sm = getattr(model, "smeared", None)
     if sm is None:
         return {}
-    dim = sm.gdim
-    local = {}
-    for tag, pts in sm.points.items():
-        voigt = sm.committed_stress(tag)
-        sigma = np.zeros((voigt.shape[0], dim, dim))
-        pairs = [(0, 0), (1, 1), (0, 1)] if dim == 2 else [(0, 0), (1, 1), (2, 2), (1, 2), (0, 2), (0, 1)]
-        for k, (a, b) in enumerate(pairs):
-            sigma[:, a, b] = sigma[:, b, a] = voigt[:, k]
-        for k, js in enumerate(pts.material.sets):
-            n = np.asarray(js.normal[:dim])
-            t = sigma @ n
-            sn = -(t @ n)
-            tau = np.linalg.norm(t + sn[:, None] * n, axis=1)
-            closure = -np.asarray(pts.set_state(k)["jump"])[:, 0]
-            strength = scene.data["joints"][js.label].get("strength") if plan.slip.get(js.label) else None
-            slipping = 0
-            if strength is not None and sn.size:
-                cap = stresses.shear_capacity(strength, np.maximum(sn, 0.0))
-                slipping = int(np.sum((cap > 0) & (tau >= (1.0 - 1e-6) * cap)))
-            c0, s0, n0 = local.get(js.label, (-np.inf, -np.inf, 0))
-            local[js.label] = (max(c0, float(closure.max(initial=-np.inf))),
-                               max(s0, float(sn.max(initial=-np.inf))), n0 + slipping)
-    names = sorted(set().union(*model.comm.allgather(set(local))))
+    state, sets, _ = sm.point_state()
     out = {}
-    for name in names:
-        c, s, n = local.get(name, (-np.inf, -np.inf, 0))
-        out[name] = (model.comm.allreduce(c, op=MPI.MAX), model.comm.allreduce(s, op=MPI.MAX),
-                     model.comm.allreduce(n, op=MPI.SUM))
+    for name, tag in sorted(sets.items()):
+        at = state["tag"] == tag
+        closure, sn, tau = state["closure"][at], state["normal_stress"][at], state["shear_traction"][at]
+        strength = scene.data["joints"][name].get("strength") if plan.slip.get(name) else None
+        slipping = 0
+        if strength is not None and sn.size:
+            cap = stresses.shear_capacity(strength, np.maximum(sn, 0.0))
+            slipping = int(np.sum((cap > 0) & (tau >= (1.0 - 1e-6) * cap)))
+        out[name] = (model.comm.allreduce(float(closure.max(initial=-np.inf)), op=MPI.MAX),
+                     model.comm.allreduce(float(sn.max(initial=-np.inf)), op=MPI.MAX),
+                     model.comm.allreduce(slipping, op=MPI.SUM))
     return out
 
 
@@ -174,6 +161,7 @@ def _record(scene, plan, model, label, stage, solution, transmissivity=None) -> 
     umax = model.comm.allreduce(float(np.linalg.norm(u, axis=1).max(initial=0.0)), op=_max())
     row = StageRow(label, stage, solution.newton_iterations, monitors, umax)
     state = solution.gather_joints()
+    row.past_table = tuple(sorted({geometry.joint_set_of(scene, n) for n in solution.beyond_law_range()}))
     if np.asarray(state.get("closure", [])).size:
         row.max_closure = float(np.max(state["closure"]))
         row.max_normal_stress = float(np.max(state["normal_stress"]))
@@ -202,15 +190,18 @@ def _record(scene, plan, model, label, stage, solution, transmissivity=None) -> 
 
 
 def beyond_tables(rows, tables: dict) -> list:
-    """Words for every (stage, set) whose largest normal stress passed its table's last knot:
-    the answer there is the table's linear continuation, not the law."""
-    out = []
+    """Words for every (stage, set) past its table's last knot: the answer there is the table's
+    linear continuation, not the law. Discrete joints are found and reported by the model itself
+    after every stage (fem_coupling.law_range, the check of every path, from the points' status):
+    here only the scene's remedy is added; a smeared set has no such status, so its largest σ_n
+    is compared with its table's range here."""
+    out = [f"joint set {name}: past its table in stage '{row.stage}' (the model's warning above names the "
+           "points and σ_n); raise plan: {table_max_stress: ...}" for row in rows for name in row.past_table]
     for row in rows:
         for name, (_, sn) in row.per_set.items():
             top = curve_table(tables[name]).table_maximum_stress
-            if sn > top * (1.0 + 1e-9):
-                kind = "smeared joint set" if name in row.smeared else "joint set"
-                out.append(f"{kind} {name}: σ_n reaches {sn * 1e-6:.4g} MPa in stage '{row.stage}', beyond "
+            if name in row.smeared and sn > top * (1.0 + 1e-9):
+                out.append(f"smeared joint set {name}: σ_n reaches {sn * 1e-6:.4g} MPa in stage '{row.stage}', beyond "
                            f"its table (0 - {top * 1e-6:.4g} MPa): the response there is the table's linear "
                            "continuation, not the law; raise plan: {table_max_stress: ...}")
     return out
