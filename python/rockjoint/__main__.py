@@ -9,6 +9,7 @@ import pkgutil
 import sys
 
 from . import commands
+from .console import warnings_as_lines
 from .law_registry import load_plugins
 
 
@@ -24,6 +25,7 @@ def main(argv=None) -> int:
     for info in sorted(pkgutil.iter_modules(commands.__path__), key=lambda i: i.name):
         importlib.import_module(f"{commands.__name__}.{info.name}").add_parser(sub)
     args = parser.parse_args(argv)
+    warnings_as_lines()
     if not getattr(args, "func", None):
         parser.print_help()
         return 2

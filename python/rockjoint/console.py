@@ -7,6 +7,8 @@ root logger's handlers. A script's own progress goes through its own logger or `
 from __future__ import annotations
 
 import logging
+import sys
+import warnings
 
 
 def quiet_compiler_logging() -> None:
@@ -23,3 +25,12 @@ def say(*args, comm=None) -> None:
         comm = MPI.COMM_WORLD
     if comm.rank == 0:
         print(*args, flush=True)
+
+
+def warnings_as_lines() -> None:
+    """Show Python warnings (a law driven past its table: fem_coupling.RangeWarning) as one line
+    each, "warning: <message>", on standard error: what a command-line user reads, without the
+    file and source line of the code that raised it."""
+    def show(message, category, filename, lineno, file=None, line=None):
+        print(f"warning: {message}", file=file or sys.stderr, flush=True)
+    warnings.showwarning = show

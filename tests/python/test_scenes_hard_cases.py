@@ -56,6 +56,9 @@ def test_a_joint_past_its_table_is_named_with_its_stress(tmp_path):
     # the model's own check (fem_coupling.law_range), then the scene's remedy
     assert ("joint 'joint_1': 12 of 12 points past the range of its law; σ_n reaches 10 MPa where its "
             "table covers σ_n 0 - 5 MPa") in out + err
+    # said once, as one line (not again as a log record, nor with the raising code's source line)
+    said = [line for line in (out + err).splitlines() if "joint law driven past its range" in line]
+    assert len(said) == 1 and said[0].startswith("warning: "), said
     assert ("warning: joint set joint: past its table in stage 'load' (the model's warning above names "
             "the points and σ_n); raise plan: {table_max_stress: ...}") in out + err
 

@@ -14,13 +14,12 @@ JointedRockModel once per stage) hand their point state to `check_range`:
   JointSummary on every rank);
 - a joint with points at ``validity_limit`` gives one message naming the joint, the largest σ_n
   reached and the range of its law (`law_range`); beyond_range="warn" (default) issues it on
-  rank 0 only, as a `RangeWarning` (a Python warning users can filter) and, when logging is
-  configured, a warning of this module's logger; beyond_range="raise" raises `BeyondRangeError`
+  rank 0 only, as a `RangeWarning` (a Python warning users can filter or make an error; the
+  CLI prints it as one line); beyond_range="raise" raises `BeyondRangeError`
   on every rank (the summary is the same everywhere, so no rank is left in a collective).
 """
 from __future__ import annotations
 
-import logging
 import math
 import warnings
 from dataclasses import dataclass, field
@@ -32,7 +31,6 @@ from mpi4py import MPI
 from .._rockjoint import constitutive as _constitutive
 from .._rockjoint import joint as _joint
 
-log = logging.getLogger(__name__)
 
 #: the per-point status codes of a joint's state (coupling.state(u)["status"]): rockjoint.Status
 Status = _constitutive.Status
@@ -153,8 +151,8 @@ def range_words(summary: JointSummary, law) -> tuple:
 def check_range(comm, summaries: Mapping[str, JointSummary], laws: Mapping[str, object],
                 beyond_range: str = "warn", where: str = "") -> list:
     """Report the joints of `summaries` (summarize's, the same on every rank) with points past
-    their law's range: beyond_range "warn" → a RangeWarning on rank 0 (and a warning of this
-    module's logger when logging is configured), "raise" → BeyondRangeError on every rank.
+    their law's range: beyond_range "warn" → a RangeWarning on rank 0 (one message; the CLI shows
+    warnings as lines, rockjoint.console.warnings_as_lines), "raise" → BeyondRangeError on every rank.
     laws: {joint name: closure law or JointBehaviour}; where: what was solved ("after stage 'x'").
     Returns the messages (the same on every rank; empty when every point is inside its range)."""
     found = [range_words(s, laws[name]) for name, s in summaries.items() if s.beyond_range]
@@ -167,7 +165,5 @@ def check_range(comm, summaries: Mapping[str, JointSummary], laws: Mapping[str, 
         raise BeyondRangeError(text)
     if comm.rank == 0:
         text += ' beyond_range="raise" makes this an error.'
-        if log.hasHandlers():   # the application configured logging: a record there too
-            log.warning("%s", text)
         warnings.warn(text, RangeWarning, stacklevel=3)
     return words
