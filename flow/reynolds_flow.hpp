@@ -91,6 +91,10 @@ struct FlowResult
   /// largest |A p - b| / |b| of the pressure systems solved (0 if none was solved)
   double relative_residual = 0.0;
   bool converged = true; ///< every system met the tolerance (a direct solve: its factorisation)
+  /// conjugate_gradient only: CG did not reach the tolerance (near percolation, conductances
+  /// spanning many decades) and the supernodal factorisation solved the system instead;
+  /// `iterations` are CG's before it gave up
+  bool direct_fallback = false;
   std::size_t unknowns = 0; ///< pressure unknowns of the (largest) system
 };
 

@@ -24,6 +24,7 @@ SI units: m, m³.
 from __future__ import annotations
 
 import dataclasses
+import logging
 from typing import Callable, Dict, Sequence, Tuple, Union
 
 import numpy as np
@@ -31,6 +32,8 @@ import numpy as np
 from ._rockjoint import flow as _cpp
 from ._rockjoint.topography import Surface
 from .units import DIMENSIONS
+
+log = logging.getLogger(__name__)
 
 Boundary = _cpp.Boundary
 LinearSolver = _cpp.LinearSolver
@@ -61,6 +64,9 @@ class Transmissivity:
     iterations: Tuple[int, int]  # CG iterations per gradient (0: direct solver)
     relative_residual: float     # largest |A p - b|/|b| of the pressure systems
     periodic: bool
+    #: conjugate_gradient only: CG stalled (near percolation) and the supernodal factorisation
+    #: solved the system instead (`iterations`: CG's before it gave up)
+    direct_fallback: bool = False
 
     @property
     def mean(self) -> float:
@@ -89,7 +95,9 @@ class ApertureFlow:
     [m], `periodic` (one period of a periodic joint, the periodic BEM kernel) or not (an isolated
     scan: fixed pressures on the faces normal to the gradient, sealed sides parallel to it),
     `solver` "cholesky" (supernodal, CHOLMOD), "simplicial_cholesky" (Eigen's LDLᵀ) or
-    "conjugate_gradient" (incomplete-Cholesky CG to `tolerance`). Its symbolic factorisation is
+    "conjugate_gradient" (incomplete-Cholesky CG to `tolerance`; where it stalls, near percolation,
+    the supernodal factorisation solves the system instead, said in the result and once in the
+    log of this module). Its symbolic factorisation is
     made once and serves every field (the loads of a closure curve). Call it on an aperture field
     [m] (NaN = masked, not scanned, impermeable; 0 = closed, a contact spot): a Transmissivity.
     Raises ValueError for bad input (naming it), RuntimeError if a pressure system was not
@@ -107,6 +115,7 @@ class ApertureFlow:
             raise ValueError(f"transmissivity: the aperture grid is {rows} x {cols}; it needs at "
                              "least 2 rows and 2 columns")
         self.periodic, self.solver, self.tolerance = periodic, solver, tolerance
+        self._fallback_said = False
         self._cpp = _cpp.ReynoldsFlow(rows, cols, float(hx), float(hy),
                                       Boundary.periodic if periodic else Boundary.sealed_sides,
                                       LinearSolver.__members__[solver], float(tolerance),
@@ -119,11 +128,18 @@ class ApertureFlow:
                                f"tolerance ({self.solver}: relative residual "
                                f"{r.relative_residual:.2e}, tolerance {self.tolerance:g}, "
                                f"iterations {tuple(r.iterations)})")
+        if r.direct_fallback and not self._fallback_said:
+            self._fallback_said = True
+            log.warning("transmissivity: conjugate_gradient did not reach %g in %s iterations (a field "
+                        "near percolation: conductances over many decades); solved by the supernodal "
+                        "factorisation instead (Transmissivity.direct_fallback)", self.tolerance,
+                        max(r.iterations))
         return Transmissivity(tensor=np.array(r.transmissivity),
                               mechanical_aperture=r.mechanical_aperture,
                               open_fraction=r.open_fraction, percolates=tuple(r.percolates),
                               iterations=tuple(r.iterations),
-                              relative_residual=r.relative_residual, periodic=self.periodic)
+                              relative_residual=r.relative_residual, periodic=self.periodic,
+                              direct_fallback=r.direct_fallback)
 
 
 def transmissivity(gap_field, spacing: Union[None, float, Tuple[float, float]] = None, *,

@@ -41,6 +41,8 @@ void declare_flow(py::module_& m)
       .def_readonly("iterations", &FlowResult::iterations, "CG iterations per gradient")
       .def_readonly("relative_residual", &FlowResult::relative_residual)
       .def_readonly("converged", &FlowResult::converged)
+      .def_readonly("direct_fallback", &FlowResult::direct_fallback,
+                    "CG did not converge and the supernodal factorisation solved the system")
       .def_readonly("unknowns", &FlowResult::unknowns);
 
   py::class_<ReynoldsFlow>(m, "ReynoldsFlow",

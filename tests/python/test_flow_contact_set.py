@@ -85,19 +85,30 @@ def test_the_tight_joint_flows_to_150_mpa_with_the_direct_solvers(joint, solver,
 
 
 @pytest.mark.parametrize("periodic", [True, False], ids=["periodic", "sealed"])
-def test_the_tight_joint_with_conjugate_gradients(joint, periodic):
-    """CG with incomplete Cholesky: right to 30 MPa (16 % contact; it needs 800-2200 iterations
-    per gradient at 256²); from 72 MPa on, near percolation, the conductances span 12 decades and
-    it does not reach its tolerance in 10000 iterations (docs/flow.md): a named error, never a
-    wrong T (here with 500 iterations, to keep the test short)."""
-    curve = tight_curve(joint, periodic, "conjugate_gradient", loads=3)
+def test_the_tight_joint_with_conjugate_gradients(joint, periodic, caplog):
+    """CG with incomplete Cholesky: right at every load to 150 MPa. To 30 MPa (16 % contact) CG
+    itself converges (800-2200 iterations per gradient at 256²); near percolation (72-125 MPa)
+    the conductances span 12 decades and it stalls (10000 iterations leave residuals of 5e-6 to
+    3e-4): the supernodal factorisation solves the same system instead, said in the result
+    (direct_fallback) and once in the log (docs/flow.md). Here CG stops at 2500 iterations (with
+    sealed sides it needs more at 30 MPa, and falls back there too)."""
     full = tight_curve(joint, periodic, "cholesky")
-    check_curve(curve, periodic)
-    np.testing.assert_allclose(curve.transmissivity_xx, full.transmissivity_xx[:3], rtol=1e-7)
+    ref = reference(full, periodic)
     cg = flow.ApertureFlow(joint.shape, H, periodic=periodic, solver="conjugate_gradient",
-                           maximum_iterations=500)
-    with pytest.raises(RuntimeError, match="not solved to the tolerance"):
-        cg(full.gap[3])
+                           maximum_iterations=2500)
+    with caplog.at_level("WARNING", logger="rockjoint.flow"):
+        for i in (0, 2, 3, 5, 6):                               # 1, 30, 72, 125, 150 MPa
+            t = cg(full.gap[i])
+            np.testing.assert_allclose(t.tensor.diagonal(), ref[i], rtol=1e-7, atol=1e-9 * ref[0].max())
+            # flagged exactly when CG stopped at its limit; never at 1 MPa, always near percolation
+            assert t.direct_fallback == (max(t.iterations) >= 2500), (STRESSES[i], t.iterations)
+            if STRESSES[i] == 1e6:
+                assert not t.direct_fallback
+            if STRESSES[i] >= 72e6:      # near percolation: stalls wherever there is a system
+                assert t.direct_fallback == any(t.percolates), (STRESSES[i], t.iterations)
+            assert STRESSES[i] != 72e6 or any(t.percolates)   # (and at 72 MPa there is one)
+    said = [r for r in caplog.records if "conjugate_gradient did not reach" in r.getMessage()]
+    assert len(said) == 1
 
 
 def clustered_field(n, contact_fraction, near_zero, seed=1):
