@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The repository's top-level pytest configuration (pytest allows plugins only here).
 
 Puts the checkout's Python package and its built extension modules on sys.path when nothing

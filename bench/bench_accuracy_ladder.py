@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """The accuracy ladder: every closure law rockjoint offers, measured against the exact elastic
 contact (boundary elements) of the same joint walls. Which law to trust, at what cost.
 

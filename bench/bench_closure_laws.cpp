@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Benchmark of the closure laws: per model, the cost of one σ+k evaluation (median
 // over repeats of a batch of 10^5 closures, 10^4 for laws above 10 µs a point) and, for the models that integrate over the
 // summit heights, the error of the production integrator against an independent

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Benchmark: the boundary-element closure curve of a joint (rockjoint.contact).
 Targets, 15 loads (0.1-30 MPa): periodic 512 x 512 in <= 1 s and 1024 x 1024 in <= 5 s;
 non-periodic (zero-padded kernel, real scans) 1024 x 1024 in <= 10 s (issue 21).

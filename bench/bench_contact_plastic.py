@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Load cycles on the elastic-plastic contact reference: permanent closure and unloading stiffness
 of synthetic granite-like joints (issue 21), beside the laboratory ranges.
 

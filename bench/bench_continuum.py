@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Speed against error: a circular tunnel and a blocky section with joint sets, modelled five ways.
 
 Scene (plane strain): a hole of radius a = 4 m centred in a 40 m x 40 m section, rollers on the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Direct (MUMPS) against iterative (CG + GAMG) linear solves of an intact elastic block, 2D and 3D.
 
 The evidence behind linear_solver.DIRECT_DOF_LIMIT (the dof count up to which "auto" picks MUMPS).

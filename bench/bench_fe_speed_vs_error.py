@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """FE speed against error: what each setting of a jointed analysis costs and how much error it buys.
 
 One command (a few minutes on a quiet 2-core machine, see the report for the measured wall time):

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """A jointed analysis at the cost of an intact linear solve: time, memory and scaling in DOLFINx.
 
 Headline: jointed analysis time / ONE intact linear solve on the same mesh (target <= 2).

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """FFTW's planning effort for the contact reference's transforms: the evidence for
 contact/half_space.hpp's detail::measure_plans (below 1024² transform points a size is planned
 by FFTW_ESTIMATE until it has been planned 8 times in the process, then by FFTW_MEASURE; larger

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Benchmark: flow along a joint (rockjoint.flow): time per load of the transmissivity of a gap
 field (both gradients), the linear solvers against each other, the error against closed forms,
 and the hydraulic / mechanical aperture ratio of the granite-like synthetic joint under load.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Speed against error of the Tang & Jiao interaction cell: closed form (interaction_cell.hpp)
 // versus the paper's iterative algorithm (interaction_cell_numeric.hpp) at several area roots
 // s and quadrature orders n. For each (s, n): µs per solve (p̄, P, δ_loc) and µs per pressure

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Benchmark: Tang & Jiao interaction cell, closed form against the paper's algorithm.
 
 Run:  /usr/bin/python3 bench/bench_interaction_cell.py --build <build dir> [--orders 8 16 32 64]

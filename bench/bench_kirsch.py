@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """The intact tunnel against Kirsch: error against mesh size (observed order) and domain size.
 
 A circular hole of radius a = 1 m centred in a W x W plane-strain section (rockjoint.meshes.

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Do the planner's predictions hold? For each demo scene whose joint law comes from a topography
 and for scenes of our own that no default was tuned on, the rung the planner picks (a law of the
 accuracy ladder or the exact contact curve of the walls), its predicted total cost against the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Speed against error of TabulatedLaw. For each source law available and each
 // tolerance: knots, build time, table memory, ns per (σ, k) evaluation of the table (batch
 // of random closures in [0, Δ_max], median of several runs), ns per direct evaluation of the

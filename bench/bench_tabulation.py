@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Speed against error of tabulated closure laws.
 
 Runs the C++ timer `bench_tabulation` (built with the project: <build>/bench/bench_tabulation),

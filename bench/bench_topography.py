@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Benchmark: analysing an N x N joint (contact state, summits, curvature, statistics) on one
 core. Target: a 1000 x 1000 grid in under 1 s.
 

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Where the time of a slipping-joint analysis goes: the continuum bench's discrete tunnel, and the
 tunnel and blocky demos, split by phase.
 

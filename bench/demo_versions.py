@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """bench/results/demo_versions.md: the lab, tunnel, blocky and user-model demos on DOLFINx 0.11
 beside 0.9, number for number.
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Tables, plots and the JSON of bench/bench_fe_speed_vs_error.py (results dict -> files).
 
 Every number in the report is read from the results; the few sentences of interpretation that do

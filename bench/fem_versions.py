@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """bench/results/fem.md: the FE benchmark on DOLFINx 0.11 beside 0.9, from their two reports.
 
 Each report is a run of bench/bench_fem.py in its own userland (scripts/host.sh):

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Run every benchmark one after the other (they time themselves; run on an idle machine) and
 # write bench/results/*.md (+ PNGs). Usage: bash bench/run_all.sh [build dir, default ./build]
 set -euo pipefail

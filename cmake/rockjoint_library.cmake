@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # rockjoint_add_library(<name> [PUBLIC_LINK <targets...>])
 # One library per source folder: every .cpp of the calling folder, target rockjoint_<name>,
 # exported as rockjoint::<name>; headers installed under <prefix>/include/rockjoint/<name>/ so

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "adaptive_knots.hpp"
 #include "monotone_hermite.hpp"
 #include "validation.hpp"

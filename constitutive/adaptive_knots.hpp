@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file adaptive_knots.hpp
 /// Adaptive knot placement for a tabulated closure law (tabulated_law.hpp): bisect the

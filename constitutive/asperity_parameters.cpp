@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "asperity_parameters.hpp"
 #include "validation.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file asperity_parameters.hpp
 /// Statistical description of the composite topography used by the asperity models

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "barton_bandis.hpp"
 #include "validation.hpp"
 

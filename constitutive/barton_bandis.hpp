@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file barton_bandis.hpp
 /// Barton-Bandis hyperbolic closure law (Bandis, Lumsden & Barton 1983), theory §6.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "closure_law.hpp"
 #include "root_finding.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file closure_law.hpp
 /// The interface every normal-closure law of a rough rock joint implements.

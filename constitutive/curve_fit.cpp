@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "curve_fit.hpp"
 
 #include <gsl/gsl_blas.h>

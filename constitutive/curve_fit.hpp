@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file curve_fit.hpp
 /// Weighted nonlinear least squares by Levenberg-Marquardt (GSL gsl_multifit_nlinear, trust

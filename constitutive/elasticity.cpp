@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "elasticity.hpp"
 #include "validation.hpp"
 

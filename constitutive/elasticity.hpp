@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file elasticity.hpp
 /// Composite (contact) modulus of two elastic walls, theory §1.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "empirical_laws.hpp"
 #include "validation.hpp"
 

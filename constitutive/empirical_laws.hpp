@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file empirical_laws.hpp
 /// Logarithmic and exponential empirical closure laws, theory §6.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "greenwood_williamson.hpp"
 
 namespace rockjoint::constitutive

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file greenwood_williamson.hpp
 /// Greenwood-Williamson (1966) contact of a population of Hertzian summits (theory §2).

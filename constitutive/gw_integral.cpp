@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "gw_integral.hpp"
 #include "population_quadrature.hpp"
 #include "substrate.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file gw_integral.hpp
 /// The Greenwood-Williamson integrals of a parametric summit population (theory §2), with

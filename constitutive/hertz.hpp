@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file hertz.hpp
 /// Hertz contact of one paraboloidal asperity of radius R on a flat, theory §1.

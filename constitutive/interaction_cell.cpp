@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "interaction_cell.hpp"
 #include "validation.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file interaction_cell.hpp
 /// Closed form of the self-consistent interaction cell of Tang & Jiao (2018), Eqs. (1)-(5),

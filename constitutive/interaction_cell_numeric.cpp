@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "interaction_cell_numeric.hpp"
 #include "interaction_cell.hpp"
 #include "root_finding.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file interaction_cell_numeric.hpp
 /// The paper's iterative algorithm for the interaction cell of Tang & Jiao (2018), Fig. 2:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "law_table_file.hpp"
 #include "monotone_hermite.hpp"
 

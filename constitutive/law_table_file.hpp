@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file law_table_file.hpp
 /// The data of a tabulated closure law and its file format (".rjt", text, version 1).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file monotone_hermite.hpp
 /// The interpolant of a tabulated closure law (see tabulated_law.hpp for why this form) and

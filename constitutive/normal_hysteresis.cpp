@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "normal_hysteresis.hpp"
 
 #include "validation.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file normal_hysteresis.hpp
 /// Normal closure with history: the joint that does not spring back (docs/hysteresis.md).

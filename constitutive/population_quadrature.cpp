@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "population_quadrature.hpp"
 
 #include <gsl/gsl_errno.h>

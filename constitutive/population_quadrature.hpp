@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file population_quadrature.hpp
 /// Adaptive quadrature of integrals over a summit-height density with an algebraic endpoint

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file root_finding.hpp
 /// The project's one bracketed root finder: safeguarded Newton for an increasing residual.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "substrate.hpp"
 
 #include <cmath>

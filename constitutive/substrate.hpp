@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file substrate.hpp
 /// Substrate deformation under one asperity (theory §4; Tang et al. 2014, the g of Eq. (6)

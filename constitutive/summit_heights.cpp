@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "summit_heights.hpp"
 #include "validation.hpp"
 

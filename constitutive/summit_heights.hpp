@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file summit_heights.hpp
 /// Summit-height distributions f(z) of the composite topography (theory §2).

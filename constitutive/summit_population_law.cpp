@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "summit_population_law.hpp"
 #include "gw_integral.hpp"
 #include "root_finding.hpp"

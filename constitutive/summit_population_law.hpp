@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file summit_population_law.hpp
 /// The common machinery of the GW-type laws (theory §2, §4): a population of Hertzian

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "tabulated_law.hpp"
 #include "adaptive_knots.hpp"
 #include "root_finding.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file tabulated_law.hpp
 /// A closure law tabulated once from any ClosureLaw, with error control: the fast form a

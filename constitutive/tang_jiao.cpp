@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "tang_jiao.hpp"
 #include "interaction_cell.hpp"
 #include "root_finding.hpp"

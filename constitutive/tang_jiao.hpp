@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file tang_jiao.hpp
 /// The self-consistent model with asperity interaction of Tang & Jiao (IJRMMS 2018,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "tang_substrate.hpp"
 
 namespace rockjoint::constitutive

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file tang_substrate.hpp
 /// GW with substrate deformation under each asperity (Tang et al. 2014; the f3 of Eq. (7)

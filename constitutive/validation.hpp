@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file validation.hpp
 /// Parameter checks done once, at construction. Messages name the law, the parameter, its

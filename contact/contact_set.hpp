@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file contact_set.hpp
 /// The contact set of a contact solution and the gap field it implies (docs/contact.md): one

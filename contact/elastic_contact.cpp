@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "elastic_contact.hpp"
 
 #include "contact_set.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file elastic_contact.hpp
 /// Exact (to discretisation) frictionless elastic contact of a joint's composite topography:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "exact_law.hpp"
 
 #include <rockjoint/constitutive/monotone_hermite.hpp>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file exact_law.hpp
 /// "The exact elastic law of this joint": a boundary-element closure curve (elastic_contact.hpp)

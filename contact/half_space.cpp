@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "half_space.hpp"
 
 #include <rockjoint/constitutive/validation.hpp>

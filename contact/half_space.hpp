@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file half_space.hpp
 /// Surface displacement of an elastic half-space under a pressure field on a regular grid:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "plastic_contact.hpp"
 
 #include <rockjoint/constitutive/root_finding.hpp>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file plastic_contact.hpp
 /// Contact of elastic-perfectly-plastic walls: the pressure is capped at the rock's indentation

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "continuum_points.hpp"
 
 #include <stdexcept>

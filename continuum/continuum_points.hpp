@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file continuum_points.hpp
 /// The equivalent-continuum material over many points (the quadrature points of the smeared

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "equivalent_continuum.hpp"
 
 #include <rockjoint/constitutive/validation.hpp>

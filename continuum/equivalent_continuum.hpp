@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file equivalent_continuum.hpp
 /// Jointed rock mass as an equivalent continuum (Amadei & Goodman 1981; the ubiquitous-joint

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """A blocky rock mass under biaxial load: bedding planes and a cross-joint set, with and without joint slip.
 
 Read it top to bottom; run it as it is (serial or `mpirun -n 2`):

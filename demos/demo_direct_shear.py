@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """A direct-shear laboratory test of a rock joint under constant normal load (CNL).
 
 Read it top to bottom; run it as it is:

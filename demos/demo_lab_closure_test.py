@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """A laboratory joint-closure test, from the roughness of the joint to the FE rock mass.
 
 The main rockjoint demo. Read it top to bottom; run it as it is:

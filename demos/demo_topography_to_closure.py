@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """From joint-wall topography to closure curves: a granite-like and a sandstone-like joint.
 
 Read top to bottom; run as it is:

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """A circular tunnel excavated in a jointed rock mass at 300 m depth, beside the same tunnel in intact rock.
 
 Read it top to bottom; run it as it is (serial or `mpirun -n 2`):

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Joints in your own DOLFINx model: a rock slope with a daylighting sliding plane.
 
 Read it top to bottom; run it as it is (serial or `mpirun -n 2`):

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "facet_quadrature.hpp"
 
 #include <cmath>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file facet_quadrature.hpp
 /// Quadrature rules on a joint facet for Lagrange displacement fields.

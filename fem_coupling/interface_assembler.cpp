@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "interface_assembler.hpp"
 
 #include <rockjoint/joint/joint_slip.hpp>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file interface_assembler.hpp
 /// Zero-thickness (Goodman-type) joint elements between matched facet pairs.

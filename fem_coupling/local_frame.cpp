@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "local_frame.hpp"
 
 #include <rockjoint/joint/joint_frame.hpp>

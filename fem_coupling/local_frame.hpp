@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file local_frame.hpp
 /// Local frame of a flat joint facet: unit normal n (from the minus side into the plus side)

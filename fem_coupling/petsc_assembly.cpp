@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "petsc_assembly.hpp"
 
 #include <stdexcept>

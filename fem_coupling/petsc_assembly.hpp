@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file petsc_assembly.hpp
 /// Interface Jacobian into a PETSc matrix (the only PETSc-dependent piece).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file connectivity.hpp
 /// The connected open regions of an aperture grid and whether each can carry a mean flow.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "reynolds_flow.hpp"
 
 #include "connectivity.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file reynolds_flow.hpp
 /// Steady laminar flow through a joint's aperture field: the Reynolds (local cubic law)

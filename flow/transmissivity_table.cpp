@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "transmissivity_table.hpp"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file transmissivity_table.hpp
 /// A joint's transmissivity as a function of its normal closure, T(Δ), tabulated from the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // libFuzzer target: read_height_grid. Any input must give a surface or throw
 // std::invalid_argument / std::runtime_error (documented in surface_io.hpp); any other
 // exception, a crash or a sanitizer report is a bug.

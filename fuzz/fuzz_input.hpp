@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The readers take a path, so each fuzz input is written to a file first. A per-process file in
 // /dev/shm (memory) keeps this cheap; the file is rewritten, never accumulated.

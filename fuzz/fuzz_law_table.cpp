@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // libFuzzer target: .rjt files as a user's scene or script loads them, TabulatedLaw::load
 // (read_law_table, then the law and its segment index built from the knots), and the loaded law
 // evaluated inside, at the ends of and beyond its table. Any input must either give a law or throw

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "joint_behaviour.hpp"
 
 #include <rockjoint/constitutive/root_finding.hpp>

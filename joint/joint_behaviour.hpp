@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file joint_behaviour.hpp
 /// Constitutive behaviour of a joint in its local frame: the closure law for the normal

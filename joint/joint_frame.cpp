@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "joint_frame.hpp"
 
 #include <cmath>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file joint_frame.hpp
 /// The local frame of a joint plane, (n, t1[, t2]): the one rule the discrete joint element

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file joint_point_state.hpp
 /// Path-dependent state of one joint quadrature point (MGIS style: the assembler keeps a

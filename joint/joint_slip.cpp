@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "joint_slip.hpp"
 
 #include <rockjoint/constitutive/root_finding.hpp>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file joint_slip.hpp
 /// Path-dependent joint response: Coulomb (or Barton) slip with a non-associated dilatancy and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "joint_strength.hpp"
 
 #include <rockjoint/constitutive/validation.hpp>

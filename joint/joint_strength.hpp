@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file joint_strength.hpp
 /// Shear strength of a joint (docs/joint-strength.md): the yield function of the Coulomb slip

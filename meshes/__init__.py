@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """rockjoint.meshes: gmsh builders of rock blocks cut by joints, node splitting and the JointedMesh.
 
 Sources live in the repository's meshes/ folder; the build copies them to rockjoint/meshes.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """gmsh (OCC) builders of rectangular blocks cut by planar joints, split by block.
 
 Geometry: the block is [0, Lx] x [0, Ly] (2D, y up) or [0, Lx] x [0, Ly] x [0, Lz] (3D, z up). Joints are

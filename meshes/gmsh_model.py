@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """A JointedMesh from the user's own gmsh model (or a .msh file), marked by physical groups.
 
 The user builds any geometry in gmsh (OCC ``fragment`` makes the blocks and joints conforming),

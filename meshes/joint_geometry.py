@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Planar joints in a rectangular block: orientation (dip, dip direction) and clipping.
 
 Axes: x east, y north, z up in 3D; in 2D the section is the x-z plane, written (x, y) with y up.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """JointedMesh: a conforming simplex mesh of rock blocks with the nodes split along the joints.
 
 The split mesh alone does not say which facets face each other across a joint, so the glue map

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Node splitting per block (MOOSE BreakMeshByBlock style) and joint-facet pairing.
 
 A node touched by cells of k blocks keeps its id in the block with the lowest tag and gets k-1 copies,

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The openings a tunnel section is cut around (meshes.tunnel_section), with what the builders
 need of them: extent, area and perimeter (closed forms), outline points, where a line crosses
 them, and the outline as pieces (lines and arcs, planar_section.OutlinePiece). Lengths in metres."""

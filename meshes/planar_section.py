@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Plane geometry of a jointed 2D section, computed here instead of by OCC booleans.
 
 A 2D section is an outline (the rectangle, and the opening's hole) cut by straight joint traces.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """gmsh builder of a rock-mass section around a tunnel opening, cut by joint sets (2D, or extruded to 3D).
 
 Geometry (plane strain, y up): the section is the rectangle [0, width] x [0, height] minus the

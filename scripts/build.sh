@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Install what is missing (Debian 13 packages; on a Debian 12 host, a Debian 13 root first:
 # scripts/host.sh), then configure and build rockjoint into its build tree (build/ for DOLFINx 0.11,
 # build-0.9/ for 0.9, or $ROCKJOINT_BUILD_DIR).

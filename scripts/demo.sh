@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Build (installing what is missing) and run the main demo: a laboratory joint-closure test,
 # jointed specimen beside the intact one. Outputs go to ./out/ (PNG, XDMF, text report).
 set -euo pipefail

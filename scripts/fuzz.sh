@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Coverage-guided fuzzing of the C++ readers of user files (libFuzzer + AddressSanitizer + UBSan,
 # Debian unstable's clang) in the root of scripts/host.sh. Not part of CI (docs/fuzzing.md).
 #   bash scripts/fuzz.sh build                   installs clang once, builds build-fuzz/fuzz_*

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Where rockjoint builds and runs, for the DOLFINx version chosen by ROCKJOINT_DOLFINX:
 #   0.11 (default)  Debian unstable ("sid"): DOLFINx 0.11.0.post0, PETSc 3.25.5, gmsh 4.15.2
 #   0.9             Debian 13 ("trixie"):    DOLFINx 0.9.0,        PETSc 3.22.4, gmsh 4.13.1

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """The import graph of the Python package `rockjoint`, read from the sources with `ast` (nothing is
 imported, so it runs without a build): every `import` and `from ... import`, at module level and
 inside functions, resolved to the package's own modules.

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Run any command in rockjoint's Debian 13 userland with the development paths set, e.g.
 #   bash scripts/run.sh python3 demos/demo_tunnel.py --output out
 #   bash scripts/run.sh mpirun -n 2 python3 -m pytest tests/python/test_fem_column_mpi.py

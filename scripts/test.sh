@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Build (installing what is missing) and run every test: C++ (GoogleTest), Python (pytest),
 # and the MPI suites (mpirun -n 2 and 3), all driven by ctest, in the Debian 13 userland.
 set -euo pipefail

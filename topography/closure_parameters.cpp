@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "closure_parameters.hpp"
 
 #include <rockjoint/constitutive/validation.hpp>

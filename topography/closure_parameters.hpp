@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file closure_parameters.hpp
 /// From a topography to the inputs of the asperity closure laws (GW, Tang, Tang & Jiao), and

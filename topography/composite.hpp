@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file composite.hpp
 /// Contact state and composite topography of a joint (theory §3, after Xia et al. 2003).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "fft2.hpp"
 
 #include <gsl/gsl_errno.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file fft2.hpp
 /// Two-dimensional discrete Fourier transform (GSL mixed-radix, any size) for the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "overlap.hpp"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file overlap.hpp
 /// Geometric overlap ratio fraction{e <= Δ}: the share of the nominal area where the rigid

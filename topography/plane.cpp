@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "plane.hpp"
 
 #include <Eigen/Dense>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file plane.hpp
 /// Least-squares mean plane z = a + b x + c y of the valid points of one or more surfaces.

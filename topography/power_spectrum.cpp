@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "power_spectrum.hpp"
 
 #include "fft2.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file power_spectrum.hpp
 /// Power spectral density of a sampled surface, its radial average and the Hurst exponent

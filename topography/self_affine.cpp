@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "self_affine.hpp"
 
 #include "fft2.hpp"

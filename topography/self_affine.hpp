@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file self_affine.hpp
 /// Synthetic joint walls: isotropic, Gaussian, self-affine surfaces by Fourier filtering of

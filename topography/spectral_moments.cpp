@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "spectral_moments.hpp"
 
 #include <algorithm>

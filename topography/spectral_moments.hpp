@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file spectral_moments.hpp
 /// Spectral moments of an isotropic Gaussian surface and the Nayak (1971) / McCool (1986)

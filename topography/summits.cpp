@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "summits.hpp"
 
 #include <cmath>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file summits.hpp
 /// Summits of a sampled surface and their statistics (theory §3): the η, β, σ_s of GW.

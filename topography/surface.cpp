@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "surface.hpp"
 
 #include <rockjoint/constitutive/validation.hpp>

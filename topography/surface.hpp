@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file surface.hpp
 /// A height grid on a regular lattice: one joint wall, an aperture field or a composite

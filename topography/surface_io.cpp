@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "surface_io.hpp"
 
 #include "units.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file surface_io.hpp
 /// Plain-text height grids and XYZ point lists. Both carry their units; NaN (written "nan",

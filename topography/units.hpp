@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 /// @file units.hpp
 /// Length units: the one table of them (topography files here; the Python layer reads the same

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """rockjoint: rough-rock-joint closure laws for FEniCSx.
 
 SI units inside (Pa, m); compression positive; closure Δ net of intact-rock deformation.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Command line: `python3 -m rockjoint <command> ...`.
 
 Each command is a module in rockjoint/commands/ with `add_parser(subparsers)` (which sets

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Whether the FE stack (DOLFINx and the compiled rockjoint._rockjoint_fem_coupling) must be there.
 
 Under CI (the CI variable set, as every CI service does) or with ROCKJOINT_REQUIRE_FE=1 a missing

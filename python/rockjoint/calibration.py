@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Calibration of a closure law to a measured closure curve (docs/theory.md §9).
 
 A loading curve (normal stress σ_i, joint closure Δ_i) is read from a CSV file whose header

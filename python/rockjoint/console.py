@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Console output of scripts that run serially or under mpirun (the demos): rank 0 speaks.
 
 DOLFINx compiles forms on first use through setuptools, which sets the root logger to INFO and

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Exact elastic contact of a joint's own topography: the boundary-element reference every
 closure law is measured against (docs/contact.md).
 

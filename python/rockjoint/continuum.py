@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Joint sets smeared into the rock, without the FE stack: the equivalent-continuum material
 (C++ `continuum/`, bound as `rockjoint._rockjoint.continuum`; needs neither PETSc nor DOLFINx).
 Each set is a unit normal, a spacing and a per-point joint behaviour (`rockjoint.joint`); the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Calibration of a hysteretic closure law to measured load cycles (docs/hysteresis.md §calibration).
 
 A laboratory closure test loads and unloads a joint one or more times: the stress path σ_i (the

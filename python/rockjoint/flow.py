@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Flow along a joint: transmissivity and hydraulic aperture of an aperture field, and the joint's
 transmissivity as a function of its normal closure (docs/flow.md).
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The per-point joint behaviour, without the FE stack: closure law + shear stiffness + residual
 stiffness + shear strength of a joint, its traction and consistent tangent at a local jump, and
 its path-dependent state (C++ `joint/`, bound as `rockjoint._rockjoint.joint`; needs neither

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The law registry: the one place where a closure law's identity lives.
 
 Each law rockjoint builds by name has one `LawRecord`: its key (a C++ law's ``name()``), words

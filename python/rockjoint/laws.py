@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The one law factory: closure laws by name, from a parameter file, or from a topography.
 
 Every law the package builds from a description goes through here (the laws themselves are the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Tabulated closure laws: the fast, error-controlled form finite-element codes call.
 
 A table is built once from any closure law (``tabulate``), saved to a self-describing

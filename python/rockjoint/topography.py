@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Joint-wall topography -> closure-law parameters (theory §3; Xia et al. 2003 contact state).
 
 SI units inside (heights and spacings in m, η in 1/m², β and σ_s in m); files and pictures

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Units of every file, scene and report rockjoint reads or writes: one table per dimension,
 {unit: SI per unit}. Lengths are the C++ table (topography/units.cpp, through the bindings), so
 the topography file parser and the Python layer accept the same length units; the law

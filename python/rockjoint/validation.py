@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Checks of scalar inputs with errors that name the parameter, its value and the valid range."""
 from __future__ import annotations
 

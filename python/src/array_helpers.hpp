@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Helpers shared by the binding files: numpy in, numpy out, no copies where avoidable.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Bindings of rockjoint::constitutive::calibration (curve_fit.hpp): the Levenberg-Marquardt
 // engine of rockjoint.calibrate. The model is a Python callable p -> predictions.
 #include <rockjoint/constitutive/curve_fit.hpp>

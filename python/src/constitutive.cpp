@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Bindings of rockjoint::constitutive (one file per C++ namespace, DOLFINx style): the closure
 // laws and their inverse, the asperity models (GW, Tang's substrate), Tang & Jiao's interaction
 // cell and law, and the tabulated law; declare_constitutive binds them all.

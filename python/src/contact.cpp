@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Bindings of rockjoint::contact: the boundary-element contact reference (SI units). The
 // Python layer rockjoint/contact.py owns the curve object and the defaults.
 #include "array_helpers.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Bindings of rockjoint::continuum: the equivalent-continuum material (rock elasticity + smeared
 // joint sets through the joint behaviour) and its many-point state container.
 #include "array_helpers.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Bindings of rockjoint::flow: the joint's transmissivity from an aperture field, and T as a
 // function of closure (SI units). The Python layer rockjoint/flow.py owns the result object,
 // the defaults and the transmissivity laws.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Bindings of rockjoint::joint: the per-point joint behaviour (normal law, shear stiffness,
 // strength, slip and its state), a material point without PETSc, MPI or meshes.
 #include "array_helpers.hpp"

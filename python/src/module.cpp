@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The _rockjoint extension: one binding file per C++ namespace (DOLFINx style).
 #include <pybind11/pybind11.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Bindings of rockjoint::topography (SI units: heights and spacings in metres). The pure
 // Python layer rockjoint/topography.py owns the defaults, the .npy I/O and the pictures.
 #include "array_helpers.hpp"

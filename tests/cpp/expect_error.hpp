@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The library's contract for bad input, checked one way in every test: it throws
 // std::invalid_argument (std::domain_error, std::runtime_error where the library documents

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Reference computations for the GW / Tang tests, independent of the production code:
 // long-double tanh-sinh quadrature, a long-double bisection for the substrate cubic and the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Test helpers for the per-point joint behaviour: a linear closure law (closed-form return
 // mappings) and a Coulomb joint on it.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Checks every closure law must pass: open branch exact, strictly increasing σ,
 // k > 0 in contact, analytic k = central finite differences of σ, Δ(σ(Δ)) = Δ, batch =

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The laws every tabulation test runs over: each closure law of the library with the stress
 // range a scene would tabulate, plus a Hertzian-onset test law (σ ~ Δ^{3/2}, k(0+) = 0).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The influence operator u = K p of the contact reference (contact/half_space.hpp) against
 // references that do not use its transforms: the direct sum of Love's coefficients (zero-padded
 // kernel) and the exact response to a sinusoidal pressure (periodic kernel). Grids from 256²

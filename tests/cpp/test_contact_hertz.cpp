@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The boundary-element contact reference (contact/) against Hertz: a paraboloid of radius R
 // pressed on a half-space of modulus E* (theory §1; docs/contact.md).
 #include <rockjoint/contact/elastic_contact.hpp>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Equivalent-continuum material: closed forms for one and two joint sets with the nonlinear
 // Barton-Bandis closure (plane strain and 3D), finite-difference checks of the consistent
 // tangent in the stick, slip and open states, and bad input.

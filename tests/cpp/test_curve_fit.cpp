@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Levenberg-Marquardt curve fit (constitutive/curve_fit.hpp). References are closed forms:
 // weighted linear regression (normal equations written out here) for the parameters and the
 // covariance s²(XᵀWX)⁻¹, and exact recovery of a nonlinear model from noise-free data.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Barton-Bandis, logarithmic and exponential laws against their closed forms (theory §6),
 // the open branch, tangents against central differences, inverses and bad input.
 #include <rockjoint/constitutive/barton_bandis.hpp>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Interface assembler kernels (plain arrays, no PETSc objects): local frame, quadrature,
 // residual balance, and the consistent pair Jacobian against central finite differences.
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The assembler keeps a joint point's slip as a trial state until commit_state() (the per-point
 // return mapping is joint/joint_slip.hpp, tested in test_joint_slip.cpp).
 #include "joint_test_laws.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The transmissivity of an aperture field (flow/reynolds_flow.hpp) against closed forms:
 // parallel plates (e_h = e), apertures varying across the flow only (arithmetic mean of e³) and
 // along it only (harmonic mean), a separable conductance k1(x) k2(y) (p = p(x) is exact), the

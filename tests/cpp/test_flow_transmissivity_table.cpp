@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // T(Δ) tabulated from knots (flow/transmissivity_table.hpp): through the knots, exact on data
 // whose ln T is linear in Δ (PCHIP reproduces linear data), monotone between uneven knots, the
 // closed forms outside the knots (rigid separation below, exponential decay beyond, a linear

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Greenwood-Williamson law (theory §2): exponential closed forms, Gaussian partial moments
 // against parabolic cylinder functions and an independent long-double quadrature, empirical
 // sums, the common law checks on every configuration, hard cases and named errors.

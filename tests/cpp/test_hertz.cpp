@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // One summit is a Hertz contact (theory §1): an empirical list with a single summit must give
 // hertz::load / A0, hertz::stiffness / A0 and hertz::contact_area / A0, for GW and for the
 // Tang law with κ_s = 0; with a substrate, the load is Hertz's at the Hertz part g of the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The self-consistent interaction cell of Tang & Jiao (2018), theory §5: closed form
 // (interaction_cell.hpp) against independent quadratures written here, and the paper's
 // iterative algorithm (interaction_cell_numeric.hpp) against the closed form.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The joint frame (joint/joint_frame.hpp), the rule the joint element and the equivalent
 // continuum share: expected axes written out for planes whose frame is known in closed form.
 #include <rockjoint/joint/joint_frame.hpp>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Joint strength: Coulomb/Barton slip with dilation and tension cut-off (joint/joint_slip.hpp),
 // linked against the joint library alone (no PETSc, no MPI). Reference values are hand-worked
 // closed forms of the return mapping (docs/joint-strength.md) and central finite differences of the traction. Also the closure at

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The monotone cubic Hermite interpolant (monotone_hermite.hpp) shared by tabulated laws,
 // the overlap curve and the exact contact law: segments reproduce the polynomials they are
 // built for, Fritsch-Carlson limiting and the data slopes keep monotone data monotone.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The hysteretic normal law (normal_hysteresis.hpp, H1-H4) against its closed forms computed here
 // from the Barton-Bandis hyperbola: virgin loading, the unloading branch and its permanent
 // closure, continuity at the largest closure, tangents against central differences on each

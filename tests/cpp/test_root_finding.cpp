@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The shared root finder (root_finding.hpp), against roots known in closed form or as
 // published constants.
 #include <rockjoint/constitutive/root_finding.hpp>

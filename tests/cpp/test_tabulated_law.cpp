@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // TabulatedLaw: the error bound against the source law on random points for every
 // law of the library, monotonicity and positivity, exact tangent consistency (central
 // differences of the table's own σ), behaviour beyond the table, bit-exact file round trip

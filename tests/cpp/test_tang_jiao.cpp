@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The Tang & Jiao (2018) law, theory §5, over a GW-exponential base written in this test
 // (closed form of theory §2), so every reference value below is an independent formula:
 // I1 = f3/Q, the paper's contraction, the limits s → 0, the validity limit, variant I2,

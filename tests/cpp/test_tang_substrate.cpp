@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Tang substrate law (theory §4): the cubic w = g + κ_s √β g^{3/2}/r0 across scales, the GW
 // limit κ_s -> 0, an independent long-double quadrature of f3, k and A, the §7 example, the
 // common law checks, hard cases and named errors.

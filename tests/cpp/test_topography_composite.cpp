@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Contact state and composite topography (theory §3): identical walls are flat (zero closure
 // capacity), offsets register walls, planes are removed, masks propagate, the geometric
 // overlap ratio counts lattice points.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Height-grid and XYZ files: round trips with units and NaN masks, and malformed files whose
 // errors must name the file and the line.
 #include <rockjoint/topography/surface_io.hpp>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Summits, curvature and spectral moments against closed forms: i.i.d. noise (exactly 1/9 of
 // the eligible points are 8-neighbour summits), paraboloids (the 5-point Laplacian is exact),
 // planted summits and sinusoids.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Fourier-filtered self-affine surfaces: the DFT itself, determinism, the realised rms and
 // Hurst exponent against the requested ones (tolerances derived from the statistics of the
 // random Fourier amplitudes), and mated pairs.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Uses the installed headers and library: σ of a Barton-Bandis joint at half its V_m equals K_ni V_m.
 #include <rockjoint/constitutive/barton_bandis.hpp>
 

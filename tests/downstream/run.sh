@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Install the built project into a scratch prefix, then configure, build and run a
 # downstream project against it with find_package(rockjoint).
 set -euo pipefail

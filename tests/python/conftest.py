@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Shared pytest configuration: the `mpi` marker selects tests meant for `mpirun -n 2`; a
 DeprecationWarning is an error (the code uses DOLFINx 0.11's current API, not its deprecated
 routes, and 0.9 is adapted in rockjoint.fem_coupling.compat). The skip guard, which prints the

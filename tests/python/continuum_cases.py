@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Small models shared by the equivalent-continuum tests (test_fem_continuum*.py): Barton-Bandis
 sets smeared in a column or a block, the matching discrete columns, and the closed forms."""
 from mpi4py import MPI

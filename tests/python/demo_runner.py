@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Run a demo script as a user would (its own process; serially or under mpirun)."""
 import os
 import subprocess

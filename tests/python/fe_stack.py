@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The one way a test asks for the FE stack (DOLFINx, the compiled FE extension) or another
 optional module.
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """An independent finite-volume solve of the Reynolds (local cubic law) equation, for the flow
 tests: the same discretisation as flow/reynolds_flow.hpp (cells, harmonic-mean faces, unit mean
 gradient), written again with numpy and SciPy (SuperLU with partial pivoting, not a Cholesky),

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The FE column with a hysteretic joint, loaded, unloaded and reloaded (test_fem_hysteresis*.py),
 and the closed forms it is checked against: Barton-Bandis inverse on first loading, the branch
 inverse Δ = Δ_p + (Δ_m - Δ_p)(σ/σ_m)^(1/m) with Δ_p = r Δ_m below the largest stress reached

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The assembled Newton Jacobian (bulk + joints, through PETSc) against central differences of
 the assembled residual along random free directions: one check for every FE Jacobian test, and
 the loaded block it is checked on."""

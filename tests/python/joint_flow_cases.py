@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Flow along n parallel joints between two heads (tests/python/test_joint_flow*.py): a column of
 rock cut by horizontal joints, loaded on top (so the joints close), heads on its left and right
 sides. Closed form: every joint carries Q_i = (ρ g / μ) T_i Δh W / L (W: the joint's width across

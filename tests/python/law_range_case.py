@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """A user's model of a column cut by one horizontal joint under a uniaxial load, for the range
 checks (issue 39): rollers at the bottom and on the left, free sides, so the stress is uniform,
 σ_yy = -LOAD in every block, and every joint point carries σ_n = LOAD (closed form, any mesh).

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Independent checks on distributed jointed meshes, shared by the serial and MPI tests.
 
 Facet vertices are read through DOLFINx's cell->facet and facet->geometry connectivity, not

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The rank check shared by the `mpi`-marked tests (tests/python/test_*mpi*.py), which ctest runs
 under `mpirun -n 2`."""
 from mpi4py import MPI

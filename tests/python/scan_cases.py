@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Synthetic scans with a known truth for the scan tests: a mated pair from the project's own
 generator (rockjoint.topography.mated_pair), continued between its lattice nodes by its
 Fourier series (the generator's walls are periodic and, with a short-wavelength cut-off,

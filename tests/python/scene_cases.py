@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Scene texts for the scene tests: a small valid 2D scene and helpers to run the CLI."""
 import os
 import subprocess

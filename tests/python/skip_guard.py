@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """pytest plugin (loaded by conftest.py): every run prints its skip count, and under CI or
 ROCKJOINT_REQUIRE_FE=1 (ctest sets it) a skip not in ALLOWED_SKIPS fails the session.
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Small models shared by the staged-analysis tests (test_fem_staged*.py, test_fem_in_situ.py)."""
 import numpy as np
 from mpi4py import MPI

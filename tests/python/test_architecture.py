@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The Python layers as docs/architecture.md draws them, read from the sources with `ast`
 (scripts/import_graph.py; nothing is imported, so no FE stack is needed):
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """GreenwoodWilliamson / TangSubstrate bindings: numpy in/out, keyword arguments in SI,
 distributions by name or as an empirical list, ValueError naming the parameter."""
 import math

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Calibration of closure laws to measured curves (rockjoint.calibration, `calibrate` CLI).
 
 Synthetic curves are generated here from a known law (closure at 20-25 stresses from 0.2 to

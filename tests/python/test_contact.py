@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The boundary-element contact reference from Python: grid convergence on a band-limited
 surface, masked points, bad input, and the exact elastic law as a table (docs/contact.md)."""
 import numpy as np

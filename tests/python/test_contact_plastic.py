@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Elastic-perfectly-plastic contact reference (pressure capped at the indentation hardness H,
 docs/contact.md): infinite-like hardness equals the elastic solver, a flat punch carries H over
 its area at full plasticity, a sphere past yield has a mean contact pressure that tends to H (the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The C++ layers as docs/architecture.md's first table draws them (issue 44, item 6), read from
 the sources (text only, no build needed):
 

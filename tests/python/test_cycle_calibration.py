@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Cycle calibration (rockjoint.cycle_calibration): two load cycles generated from known
 Barton-Bandis + branch parameters with seeded closure noise are fitted back; each parameter is
 recovered within 3 of its stated standard uncertainties (and the uncertainty is not vacuous), each

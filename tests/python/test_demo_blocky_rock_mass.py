@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The blocky rock-mass demo runs as it is, serially and on 2 ranks, with and without joint slip.
 
 Reference for the intact section (uniform biaxial plane-strain state, rollers on the left and

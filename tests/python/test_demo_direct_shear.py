@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The direct-shear demo runs as it is, and its curves level off at the closed-form peaks:
 Coulomb σ_n tan 30°, Barton σ_n tan(28° + 8 log10(120 MPa/σ_n)), dilation tan 5° × 2 mm; the FE
 shear box (displacement control under constant normal load) levels off at the Coulomb peak."""

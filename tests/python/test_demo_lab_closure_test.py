@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The main demo (laboratory joint-closure test) runs as it is, serially and on 2 ranks, and its
 FE joint closure (jointed minus intact cube) equals the closure law's own inverse; the flow through
 the FE cube's joint equals the closed form (ρ g / μ) T Δh of the transmissivity at that closure.

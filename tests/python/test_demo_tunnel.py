@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The tunnel demo runs as it is (coarse: --quick), serially and on 2 ranks.
 
 References: the intact tunnel's wall convergence is Kirsch's excavation displacement

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The user-model demo runs as it is, serially and on 2 ranks.
 
 Its own check is printed: the user's forms + JointCoupling solved by SNES against

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """rockjoint.fem_coupling.distributed_mesh in serial: DOLFINx mesh, tags and joint pairs from a JointedMesh.
 
 References: the JointedMesh's own facet pairs (built by a different code path: glued facet table on the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """rockjoint.fem_coupling.distributed_mesh under `mpirun -n 2` (ctest pytest_mpi2_meshes).
 
 The global set of pairs gathered over ranks must equal the serial set (the JointedMesh's pairs, computed

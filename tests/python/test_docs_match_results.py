@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Numbers that docs repeat from a bench report are the report's (issue 30, item 9): the tables of
 docs/tunnel.md "Verification of the intact tunnel against Kirsch" are bench/results/kirsch.md's
 rows (written by bench/bench_kirsch.py), cell for cell, so a re-run bench that changes them fails

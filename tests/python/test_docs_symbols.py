@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Every file and symbol docs/architecture.md names exists (issue 44, item 6): a file written
 in backticks is found (by its path, or a bare name by its directory in the same row or anywhere
 in the tree), and each name in backticks in the parentheses after a file is defined: in that

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Facet keys (meshes.node_splitting): exact for any node count, comparable across arrays.
 
 The old mixed-radix key n³ capped tetrahedron meshes at about 1.66 M nodes. The reference here

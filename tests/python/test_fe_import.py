@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """rockjoint.fem_coupling leaves the joint elements out only when the build has no FE extension
 file (-DROCKJOINT_FEM=OFF), and then says what is missing; an extension that exists but does not
 load, or any missing one under CI / ROCKJOINT_REQUIRE_FE=1, is an ImportError (issue 30: a

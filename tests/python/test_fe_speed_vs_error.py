@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The cases and the selection rule of bench/bench_fe_speed_vs_error.py, at coarse sizes (serial).
 
 - Column: its exact solution (uniform stress, a constant jump per joint) lies in the P1 space, so

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """JointedRockModel input checks (clear errors naming what is available) and XDMF output."""
 import os
 import xml.etree.ElementTree as ET

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Column of N horizontal joints under uniaxial stress (2D plane strain and 3D), serial.
 
 Supports are rollers (bottom: vertical; left: x; 3D front: y) and the sides are free, so the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The joint column on 2 ranks (run by ctest pytest_mpi2_fem: mpirun -n 2 ... -m mpi).
 
 Same closed form as test_fem_column.py (rollers, free sides: uniform uniaxial stress), and the

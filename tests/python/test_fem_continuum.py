@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Equivalent continuum in DOLFINx (serial): smeared Barton-Bandis sets against closed forms and
 against the discrete joints they replace.
 

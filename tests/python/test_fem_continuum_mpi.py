@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Equivalent continuum on 2 ranks: the smeared column, the mixed column and a slipping inclined
 set give the serial answers (closed forms, and the serial run of the slip case on COMM_SELF)."""
 import numpy as np

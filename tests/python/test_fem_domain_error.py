@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """A step past a law's maximum closure: the joint residual is not finite, and both solvers of
 JointedRockModel cut the step instead of continuing from a stale or garbage residual.
 

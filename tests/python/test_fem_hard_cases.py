@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Hard cases of the joint model: step control past K_ni·V_m, a very stiff joint, an open joint
 holding a block (singular → clear error; residual stiffness → documented exact behaviour)."""
 import numpy as np

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """FE column with a hysteretic joint (docs/hysteresis.md) loaded, unloaded and reloaded: the
 joint closure equals the closed form at every stage (virgin, branch, permanent closure, reload,
 virgin again), the top keeps the permanent closure at zero load, the Newton Jacobian matches

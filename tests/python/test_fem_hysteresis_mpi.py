@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The hysteretic FE column on 2 ranks equals the closed form through the load cycle (the same
 checks as the serial test, test_fem_hysteresis.py), with the point history kept per rank."""
 import pytest

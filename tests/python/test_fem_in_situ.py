@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """In-situ stress: the initial state is an equilibrium (u = 0, zero residual), releasing in-situ
 tractions gives the closed-form relative displacement, an excavated hole converges like Lamé.
 

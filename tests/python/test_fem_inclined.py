@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """An inclined joint under uniaxial compression: joint tractions = σ·n of a uniform stress state.
 
 Block [0,1]^d cut by one joint dipping 30° (toward +x) through its centre. Supports only under the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Inexact Newton (Eisenstat-Walker forcing) with a lagged GAMG preconditioner gives the exact
 answer of a 3D blocky case and holds its supports.
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """On 2 ranks, inexact Newton with the lagged preconditioner gives the exact answer of the blocky
 case (test_fem_inexact_newton.py) and one GAMG set-up, as in serial."""
 import pytest

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The assembled Newton Jacobian (bulk + joints, through PETSc) against finite differences of the
 assembled residual, in 2D and 3D, for the nodal and Gauss rules and both shear models."""
 import numpy as np

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The joint element's DOLFINx side (rockjoint.fem_coupling.JointInterface): pair dofs from V.dofmap (P1,
 P2), one tangent frame per joint on every rank, the initial jump (in-situ pre-closure) and the
 point-state arrays.

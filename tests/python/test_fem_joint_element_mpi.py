@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The joint element's DOLFINx-side checks on 2 ranks (ghosted pair dofs, the joint's reference
 direction reduced over ranks, the pre-closure force balance summed over ranks)."""
 import pytest

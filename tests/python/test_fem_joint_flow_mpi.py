@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Joint-network flow on 2 ranks equals the closed form and the serial numbers (each rank solves
 the gathered network: the same NetworkFlow on every rank, whatever the partition)."""
 import numpy as np

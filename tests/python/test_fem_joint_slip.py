@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Joint slip in the FE model (docs/joint-strength.md): a block on an inclined joint under rising
 load, a block held by friction alone, rotation invariance, direct shear under constant normal load.
 

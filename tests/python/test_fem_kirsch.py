@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The intact tunnel (JointedRockModel on meshes.tunnel_section) against Kirsch's solution.
 
 Errors as in bench/bench_kirsch.py: stresses relative to p at the circle r = 1.1 a and along the

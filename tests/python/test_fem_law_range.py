@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Past a law's range is never silent (issue 39, item 1), serially, in every path: the user's
 SNES problem (JointedNonlinearProblem), JointCoupling driven by the user's own solver (the check
 at commit_state), and JointedRockModel (once per stage).

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Past a law's range on 2 ranks (mpirun -n 2 ... -m mpi; issue 39, item 1): the warning comes
 once, from rank 0, with the values gathered over both ranks; strict mode raises on both ranks
 (no rank left waiting in a collective); the summary is the same on every rank and equals the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The lagged preconditioner of the iterative linear solver: built once, reused while it serves,
 rebuilt after a solve that needed more than rebuild_factor times the iterations per decade of the
 solve that built it; per-solve tolerances (the forcing term of inexact Newton)."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Equivalent modulus of a jointed block at small load: 1/E_m = 1/E + 1/(k_n s).
 
 A block of height H = 4 m cut by a joint set of spacing s = 1 m normal to the load (meshes.joint_set),

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The serial joint-model checks repeated on 2 ranks (ctest pytest_mpi2_fem). Each calls the serial
 test's body with MPI.COMM_WORLD meshes: ghosted joint nodes, pairs on the minus-cell owner,
 residual contributions sent to owners, Jacobian blocks in off-process rows."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """rockjoint.fem_coupling.output.gather_triangles: every owned cell once, on rank 0, with the displacement
 at its vertices; the same picture on 1 and 2 ranks."""
 import numpy as np

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """rockjoint.fem_coupling.probe: point values of DOLFINx functions, the same on every rank and partition.
 
 Reference: a P1 function interpolating a linear field f(x, y) = 2 + 3x - 5y is exact everywhere,

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Pseudo-transient continuation of a load step with smeared sets (pseudo_transient.py): the viscous
 pseudo-time steps end at the rate-independent equilibrium, a continuation that cannot finish says
 so, and bad options are refused. The first Newton of the step is made to fail on purpose (the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """A scene on 2 ranks gives the serial answer: the blocky rock mass (reduced) run on
 MPI.COMM_WORLD (2 ranks) and on COMM_SELF (each rank alone), summary numbers equal to solver
 tolerance; the outputs are written once, complete."""

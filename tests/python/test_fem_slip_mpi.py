@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Joint slip on 2 ranks (ctest: mpirun -n 2 ... -m mpi): the Jacobian against finite differences
 in stick, slip and open states, and a partially slipping block equal to its serial solve."""
 import math

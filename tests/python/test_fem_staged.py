@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Staged load paths of JointedRockModel against closed forms (serial).
 
 Column (2D plane strain, rollers at the bottom and on the left, free right side, Barton-Bandis joints

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Staged analyses on 2 ranks equal the serial answer (mpirun -n 2 ... -m mpi).
 
 Each case is solved on MPI.COMM_WORLD (2 ranks) and on MPI.COMM_SELF (every rank alone, the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The coupling API in a user's own DOLFINx model (serial).
 
 References: JointedRockModel on the same mesh (its own assembly and Newton: see user_model_case),

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """docs/user-model.md on 2 ranks (mpirun -n 2 ... -m mpi): every block of the page, in order,
 run on both ranks as a user's `mpirun -n 2 python3 page.py` would (test_user_model_doc builds
 the script), with the page's own checks; the joint summary the page prints is the same on both

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The coupling API in a user's model on 2 ranks (mpirun -n 2 ... -m mpi): the answer of a
 serial solve of the same gmsh model on MPI.COMM_SELF, both solved by SNES (JointedNonlinearProblem).
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Flow along a joint from Python (rockjoint.flow, docs/flow.md): the array axes (rows = y), the
 closure curve with flow=True against independent checks (Wiener bounds, the closure's datum, the
 field-by-field answer), the transmissivity laws against their closed forms, T along load cycles

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Flow is right at any contact fraction (issue 39, item 2; docs/flow.md, docs/contact.md).
 
 The tight joint of the issue (self-affine mated pair, H 0.8, rms 0.5 mm, matedness 1 mm, 256² at

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """docs/flow.md's checkerboard figures are what the flow solver gives (issue 39, item 7): the
 page's series of errors against √(k1 k2) (Keller 1964, Dykhne 1971), its observed order and its
 Richardson extrapolation are recomputed here and compared to the digits the page writes, so a

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """meshes.from_gmsh_model / from_msh_file: the user's own gmsh model, read by physical names.
 
 References: closed-form geometry of the case (a square/cube cut through its centre by a joint

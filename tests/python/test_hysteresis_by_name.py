@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """A law with history by name (law registry record, docs/hysteresis.md "By name"): built by the law
 factory, read from a parameter file, named in a scene with its parameters or calibrated there to
 load cycles, and tabulated. Every value is checked against the closed forms of (H1-H2) over the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Steady flow along the joint network (rockjoint.fem_coupling.joint_flow, docs/flow.md) against
 the closed form of n parallel joints between two heads (joint_flow_cases.py), 2D and 3D; the head
 falls linearly along each joint; a closed joint carries nothing; bad input is refused by name."""

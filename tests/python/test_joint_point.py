@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The per-point joint behaviour (rockjoint.joint) works without the FE stack: in a process where
 dolfinx, petsc4py, ufl and the FE extension cannot be imported, a Coulomb joint on a
 Barton-Bandis law slips at the closed-form strength τ_y = c + σ_n tan φ, its normal stress is the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """rockjoint.reference.kirsch against Kirsch's closed forms and against itself.
 
 Independent checks: the wall values quoted by Brady & Brown (σ_θθ = p(3-K) at the sidewall, p(3K-1)

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The one law factory (rockjoint.laws) and the one parameter type (AsperityParameters):
 laws by name, from a parameter file and from a topography, checked against closed forms."""
 import math

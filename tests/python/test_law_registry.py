@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """One law registry (rockjoint.law_registry): a toy law registered in one place becomes available
 to make_law, tabulation, the CLI (tabulate and calibrate, through ROCKJOINT_LAWS), calibration
 and the FE joint; every answer is checked against the toy law's closed form

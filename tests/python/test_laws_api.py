@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The Python layer of the closure laws: numpy in/out, scalars stay scalars, clear errors."""
 import math
 

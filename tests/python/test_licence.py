@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The licence (issue 42, item 2): the project's code is MIT (LICENSE at the root), every source
 file says so in its first lines (scripts/spdx_headers.py lists and adds the line), and the README
 and docs/install.md say what a build that links CHOLMOD's supernodal module and imports gmsh, both

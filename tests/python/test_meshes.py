@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """rockjoint.meshes: gmsh builders, node splitting per block, joint-facet pairing, save/load.
 
 Reference values are closed-form geometry (areas/volumes of the cut block, joint lengths/areas,

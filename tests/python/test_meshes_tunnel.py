@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """rockjoint.meshes.tunnel_section: a rock section around a circular or horseshoe opening cut by joint sets.
 
 Reference values are closed-form geometry: the section's area W·H minus the opening's (exactly, for

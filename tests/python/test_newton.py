@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Newton's stopping rules on scalar problems with known answers: the residual tolerance relative
 to the load (or to the initial residual when the load is zero), an increment at round-off, and
 stagnation (rockjoint.fem_coupling.newton; no DOLFINx needed)."""

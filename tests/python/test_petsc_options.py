@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """No PETSc option is left unused (issue 30, item 7): a user's script that builds and solves
 models (direct and iterative linear solvers, and solvers built but never used) ends without
 PETSc's "options you set that were not used" warning, and the linear solver leaves nothing of

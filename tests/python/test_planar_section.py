@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """meshes.planar_section: the crossings of straight joint traces, the outline pieces and the node
 counts of the 2D section builder, against closed forms."""
 import math

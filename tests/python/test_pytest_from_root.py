@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """A user's first command works (issue 39, item 3): `python3 -m pytest` and
 `python3 -m pytest tests/python` from the repository root, with no PYTHONPATH, collect the same
 serial suite that ctest's pytest_serial runs (the repository's pytest.ini and top-level

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The README's Python walkthrough runs as written (topography → law → table → staged tunnel)."""
 import os
 import subprocess

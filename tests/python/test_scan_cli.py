@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """`python3 -m rockjoint topography analyse upper lower` on scans: STL and XYZ point clouds in
 their scanners' frames are registered (format by extension or --format), the registration and
 its residual misfit reach the JSON; bad files give a one-line error naming file and line."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Bad scan files get clear errors naming the file and the line or facet (ValueError
 subclasses from rockjoint.scans.errors); nothing crashes, nothing is read silently wrong."""
 import re

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Two walls scanned in their own frames (STL binary and ASCII, XYZ point cloud, ESRI grid),
 with a rigid motion (rotation about z and a 3D offset; for "xyz-tilted" also 4° and -7°
 tilts of the scanners), the upper one seen from the other side, noise and a hole: the recovered aperture must match the known one to within the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Scan files in and out: STL (binary, ASCII) and XYZ point clouds keep their samples, ESRI
 ASCII grids put every node where the header says (corner and centre conventions, any key
 case and order, cellsize or dx/dy, NODATA optional), and the Delaunay resampling stays within

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Scene pictures a rock engineer reads at a glance (rockjoint.scenes.pictures): a tunnel scene adds
 the opening four radii across, at a stated magnification that draws the largest displacement as a
 few per cent of the radius; joints are drawn by state (stick, slip, open) with a legend of the

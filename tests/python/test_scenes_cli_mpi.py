@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """`rockjoint run` on 2 ranks equals serial (issue 30, item 4): the same scene through the CLI,
 `mpirun -n 2` and one process, gives the same summary numbers to solver tolerance, the same
 output files, each written once (one summary printed, no per-rank copies, no temporary folder

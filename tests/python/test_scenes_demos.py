@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Every demo scene (demos/scenes/*.yaml) runs at its reduced size, serially, and its intact model
 matches a closed form; the joints' share (jointed minus intact on the same mesh) matches the
 joint law where the joint carries a known stress. `rockjoint run` as a user runs it: exit 0, no

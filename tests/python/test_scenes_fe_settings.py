@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The planner's FE defaults are the FE speed-vs-error report's recommendations (issue 19: "the
 planner's defaults come from this report"): scenes/defaults.py's FE_SETTINGS equal the rows of
 bench/results/fe_speed_vs_error.json that met their budget, and the plan applies them."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """A scene's flow (outputs: {flow: {heads: ...}}, docs/flow.md): the column scene with heads on its
 sides. The jointed model's joint carries the cubic law's closed form at the closure its law gives
 (Barton-Bandis inverse at the column's stress, written out here), the intact model the Darcy

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Hard cases of `rockjoint run` (issue 30, item 2): each scene in tests/scenes/hard_cases ends in
 a correct answer or a message that names the set, the block and the numbers; never an internal
 error. The CLI runs in its own process (scene_cases.cli), as a user runs it."""

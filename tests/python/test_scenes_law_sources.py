@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """A scene's joint law from a saved table and from a measured curve to calibrate: the FE closure
 of the scene's column (jointed minus intact top settlement) equals the closure of the law that
 made the table / the curve (Barton-Bandis, K_ni = 20 MPa/mm, V_m = 0.2 mm, built here by the law

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The planner's choices, each checked by running or against the evidence it cites:
 
 - a 2D scene is solved in 2D (the mesh the run solves has gdim 2), and cannot be forced to 3D;

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Scene files are checked whole before anything runs: ten malformed scenes, each failing with a
 message that names the key path and its line in the file, and `rockjoint plan|run` exiting with 2.
 

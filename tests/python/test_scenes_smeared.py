@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Discrete or smeared joint sets in scenes (issue 19 with issue 20's equivalent continuum): the
 planner keeps a set discrete where the continuum bench shows smearing neither within the budget
 nor cheaper, a scene can smear a set (plan: {smeared: [...]}), and a smeared horizontal set under

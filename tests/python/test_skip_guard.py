@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The skip guard (skip_guard.py, fe_stack.py) does what CI relies on: under ROCKJOINT_REQUIRE_FE=1
 a skipped test fails the session and a missing module is an error naming it; outside CI the same
 skip is a skip; every run prints its skip count. Each case is a pytest run of its own."""

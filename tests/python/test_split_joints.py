@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """split_joints: a mesh read by DOLFINx's gmsh reader (dolfinx.io.gmsh.model_to_mesh), split along its joint facets,
 is the mesh rockjoint's own gmsh reader makes: same blocks, the same joint facets paired (by their
 coordinates), same named boundaries; bad tags are named. Serially and on 2 ranks (mpi mark)."""

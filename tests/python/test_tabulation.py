@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Tabulated laws from Python: the error bound against the source, numpy knots,
 bit-exact save/load, clear errors, the plot helper and the `tabulate` CLI command."""
 import math

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Tang & Jiao (2018) from Python: numpy in/out, references written here, errors as ValueError."""
 import math
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The Python layer of rockjoint.topography: files (.txt grid, .xyz, .npy) with units and masks,
 determinism across processes, the contact state, the statistics against closed forms, the
 pictures and the CLI."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The topography demo runs as it is and prints its parameter table (theory §7 ranges)."""
 import os
 import re

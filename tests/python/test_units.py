@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """One unit table: the lengths the C++ topography parser accepts are those of scene files, law
 parameter files and calibration curves, with the same factors (checked against the SI
 definitions written out here), and the law registry's units are entries of the same table."""

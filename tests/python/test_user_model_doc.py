@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """docs/user-model.md runs as written: every ```python block of the page, in order, as one script
 (the page is written so: each block continues the ones above), on DOLFINx 0.11 as it stands, on
 0.9 with the one line the page gives for 0.9 in place of the 0.11 import (and no other change).

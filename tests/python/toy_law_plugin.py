@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """A toy closure law registered from outside the package (the test of docs/architecture.md,
 "Adding a closure law"): the exponential law written with its initial stiffness,
 Δ(σ) = V_m (1 - exp(-σ / (k0 V_m))), i.e. ExponentialLaw with σ_c = k0 V_m. One record, one

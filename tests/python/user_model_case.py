@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """A user's own model for the coupling-API tests, on the geometry of user_model_geometry.
 
 The gmsh model is read with meshes.from_gmsh_model; the FE model is written in plain DOLFINx/UFL

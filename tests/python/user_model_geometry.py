@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The geometry of a user's own model for the tests: a square (cube) cut by a joint dipping 30°
 through its centre, built in gmsh by hand (not by a rockjoint builder) with physical groups
 blocks 'lower'/'upper', joint 'fault', boundaries bottom/top/left/right[/front/back].

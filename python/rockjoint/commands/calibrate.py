@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """`python3 -m rockjoint calibrate curve.csv --law <law> [...]`: fit a closure law to a measured
 loading curve by Levenberg-Marquardt; print the parameters with standard uncertainties and the
 residual, write a plot (PNG: data, fit, residuals) and the fitted law as a .rjt table.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """`python3 -m rockjoint plan SCENE`: what the planner would model, each choice with its cost and error."""
 from __future__ import annotations
 

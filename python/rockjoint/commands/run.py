@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """`python3 -m rockjoint run SCENE`: run a scene as planned, jointed beside intact; pictures, XDMF, table."""
 from __future__ import annotations
 

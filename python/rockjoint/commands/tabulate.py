@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """`python3 -m rockjoint tabulate params.toml -o law.rjt [--plot law.png]`: tabulate a closure
 law described in a TOML parameter file (user units MPa, mm, GPa, stated in every key) into a
 .rjt table file, and optionally plot the table against its source.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """`python3 -m rockjoint topography {synth,analyse}`: synthetic joints and the closure-law
 parameters of measured or synthetic walls. Lengths in mm, moduli in GPa, stresses in MPa."""
 import argparse

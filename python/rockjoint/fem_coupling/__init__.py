@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """rockjoint.fem_coupling: DOLFINx side of the joint model (distributed jointed meshes, interface coupling).
 
     from rockjoint.fem_coupling import JointedRockModel, distribute

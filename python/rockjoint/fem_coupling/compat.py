@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """DOLFINx 0.11 and 0.9 from one code base: the only module that reads the DOLFINx version.
 
 rockjoint is written against DOLFINx 0.11 (what the FEniCSx documentation and demos describe);

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Joints as a building block of the user's own DOLFINx model (docs/user-model.md).
 
 The user keeps their mesh, function space, UFL forms, boundary conditions and solver; rockjoint

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Steady flow through rock with smeared joint sets: the equivalent permeability of the sets and
 Darcy's law on the DOLFINx mesh (docs/flow.md).
 

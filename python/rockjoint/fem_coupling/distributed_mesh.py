@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Distribute a JointedMesh over MPI as a DOLFINx mesh and pair the joint facets on every rank.
 
 Partitioning (docs/fem.md, pitfalls 1-2):

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The rock blocks of a jointed mesh as DOLFINx objects: the displacement space, the Lamé fields
 and the density per block (DG0), strain and stress, and the bulk forms. No loads, no joints:
 JointedRockModel adds those (load_path.LoadPath, coupling.JointCoupling).

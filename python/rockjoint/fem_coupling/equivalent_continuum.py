@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The equivalent-continuum material in some blocks of a DOLFINx model (docs/equivalent-continuum.md).
 
 A block given a `rockjoint.continuum.EquivalentContinuum` carries its joint sets

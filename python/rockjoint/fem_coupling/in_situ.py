@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """In-situ (initial) stress of a rock mass: uniform, depth-dependent, or a user field.
 
 Tensors use the continuum convention (tension positive, like σ(u)): a compressive in-situ stress

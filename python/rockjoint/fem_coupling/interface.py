@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Joint interface of a DOLFINx displacement space: facet pairs → C++ InterfaceAssembler.
 
 This is the only place where joint pairs meet DOLFINx data (dofmaps, dof coordinates, ghosts);

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Steady flow along the joint network of a solved jointed model (docs/flow.md).
 
 Each joint point carries a transmissivity T(Δ) [m³] from its current closure (a transmissivity

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Joints pre-loaded by an in-situ stress: the initial jump that makes them carry σ0 at u = 0.
 
 At a joint point with local frame F (rows n, t1[, t2]; n from the minus to the plus side), the

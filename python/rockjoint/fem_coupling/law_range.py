@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """A joint's point state over all ranks, and the one check that a law was not driven past its
 range (issue 39: never silent past a table, in every path).
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Linear solves of the Newton steps, with failures detected instead of accepted.
 
 "direct": MUMPS Cholesky (symmetric Jacobian) or LU with null-pivot detection (ICNTL(24) = 1)

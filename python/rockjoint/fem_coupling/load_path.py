@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The loads, supports and load path of a jointed rock model (docs/staged-analysis.md).
 
 Loads and supports are handles (loads.py) whose changes take effect at the next stage. A stage

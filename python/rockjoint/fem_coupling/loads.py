@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Loads and supports of a JointedRockModel as handles that change between stages.
 
 A handle's `.value` may be set and the handle removed (`remove()`) between stages; the change takes

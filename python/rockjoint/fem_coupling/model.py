@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """JointedRockModel: elastic rock blocks (DOLFINx) + zero-thickness joints (rockjoint C++),
 followed along a staged load path (docs/staged-analysis.md).
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The checks of JointedRockModel's inputs (rock, density, element, plane): each names the
 argument, the block and the valid range; the model keeps only what they return."""
 from __future__ import annotations

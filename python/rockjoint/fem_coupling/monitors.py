@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """What a user or a scene reads off a solved model's fields (UFL assembly over the mesh, all
 ranks): boundary means of the displacement and the total stress."""
 from __future__ import annotations

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Newton's method with a closure-limiting step and adaptive load stepping.
 
 The problem object supplies residual() (returns ||r||, inf if not finite), jacobian(),

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """JointedNonlinearProblem: the user's UFL residual plus the joints, solved by PETSc SNES.
 
 Not a subclass of DOLFINx 0.11's ``dolfinx.fem.petsc.NonlinearProblem``, by design: that class's

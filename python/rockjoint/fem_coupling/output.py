@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Output of a solved model: XDMF files (the displacement field, and the joint point state as a
 point cloud) and the mesh data gathered on rank 0 for pictures (2D triangles, 3D boundary faces
 and sections; rockjoint.scenes.pictures draws them).

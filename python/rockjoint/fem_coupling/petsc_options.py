@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Checks of the user's PETSc options (DOLFINx convention: {option: value} without the leading
 dash, under an options prefix), shared by JointedRockModel and JointedNonlinearProblem.snes_solver."""
 from __future__ import annotations

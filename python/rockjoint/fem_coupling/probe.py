@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Values of a DOLFINx function at given points, on every rank (point probes for verification and plots).
 
 Each rank evaluates the points that fall in its owned cells (DOLFINx bounding-box tree, then the exact

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The nonlinear problem of a jointed rock model: the one interface that both the project's
 Newton (newton.solve_load_path) and PETSc SNES (stages.snes_load_path, through the
 snes_problem.JointedSNESProblem adapter that the user's problems use too) drive.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Pseudo-transient continuation of a load step with smeared joint sets (docs/equivalent-continuum.md,
 "Robustness", 3.).
 

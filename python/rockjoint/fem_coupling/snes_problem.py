@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The one adapter between a jointed nonlinear problem and PETSc SNES.
 
 Both routes by which joints enter a DOLFINx model use it: the user's UFL problem

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Joints into a mesh the user made with DOLFINx's own gmsh reader (docs/user-model.md).
 
 A FEniCSx user meshes with gmsh and reads the model with DOLFINx 0.11's

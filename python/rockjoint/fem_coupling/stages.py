@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Stages of a load path, their results, and PETSc SNES driving a stage.
 
 A stage is one JointedRockModel.solve(): the loads go linearly from the previous stage's values

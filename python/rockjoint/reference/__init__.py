@@ -1,2 +1,3 @@
+# SPDX-License-Identifier: MIT
 """Closed-form reference solutions, each in its own module in the notation of its source."""
 from .kirsch import KirschSolution  # noqa: F401

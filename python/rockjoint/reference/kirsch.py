@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Kirsch (1898): a circular hole of radius a in an infinite elastic plate under a biaxial far field.
 
 Notation of Brady & Brown (2004), Rock Mechanics for Underground Mining, §7.3: far-field vertical

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Real joint scans in: STL meshes and XYZ point clouds of each wall in its scanner's frame,
 ESRI ASCII grids; resampling to a lattice with holes flagged; one frame for both walls
 (flip, level, register for matedness); errors that name the file and the line or facet.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Errors of the scan readers and the wall registration. Every one is a ValueError (the CLI
 turns ValueError into a one-line message) and names the file and, where there is one, the
 line or record, so a user can open the file at the fault."""

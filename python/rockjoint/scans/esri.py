@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """ESRI ASCII grids (.asc): a header of "key value" lines, then nrows rows of ncols values
 from the north (largest y) row down. Keys are case-insensitive and in any order: ncols,
 nrows, xllcorner or xllcenter, yllcorner or yllcenter, cellsize or dx and dy, and an optional

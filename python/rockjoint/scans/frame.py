@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """One frame for two walls scanned separately: flip the upper wall (its scanner looked at it
 from the other side) and level each wall onto its own mean plane.
 

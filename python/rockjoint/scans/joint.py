@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Two scanned walls -> one joint: flip the upper wall, level both, resample the lower wall,
 register the upper one onto it, resample the upper wall once at the registered positions (one
 interpolation, so the error bound of lattice.py holds), cut the largest overlap rectangle,

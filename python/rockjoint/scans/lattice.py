@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Scattered samples -> a regular lattice, with holes flagged, never filled silently.
 
 Method: piecewise-linear interpolation on the Delaunay triangulation of the samples' (x, y)

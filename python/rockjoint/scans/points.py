@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """A scanned wall as it comes from the scanner: 3D samples in the scanner's frame, SI units,
 with the units sanity check every reader applies."""
 from __future__ import annotations

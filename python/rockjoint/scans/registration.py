@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Registration of two levelled walls for matedness: the in-plane rigid motion (rotation θ
 about z, shift t) that carries the upper wall onto the lower one so that the aperture varies
 least.

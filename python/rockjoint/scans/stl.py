@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """STL meshes of a scanned wall, binary and ASCII. Written here rather than read with meshio
 because a scan needs what meshio does not report: the facet or line at which a file is
 truncated or holds NaN, and whether the facets form one sheet (non-manifold edges). Binary

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Unstructured XYZ point clouds: one sample per line, "x y z" separated by whitespace, commas
 or semicolons; further columns (intensity, colour, normals) are ignored but must be there on
 every line. Lines starting with '#', '//' or '%' are comments anywhere; text lines before the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """rockjoint.scenes: scene files (YAML), the planner and the scene runner.
 
     from rockjoint.scenes import load_scene, make_plan, run_scene

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The planner's numeric defaults, in one place, each with where its value comes from.
 
 Evidence: the FE speed-vs-error report (bench/results/fe_speed_vs_error.md, DOLFINx 0.9) for the

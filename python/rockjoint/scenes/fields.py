@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The small schema language of scene files: each field checks its value and returns it in SI.
 
 A field raises SceneError through `Checker.fail`, which names the key path and its line; a

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """A scene's flow (`outputs: {flow: {heads: {boundary: h}}}`, docs/flow.md): every joint set's
 transmissivity law T(Δ) (its `flow:` entry: from its own walls, or a conversion of its mechanical
 aperture), and after every stage the steady flow between the heads: along the jointed model's joint

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The geometry of a scene: its extent, joint sets and their normals; its meshes through
 rockjoint.meshes (column, jointed_block, tunnel_section), and the intact mesh: the same mesh with
 its split nodes glued back (no joints), so that jointed minus intact is the joints' share and

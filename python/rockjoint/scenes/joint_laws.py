@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The scene's joint laws, through the law factory (rockjoint.laws), the topography chain, the
 calibration to a closure curve (rockjoint.calibration) or to load cycles (a law with history,
 rockjoint.cycle_calibration) or a saved table, each tabulated over the plan's range."""

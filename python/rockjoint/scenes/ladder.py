@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The planner's rungs: every way rockjoint gets a joint's closure curve from its topography, with
 its error against the exact elastic contact of the walls and its total cost, read from the
 accuracy ladder's result file (bench/results/accuracy_ladder.json, written by

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """PNG pictures drawn on the mesh: |u| on filled triangles, the deformed outline of every block,
 joints coloured by their state (stick, slip, open) with a legend, jointed beside intact.
 

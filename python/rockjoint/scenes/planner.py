@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """`rockjoint plan`: decide what a scene needs to model, each choice with its cost and error.
 
 Rules (docs/scenes.md §planner):

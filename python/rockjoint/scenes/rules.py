@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The planner's rules: one function per decision, each returning its value and the Choice that
 explains it (what was chosen, why, what it costs, what error it buys). make_plan (planner.py)
 calls them in order; docs/scenes.md §planner states them in words.

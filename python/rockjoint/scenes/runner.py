@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """`rockjoint run`: a scene through the staged API, jointed beside intact on the same mesh (the
 FE stack is needed: rockjoint.scenes imports this module only when a scene is run).
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The scene file schema (docs/scenes.md) and `load_scene`: a YAML file checked whole, in SI.
 
 Every value is checked before anything is built or run: unknown keys, missing values, wrong units

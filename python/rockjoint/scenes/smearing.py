@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The planner's rule for joint sets: discrete (joint elements) or smeared into the rock as an
 equivalent continuum, set by set, on the continuum bench's evidence (defaults.SMEARED_EVIDENCE,
 docs/equivalent-continuum.md); one of the rules make_plan calls (rules.py has the others)."""

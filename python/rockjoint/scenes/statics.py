@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Statics of a scene: why a scene has no static equilibrium, in words a user can act on.
 
 - Before anything runs (`check`, called by the planner; the scene is then bad, exit 2): supports

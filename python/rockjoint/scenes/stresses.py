@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The homogeneous stress of a scene's stages and how much of a joint set's shear strength it
 mobilises: what the planner (which laws, which sets smeared, the table range) and the statics
 checks (statics.py: which set opens or slides, freeing which block) both read, and the upper bound

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Quantities with their units, as a scene file states them ("30 MPa", "0.5 mm", "60 deg"), in SI.
 
 A scene states a unit for every dimensional value so that nothing is read in the wrong one; a bare

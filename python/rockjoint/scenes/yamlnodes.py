@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """A YAML document as plain data plus the line of every key, from yaml's composed node tree.
 
 yaml.safe_load forgets where a value came from; yaml.compose keeps a mark on every node, so a

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // rockjoint._rockjoint_dolfinx (built with DOLFINx >= 0.10 only): a serial mesh created by
 // dolfinx::mesh::create_mesh with its cells kept in the order given.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The _rockjoint_fem_coupling extension: bindings of rockjoint::fem_coupling (interface assembler). Separate
 // from _rockjoint so that the closure laws and the per-point joint behaviour never need PETSc.
 // Closure laws and JointBehaviour come in as the objects bound by rockjoint._rockjoint (import
