@@ -277,6 +277,7 @@ class Calibration:
         return closure_of(self.law, np.asarray(normal_stress, float)) - self.closure_offset
 
     def parameter(self, name: str) -> FittedParameter:
+        """The fitted parameter called name (KeyError if the law has none)."""
         for p in self.parameters:
             if p.name == name:
                 return p

@@ -450,6 +450,7 @@ class TopographyInputs:
     _built: dict = dataclasses.field(default_factory=dict, repr=False)
 
     def law(self, key: str) -> ClosureLaw:
+        """The closure law registered under key, built from these inputs once and then reused."""
         if key not in self._built:
             self._built[key] = TOPOGRAPHY_LAWS[key].build(self)
         return self._built[key]

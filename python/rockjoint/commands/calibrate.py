@@ -32,6 +32,7 @@ from ..law_registry import (DEFAULT_TANG_JIAO_BASE, GPA, HEIGHT_DISTRIBUTIONS, M
 
 
 def add_parser(subparsers) -> None:
+    """Register the 'calibrate' command and its options."""
     p = subparsers.add_parser(
         "calibrate", help="fit a closure law to a measured closure curve (CSV)",
         description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -76,7 +77,7 @@ def add_parser(subparsers) -> None:
 
 
 def run(args) -> int:
-
+    """Fit the chosen law to the curve in args.curve, print the report; returns the exit code."""
     if args.cycles:
         return run_cycles(args)
 
@@ -108,7 +109,7 @@ def run(args) -> int:
 
 
 def run_cycles(args) -> int:
-
+    """Fit a law with hysteresis to a multi-cycle closure curve (--cycles); returns the exit code."""
     if args.intact_length is not None:
         raise ValueError("--cycles reads a 'closure' column; remove the intact deformation first")
     e_star = None if args.composite_modulus is None else args.composite_modulus * GPA

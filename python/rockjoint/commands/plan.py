@@ -8,6 +8,7 @@ from ..scenes import SceneError, load_scene, make_plan
 
 
 def add_parser(sub) -> None:
+    """Register the 'plan' command and its options."""
     p = sub.add_parser("plan", help="print what a scene needs to model, with cost and error",
                        description=__doc__)
     p.add_argument("scene", help="scene file (YAML, docs/scenes.md)")
@@ -28,6 +29,7 @@ def checked_plan(args):
 
 
 def main(args) -> int:
+    """Print the plan of the scene in args.scene (cost, error); returns the exit code."""
     checked = checked_plan(args)
     if checked is None:
         return 2

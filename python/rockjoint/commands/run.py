@@ -12,6 +12,7 @@ from .plan import checked_plan
 
 
 def add_parser(sub) -> None:
+    """Register the 'run' command and its options."""
     p = sub.add_parser("run", help="run a scene (YAML): jointed beside intact, pictures and XDMF",
                        description=__doc__)
     p.add_argument("scene", help="scene file (YAML, docs/scenes.md)")
@@ -22,6 +23,7 @@ def add_parser(sub) -> None:
 
 
 def main(args) -> int:
+    """Run the scene in args.scene and write its outputs; returns the exit code."""
     checked = checked_plan(args)
     if checked is None:
         return 2

@@ -25,6 +25,7 @@ from ..tabulation import plot_table, tabulate
 
 
 def add_parser(subparsers) -> None:
+    """Register the 'tabulate' command and its options."""
     p = subparsers.add_parser(
         "tabulate", help="tabulate a closure law from a TOML parameter file into a .rjt table",
         description="Tabulate a closure law (parameters in a TOML file, units MPa/mm/GPa as "
@@ -38,6 +39,7 @@ def add_parser(subparsers) -> None:
 
 
 def run(args) -> int:
+    """Tabulate the law of args.parameters into args.output (or list the models); returns the exit code."""
     if args.list_models:
         print(describe_models())
         return 0

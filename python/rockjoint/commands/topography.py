@@ -15,6 +15,7 @@ from ..topography import pyplot, save_figure
 
 
 def add_parser(subparsers) -> None:
+    """Register the 'topography' command and its sub-commands."""
     p = subparsers.add_parser(
         "topography", help="joint-wall topography -> closure-law parameters (η, β, σ_s)",
         description="Synthetic self-affine joints and the summit statistics / closure-law "
@@ -83,6 +84,7 @@ def add_parser(subparsers) -> None:
 
 
 def run(args) -> int:
+    """Run the chosen topography sub-command (help if none); returns the exit code."""
     if not getattr(args, "topography_func", None):
         args.topography_parser.print_help()
         return 2

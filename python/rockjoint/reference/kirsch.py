@@ -65,6 +65,7 @@ class KirschSolution:
 
     @property
     def shear_modulus(self) -> float:
+        """Shear modulus G = E / (2 (1 + ν)) [Pa]."""
         return self.young / (2.0 * (1.0 + self.poisson))
 
     def polar(self, x, y):

@@ -75,5 +75,6 @@ def _rotation_onto_z(n: np.ndarray) -> np.ndarray:
 
 
 def rotation_about_z(angle: float) -> np.ndarray:
+    """The 3x3 rotation matrix by angle [rad] about the z axis (counter-clockwise)."""
     c, s = np.cos(angle), np.sin(angle)
     return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])

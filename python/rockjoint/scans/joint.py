@@ -45,6 +45,7 @@ class RegisteredJoint:
         return self.lower_levelling.to_scanner(q).reshape(x.shape + (3,))
 
     def report(self) -> str:
+        """A one-paragraph summary of the registration (rotation, shift, overlap, misfit)."""
         r = self.registration
         return (f"registration: rotation {np.degrees(r.rotation):.4f}°, shift "
                 f"({r.translation[0] * 1e3:.4g}, {r.translation[1] * 1e3:.4g}) mm, overlap "
