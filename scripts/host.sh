@@ -30,13 +30,17 @@ case "$rj_dolfinx" in
     rj_apt_opts=(-o Acquire::Check-Valid-Until=false)
     rj_pins=(python3-dolfinx=1:0.11.0.post0-7 libdolfinx-dev=1:0.11.0.post0-7
              python3-basix=0.11.0-2+b2 python3-ufl=2026.1.0-3
-             python3-petsc4py=3.25.5-2 python3-gmsh=4.15.2+ds1-1) ;;
+             python3-petsc4py=3.25.5-2 python3-gmsh=4.15.2+ds1-1)
+    # The API reference (scripts/docs.sh) and the pip install test are built on 0.11 only.
+    rj_tools=(python3-sphinx furo python3-myst-parser python3-breathe doxygen
+              python3-scikit-build-core python3-venv python3-pip) ;;
   0.9)
     rj_suite=trixie; rj_root_name=.debian13; rj_build_name=build-0.9
     rj_apt_opts=()
     rj_pins=(python3-dolfinx=1:0.9.0-7 libdolfinx-dev=1:0.9.0-7
              python3-basix=0.9.0-2+b2 python3-ufl=2024.2.0-3
-             python3-petsc4py=3.22.4-1 python3-gmsh=4.13.1+ds1-6) ;;
+             python3-petsc4py=3.22.4-1 python3-gmsh=4.13.1+ds1-6)
+    rj_tools=() ;;
   *)
     echo "rockjoint set-up: ROCKJOINT_DOLFINX='$rj_dolfinx' is not supported: use 0.11 or 0.9" >&2
     return 2 2>/dev/null || exit 2 ;;
@@ -50,7 +54,7 @@ rj_packages=(
   libeigen3-dev libgsl-dev libfftw3-dev libsuitesparse-dev pybind11-dev
   python3-dev python3-numpy python3-scipy python3-matplotlib python3-pytest python3-h5py
   python3-meshio python3-yaml python3-mpi4py openmpi-bin
-  "${rj_pins[@]}"
+  "${rj_pins[@]}" "${rj_tools[@]}"
 )
 
 rj_log() { echo "rockjoint set-up: $*" >&2; }
