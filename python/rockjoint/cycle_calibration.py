@@ -242,7 +242,15 @@ def calibrate_cycles(cycles: LoadCycles, law: str, *, composite_modulus: Optiona
     virgin = labels == "loading"
     if initial is None:
         s_v, d_v = cycles.normal_stress[virgin], cycles.closure[virgin]
-        start = list(spec.initial_guess(s_v, d_v, given, spec.build, False, closure_of))[:npos]
+        shift = 0.0
+        if fit_offset and s_v[0] > 0 and s_v.size > 1:
+            # the law's guess needs closure from its datum: shift the points by the secant of the
+            # first two extrapolated to σ = 0 (an underestimate of Δ_0 on a concave virgin curve;
+            # the fit corrects it). Unshifted, a seated cycle can start the fit far off (K_ni
+            # ~5e12 Pa/m on the laboratory-looking test) and diverge.
+            slope = (d_v[1] - d_v[0]) / (s_v[1] - s_v[0])
+            shift = max(s_v[0] * slope - d_v[0], 0.0)
+        start = list(spec.initial_guess(s_v, d_v + shift, given, spec.build, False, closure_of))[:npos]
         if fit_offset:
             seated = closure_of(spec.build(start, given), cycles.normal_stress[:1])[0]
             start.append(max(float(seated - cycles.closure[0]), 0.0))
@@ -273,7 +281,7 @@ def calibrate_cycles(cycles: LoadCycles, law: str, *, composite_modulus: Optiona
     def model(q):
         try:
             return (np.asarray(build(q).closure_path(cycles.normal_stress)) - unpack(q)[1]) / scale
-        except ValueError:  # a trial beyond the law's admissible stress: steer the fit back
+        except (ValueError, OverflowError):  # a trial beyond the admissible: steer the fit back
             return np.full(cycles.closure.size, 1e3)
 
     q0 = ([math.log(v) for v in start[:npos]] + ([start[npos] / scale] if fit_offset else [])
