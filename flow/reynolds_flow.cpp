@@ -3,7 +3,9 @@
 
 #include "connectivity.hpp"
 
+#ifdef ROCKJOINT_WITH_CHOLMOD
 #include <Eigen/CholmodSupport>
+#endif
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/OrderingMethods>
 #include <Eigen/SparseCholesky>
@@ -323,7 +325,7 @@ public:
     switch (_options.solver)
     {
     case LinearSolver::cholesky:
-      direct(_cholmod, a, rhs, out);
+      direct(_cholesky, a, rhs, out);
       break;
     case LinearSolver::simplicial_cholesky:
       direct(_ldlt, a, rhs, out);
@@ -351,7 +353,7 @@ public:
         // 10000 iterations, residual 5e-6 to 3e-4 at 72-125 MPa): the supernodal factorisation
         // solves the same system instead, and the result says so (FlowResult::direct_fallback).
         Solved exact;
-        direct(_cholmod, a, rhs, exact);
+        direct(_cholesky, a, rhs, exact);
         exact.residual = residual(a, rhs, exact.x);
         exact.iterations = out.iterations;
         exact.direct_fallback = true;
@@ -393,7 +395,11 @@ private:
 
   FlowOptions _options;
   bool _analysed = false;
-  Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> _cholmod;
+#ifdef ROCKJOINT_WITH_CHOLMOD
+  Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> _cholesky;
+#else // ROCKJOINT_CHOLMOD=OFF: Eigen's simplicial LLᵀ, the same factor without GPL code
+  Eigen::SimplicialLLT<SparseMatrix, Eigen::Lower, Eigen::AMDOrdering<int>> _cholesky;
+#endif
   Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::AMDOrdering<int>> _ldlt;
   Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower | Eigen::Upper,
                            Eigen::IncompleteCholesky<double, Eigen::Lower, Eigen::AMDOrdering<int>>>

@@ -62,7 +62,8 @@ enum class Boundary
 /// The linear solver of the pressure system.
 enum class LinearSolver
 {
-  cholesky,            ///< supernodal sparse Cholesky (CHOLMOD through Eigen, its ordering)
+  cholesky,            ///< sparse Cholesky: CHOLMOD's supernodal one through Eigen (its ordering);
+                       ///< built with ROCKJOINT_CHOLMOD=OFF, Eigen's simplicial LLᵀ
   simplicial_cholesky, ///< sparse LDLᵀ (Eigen SimplicialLDLT, AMD ordering)
   conjugate_gradient   ///< CG preconditioned by incomplete Cholesky (Eigen, AMD ordering)
 };

@@ -31,7 +31,16 @@ def say(*args, comm=None) -> None:
 def warnings_as_lines() -> None:
     """Show Python warnings (a law driven past its table: fem_coupling.RangeWarning) as one line
     each, "warning: <message>", on standard error: what a command-line user reads, without the
-    file and source line of the code that raised it."""
+    file and source line of the code that raised it. Also when a library routes warnings into
+    logging later (logging.captureWarnings, as DOLFINx 0.9's import does): the formatted warning
+    is then the message alone, and the "py.warnings" logger prints it the same way."""
     def show(message, category, filename, lineno, file=None, line=None):
         print(f"warning: {message}", file=file or sys.stderr, flush=True)
     warnings.showwarning = show
+    warnings.formatwarning = lambda message, category, filename, lineno, line=None: str(message)
+    captured = logging.getLogger("py.warnings")
+    if not captured.handlers:
+        handler = logging.StreamHandler(sys.stderr)
+        handler.setFormatter(logging.Formatter("warning: %(message)s"))
+        captured.addHandler(handler)
+    captured.propagate = False
