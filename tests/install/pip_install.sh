@@ -13,13 +13,10 @@ unset PYTHONPATH
 export MPLBACKEND=Agg
 t0=$SECONDS
 /usr/bin/python3 -m venv --system-site-packages "$work/venv"
-# the build runs in a copy of the checkout (its own build tree: the checkout's build/ untouched)
-mkdir "$work/src"
-git -C "$repo" ls-files -z | (cd "$repo" && xargs -0 cp --parents -t "$work/src")
-"$work/venv/bin/python" -m pip install --no-build-isolation --no-deps --no-index --quiet "$work/src"
+# scikit-build-core builds in a temporary tree of its own (the checkout's build/ is untouched)
+"$work/venv/bin/python" -m pip install --no-build-isolation --no-deps --no-index --quiet "$repo"
 echo "pip install: $((SECONDS - t0)) s"
 mkdir "$work/run" && cd "$work/run"
-rm -rf "$work/src"                      # nothing of the checkout's copy can be imported now
 version="$("$work/venv/bin/python" -c "import rockjoint, os; assert '$repo' not in rockjoint.__file__; print(rockjoint.__version__)")"
 test "$("$work/venv/bin/rockjoint" --version)" = "rockjoint $version"
 "$work/venv/bin/python" -c "import rockjoint.fem_coupling, rockjoint.meshes, rockjoint.scenes"
