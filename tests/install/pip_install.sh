@@ -11,6 +11,7 @@ work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 unset PYTHONPATH
 export MPLBACKEND=Agg
+export CMAKE_BUILD_PARALLEL_LEVEL="${CMAKE_BUILD_PARALLEL_LEVEL:-$(nproc)}"   # the wheel's C++ build
 t0=$SECONDS
 /usr/bin/python3 -m venv --system-site-packages "$work/venv"
 # scikit-build-core builds in a temporary tree of its own (the checkout's build/ is untouched)
