@@ -10,6 +10,7 @@ from pkgutil import extend_path
 
 __path__ = extend_path(__path__, __name__)
 
+from ._rockjoint import __version__  # noqa: E402,F401  (CMakeLists.txt's project(VERSION), one place)
 from ._rockjoint import constitutive as _cpp_constitutive  # noqa: E402
 from ._rockjoint.constitutive import (  # noqa: F401
     BartonBandis,

@@ -9,7 +9,7 @@ import importlib
 import pkgutil
 import sys
 
-from . import commands
+from . import __version__, commands
 from .console import warnings_as_lines
 from .law_registry import load_plugins
 
@@ -17,6 +17,7 @@ from .law_registry import load_plugins
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(prog="python3 -m rockjoint",
                                      description="Rough-rock-joint closure laws (rockjoint)")
+    parser.add_argument("--version", action="version", version=f"rockjoint {__version__}")
     try:  # laws registered from outside the package (ROCKJOINT_LAWS, entry points)
         load_plugins()
     except ValueError as err:

@@ -18,6 +18,7 @@ void declare_continuum(py::module_& m);
 PYBIND11_MODULE(_rockjoint, m)
 {
   m.doc() = "rockjoint C++ core: rough-rock-joint closure laws";
+  m.attr("__version__") = ROCKJOINT_VERSION; // CMakeLists.txt's project(VERSION)
   py::module_ constitutive = m.def_submodule("constitutive", "Closure laws (SI units)");
   rockjoint::python::declare_constitutive(constitutive);
   py::module_ topography
