@@ -16,10 +16,9 @@ KNI, VM, R, M = 12e9, 0.4e-3, 0.28, 2.5      # K_ni [Pa/m], V_m [m], r [-], m [-
 NOISE = 2e-6                                  # closure noise [m] (about 1 % of the maximum)
 
 
-def generated_path():
-    up1, down1 = np.linspace(0, 10e6, 15), np.linspace(10e6, 0.2e6, 12)[1:]
-    up2, down2 = np.linspace(0.2e6, 15e6, 18)[1:], np.linspace(15e6, 0.2e6, 14)[1:]
-    stress = np.concatenate([up1, down1, up2, down2])
+def closure_along(stress) -> np.ndarray:
+    """The closure [m] along a stress path from the virgin joint, by the closed forms: the
+    Barton-Bandis inverse on virgin loading, H2's branch Δ_p + (Δ_m - Δ_p)(σ/σ_m)^(1/m) below."""
     closure, dm, top = [], 0.0, 0.0
     for s in stress:
         if s >= top:
@@ -29,7 +28,14 @@ def generated_path():
             dp = R * dm
             d = dp + (dm - dp) * (s / top) ** (1 / M)
         closure.append(d)
-    return stress, np.array(closure)
+    return np.array(closure)
+
+
+def generated_path():
+    up1, down1 = np.linspace(0, 10e6, 15), np.linspace(10e6, 0.2e6, 12)[1:]
+    up2, down2 = np.linspace(0.2e6, 15e6, 18)[1:], np.linspace(15e6, 0.2e6, 14)[1:]
+    stress = np.concatenate([up1, down1, up2, down2])
+    return stress, closure_along(stress)
 
 
 @pytest.fixture(scope="module")
@@ -167,17 +173,10 @@ def lab_path(stress=None, noise=LAB_NOISE, seed=11):
         first = np.array([0.5, 1, 2, 3, 4, 5, 6, 8, 10])
         stress = np.r_[first, first[::-1][1:], [1, 2, 4, 6, 8, 10, 12, 15, 20], [15, 10, 8, 6, 4, 3, 2, 1, 0.5]]
     stress = np.asarray(stress, float) * 1e6
-    closure, dm, top = [], 0.0, 0.0
-    for s in stress:
-        if s >= top:
-            d = s * VM / (KNI * VM + s)
-            dm, top = max(dm, d), s
-        else:
-            d = R * dm + (dm - R * dm) * (s / top) ** (1 / M)
-        closure.append(d)
+    closure = closure_along(stress)
     offset = SEATING * VM / (KNI * VM + SEATING)      # the law's closure at the data's zero
     rng = np.random.default_rng(seed)
-    measured = np.array(closure) - offset + rng.normal(0.0, noise, stress.size)
+    measured = closure - offset + rng.normal(0.0, noise, stress.size)
     measured[0] = 0.0
     return stress, measured, offset
 
