@@ -49,8 +49,8 @@ import rockjoint
 from rockjoint import meshes
 from rockjoint.continuum import EquivalentContinuum, JointSet
 from rockjoint.joint import JointBehaviour, JointStrength, StrengthModel
-from rockjoint.fem_coupling import InSituStress, JointedRockModel, NewtonOptions, distribute
-from rockjoint.fem_coupling.probe import probe
+from rockjoint.fem import InSituStress, JointedRockModel, NewtonOptions, distribute
+from rockjoint.fem.output.probe import probe
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 COMM = MPI.COMM_WORLD
@@ -204,7 +204,7 @@ def jointed_model(dmesh, smeared_sets, **options):
 def attempt(kind, spacing, mesh_size, scene="tunnel"):
     """run() (run_blocky() for the blocky scene), or (nan, nan, seconds, nan, nan, reason) when
     the load stepping fails."""
-    from rockjoint.fem_coupling import ConvergenceError
+    from rockjoint.fem import ConvergenceError
     t0 = time.perf_counter()
     try:
         return (run_blocky if scene == "blocky" else run)(kind, spacing, mesh_size) + ("",)

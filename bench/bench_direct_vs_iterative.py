@@ -18,8 +18,8 @@ from mpi4py import MPI
 
 from rockjoint import meshes
 from rockjoint.console import quiet_compiler_logging, say
-from rockjoint.fem_coupling import JointedRockModel, NewtonOptions, distribute
-from rockjoint.fem_coupling.linear_solver import DIRECT_DOF_LIMIT
+from rockjoint.fem import JointedRockModel, NewtonOptions, distribute
+from rockjoint.fem.solvers.linear_solver import DIRECT_DOF_LIMIT
 
 SIZES = {2: (0.02, 0.008, 0.005), 3: (0.12, 0.08, 0.06, 0.045)}  # gmsh mesh sizes [m]
 
@@ -64,7 +64,7 @@ def main() -> None:
              "| dim | dofs | MUMPS [s] | CG + GAMG [s] | MUMPS / CG+GAMG |", "|---:|---:|---:|---:|---:|"]
     lines += [f"| {d} | {n} | {a:.3f} | {b:.3f} | {a / b:.1f} |" for d, n, a, b in rows]
     lines += ["", f"Hence `linear_solver=\"auto\"` uses MUMPS up to {DIRECT_DOF_LIMIT[2]} dofs in 2D and "
-              f"{DIRECT_DOF_LIMIT[3]} in 3D (`rockjoint.fem_coupling.linear_solver.DIRECT_DOF_LIMIT`)."]
+              f"{DIRECT_DOF_LIMIT[3]} in 3D (`rockjoint.fem.solvers.linear_solver.DIRECT_DOF_LIMIT`)."]
     if MPI.COMM_WORLD.rank == 0:
         with open(args.output, "w", encoding="utf-8") as f:
             f.write("\n".join(lines) + "\n")

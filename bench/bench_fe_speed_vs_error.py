@@ -87,7 +87,7 @@ def tunnel_mesh(n: int | None, comm, intact: bool = False, spacing: float = SPAC
     nearest spacing/2 from the axis, out to 10.5 m. sizes: (h_wall, h_joint, h_far) [m] instead of
     the family's; the joint size grows to h_far over h_far, the opening's over 2 a."""
     from rockjoint import meshes
-    from rockjoint.fem_coupling import distribute
+    from rockjoint.fem import distribute
     h_wall, h_joint, h_far = sizes or (A / n, 2 * A / n, 8 * A / n)
     per_side = int((10.5 - spacing / 2) / spacing + 1e-9) + 1
     joints = (meshes.joint_set(spacing, 0.0, 90.0, origin=(CENTRE[0], CENTRE[1] - spacing / 2 - (per_side - 1) * spacing),
@@ -110,8 +110,8 @@ def sample_points():
 def solve_tunnel(dmesh, degree=1, quadrature="nodal", law=None, steps=1, k0=K0, linear_solver="auto") -> dict:
     """In-situ, then excavation in `steps` load steps; the answer at the sample points and the cost."""
     from mpi4py import MPI
-    from rockjoint.fem_coupling import InSituStress, JointedRockModel, NewtonOptions
-    from rockjoint.fem_coupling.probe import probe
+    from rockjoint.fem import InSituStress, JointedRockModel, NewtonOptions
+    from rockjoint.fem.output.probe import probe
     from rockjoint.meshes import OPENING
     comm = dmesh.mesh.comm
     law = tunnel_law() if law is None else law
@@ -163,7 +163,7 @@ def timed(fn, repeat: int) -> dict:
 
 # ---- the column (bench_fem) ---------------------------------------------------------------------
 def column_mesh(h: float, comm):
-    from rockjoint.fem_coupling import distribute
+    from rockjoint.fem import distribute
     return distribute(bench_fem.make_mesh("column", h) if comm.rank == 0 else None, comm)
 
 
@@ -497,7 +497,7 @@ def main():
     log.addHandler(logging.StreamHandler())
     log.handlers[0].setFormatter(logging.Formatter("%(asctime)s %(message)s", "%H:%M:%S"))
     log.setLevel(logging.INFO)
-    for name in ("rockjoint.fem_coupling.newton", "rockjoint.fem_coupling.stages"):  # per-iteration/stage lines
+    for name in ("rockjoint.fem.solvers.newton", "rockjoint.fem.mechanics.stages"):  # per-iteration/stage lines
         logging.getLogger(name).setLevel(logging.WARNING)
     from mpi4py import MPI
     if args.ranks_worker:

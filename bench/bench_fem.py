@@ -63,7 +63,7 @@ BLOCKY_SIZE_FACTOR = 1.0
 def _stack_versions() -> str:
     """'0.11.0.post0, PETSc 3.25.5' of the DOLFINx and PETSc the workers import."""
     from petsc4py import PETSc
-    from rockjoint.fem_coupling.compat import DOLFINX_RELEASE
+    from rockjoint.fem.compat import DOLFINX_RELEASE
     return f"{DOLFINX_RELEASE}, PETSc {'.'.join(map(str, PETSc.Sys.getVersion()))}"
 
 
@@ -98,7 +98,7 @@ def build_model(case, dmesh, corner, variant, law=None, **model_options):
     quadrature; used by bench_fe_speed_vs_error.py)."""
     import numpy as np
     import rockjoint
-    from rockjoint.fem_coupling import JointedRockModel, NewtonOptions
+    from rockjoint.fem import JointedRockModel, NewtonOptions
     law = rockjoint.BartonBandis(KNI, VM) if law is None else law
     newton = NewtonOptions(verbose=True, forcing="fixed" if variant == "fixed_forcing" else "eisenstat_walker")
     petsc = {"pc_gamg_agg_nsmooths": 1} if variant == "smoothed_aggregation" else None
@@ -206,7 +206,7 @@ def run_one(case, label, dmesh, corner, variant="default") -> dict:
 def worker(args) -> None:
     logging.basicConfig(level=logging.INFO, format="%(message)s")  # Newton progress (rank 0)
     from mpi4py import MPI
-    from rockjoint.fem_coupling.distributed_mesh import distribute
+    from rockjoint.fem.mesh.distributed_mesh import distribute
     comm = MPI.COMM_WORLD
     load0 = os.getloadavg()
     jm, t_mesh = None, 0.0
@@ -248,7 +248,7 @@ def distribute_cached(jointed_meshes: dict, comm, cache: str | None) -> dict:
     (<cache>.owners<ranks>.npz) and reused: a run on another DOLFINx version (another partitioner
     build) then solves on the same mesh *and* the same partition."""
     import numpy as np
-    from rockjoint.fem_coupling.distributed_mesh import distribute
+    from rockjoint.fem.mesh.distributed_mesh import distribute
     path = f"{cache}.owners{comm.size}.npz" if cache else None
     have = comm.bcast(bool(path) and os.path.exists(path) if comm.rank == 0 else None)
     owners = dict(np.load(path)) if have and comm.rank == 0 else {}

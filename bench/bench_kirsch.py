@@ -73,8 +73,8 @@ def solve_case(width_ratio: float, wall_divisions: int, degree: int = 1, loading
     from mpi4py import MPI
 
     from rockjoint import meshes
-    from rockjoint.fem_coupling import JointedRockModel, NewtonOptions, distribute
-    from rockjoint.fem_coupling.probe import probe, stress_function
+    from rockjoint.fem import JointedRockModel, NewtonOptions, distribute
+    from rockjoint.fem.output.probe import probe, stress_function
     from rockjoint.reference import KirschSolution
 
     if loading not in LOADINGS:
@@ -101,7 +101,7 @@ def solve_case(width_ratio: float, wall_divisions: int, degree: int = 1, loading
         model.add_traction("right", (-K0 * P, 0.0))
         model.solve(load_steps=1)
     else:
-        from rockjoint.fem_coupling import InSituStress
+        from rockjoint.fem import InSituStress
         supports = (("left", "x"), ("bottom", "y")) if quarter else \
             (("left", "x"), ("right", "x"), ("bottom", "y"), ("top", "y"))
         for name, comp in supports:
@@ -189,7 +189,7 @@ def _stack() -> str:
     """The versions that decide these numbers: DOLFINx and gmsh (the meshes differ between gmsh
     releases, so the errors change in their third digit)."""
     import gmsh
-    from rockjoint.fem_coupling.compat import DOLFINX_RELEASE
+    from rockjoint.fem.compat import DOLFINX_RELEASE
     return f"DOLFINx {DOLFINX_RELEASE}, gmsh {gmsh.__version__}"
 
 

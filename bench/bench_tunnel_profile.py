@@ -49,8 +49,8 @@ sys.path.insert(0, os.path.join(HERE, "..", "demos"))
 import bench_continuum as bc  # noqa: E402
 import rockjoint  # noqa: E402
 from rockjoint import meshes  # noqa: E402
-from rockjoint.fem_coupling import InSituStress, JointedRockModel, distribute  # noqa: E402
-from rockjoint.fem_coupling.probe import probe  # noqa: E402
+from rockjoint.fem import InSituStress, JointedRockModel, distribute  # noqa: E402
+from rockjoint.fem.output.probe import probe  # noqa: E402
 
 #: Before issue 31 (main at dbd35c6: joint pieces inside the opening removed after the fragment,
 #: GMRES + GAMG for the 90k-dof slip Jacobian), measured with this bench on 2026-11-27 03:37 UTC
@@ -97,7 +97,7 @@ class Phases:
     def active(self):
         import gmsh
         from rockjoint.meshes import builders
-        from rockjoint.fem_coupling import model as model_module
+        from rockjoint.fem import model as model_module
         from rockjoint.meshes import planar_section
         targets = [(gmsh.model.occ, n, "geometry") for n in ("cut", "fragment", "synchronize", "remove")]
         targets += [(gmsh.model.geo, "synchronize", "geometry"), (gmsh.model.mesh, "embed", "geometry"),
@@ -221,7 +221,7 @@ def solver_comparison(spacings=(1.0, 0.5, 0.25), mesh_size=1.5):
     """Rows (spacing, dofs, solver, LU factorisations, triangular solves, Newton iterations,
     linear solves [s], set-up + solve [s], crown, sidewall [m]) of the discrete tunnel solved with
     each linear solver on one mesh per spacing (meshing not timed)."""
-    from rockjoint.fem_coupling.linear_solver import LAGGED_REBUILD_FACTOR
+    from rockjoint.fem.solvers.linear_solver import LAGGED_REBUILD_FACTOR
     comm = bc.COMM
     opening = meshes.CircularOpening(bc.CENTRE, bc.RADIUS)
     sizes = dict(mesh_size=mesh_size, opening_mesh_size=mesh_size / 4, opening_refine_distance=2 * bc.RADIUS)

@@ -42,8 +42,8 @@ from mpi4py import MPI
 import rockjoint
 from rockjoint.console import quiet_compiler_logging, say
 from rockjoint import meshes
-from rockjoint.fem_coupling import JointedRockModel, NewtonOptions, ShearState, distribute, make_strength
-from rockjoint.fem_coupling.output import gather_triangles
+from rockjoint.fem import JointedRockModel, NewtonOptions, ShearState, distribute, make_strength
+from rockjoint.fem.output.fields import gather_triangles
 from rockjoint.scenes import geometry as scene_geometry, load_scene
 
 COMM = MPI.COMM_WORLD

@@ -34,7 +34,7 @@ from mpi4py import MPI
 import rockjoint
 from rockjoint.console import quiet_compiler_logging, say
 from rockjoint import meshes
-from rockjoint.fem_coupling import (JointBehaviour, JointedRockModel, JointPointState, NewtonOptions, distribute,
+from rockjoint.fem import (JointBehaviour, JointedRockModel, JointPointState, NewtonOptions, distribute,
                            joint_response, make_strength)
 
 COMM = MPI.COMM_WORLD

@@ -33,7 +33,7 @@ import rockjoint
 from rockjoint.console import quiet_compiler_logging, say
 from rockjoint import contact, flow, meshes
 from rockjoint import topography as topo
-from rockjoint.fem_coupling import Fluid, JointedRockModel, NewtonOptions, distribute, network_flow
+from rockjoint.fem import Fluid, JointedRockModel, NewtonOptions, distribute, network_flow
 from rockjoint.scenes import load_scene, make_plan
 from rockjoint.scenes.joint_laws import topography_law
 
@@ -271,7 +271,7 @@ def flow_cycle(bem, cycle, out):
     (local cubic law) flow on their gap field at each load of the exact elastic contact (BEM),
     tabulated against closure (docs/flow.md); along the cycle T follows the closure of the
     hysteretic law. The FE cube: each joint point's T from its closure, flow along the joint
-    (rockjoint.fem_coupling.network_flow); closed form for the uniform joint spanning the cube:
+    (rockjoint.fem.network_flow); closed form for the uniform joint spanning the cube:
     Q = (ρ g / μ) T Δh (the joint is as wide as it is long)."""
     law, solutions = cycle
     walls = flow.transmissivity_law("walls", curve=bem)

@@ -48,10 +48,10 @@ from rockjoint.console import quiet_compiler_logging
 from rockjoint import meshes
 from rockjoint import topography as topo
 from rockjoint import contact, flow
-from rockjoint.fem_coupling import (InSituStress, JointedRockModel, NewtonOptions, ShearState, darcy_flow,
+from rockjoint.fem import (InSituStress, JointedRockModel, NewtonOptions, ShearState, darcy_flow,
                                     distribute, network_flow)
-from rockjoint.fem_coupling.output import gather_triangles, write_functions
-from rockjoint.fem_coupling.probe import probe
+from rockjoint.fem.output.fields import gather_triangles, write_functions
+from rockjoint.fem.output.probe import probe
 from rockjoint.reference import KirschSolution
 from rockjoint.scenes import geometry as scene_geometry, load_scene
 

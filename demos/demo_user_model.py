@@ -15,7 +15,7 @@ petsc_options_prefix and petsc_options). The mesh is read by DOLFINx's own
 dolfinx.io.gmsh.model_to_mesh; rockjoint only splits the joint nodes (split_joints) and adds the
 joints (JointCoupling, JointedNonlinearProblem) with their laws taken from saved .rjt tables.
 Written for DOLFINx 0.11; on 0.9 the one difference, the gmsh reader's module, is taken from
-rockjoint.fem_coupling.compat (docs/user-model.md).
+rockjoint.fem.compat (docs/user-model.md).
 
 As a check, the same model with a piecewise-constant E (one value per block) is solved both ways,
 by the user's forms + JointCoupling and by rockjoint's JointedRockModel, and the difference is
@@ -39,10 +39,10 @@ from petsc4py import PETSc
 
 import rockjoint
 from rockjoint.console import quiet_compiler_logging, say
-from rockjoint.fem_coupling import (JointCoupling, JointedNonlinearProblem, JointedRockModel, NewtonOptions,
+from rockjoint.fem import (JointCoupling, JointedNonlinearProblem, JointedRockModel, NewtonOptions,
                            split_joints)
-from rockjoint.fem_coupling.compat import io_gmsh as gmshio  # = dolfinx.io.gmsh on DOLFINx 0.10+
-from rockjoint.fem_coupling.output import gather_triangles, write_joint_points
+from rockjoint.fem.compat import io_gmsh as gmshio  # = dolfinx.io.gmsh on DOLFINx 0.10+
+from rockjoint.fem.output.fields import gather_triangles, write_joint_points
 
 COMM = MPI.COMM_WORLD
 quiet_compiler_logging()  # DOLFINx's form compiler would log every command

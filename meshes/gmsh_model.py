@@ -7,7 +7,7 @@ meshes it with linear simplices, and names physical groups:
 - joints: dimension-(d-1) groups of surfaces (3D) or curves (2D) lying between two blocks;
 - boundaries: dimension-(d-1) groups on the outer surface (supports, loads).
 rockjoint reads the mesh of the groups, splits the nodes along the joints
-(node_splitting.build_jointed_mesh) and returns the JointedMesh; ``rockjoint.fem_coupling.distribute``
+(node_splitting.build_jointed_mesh) and returns the JointedMesh; ``rockjoint.fem.distribute``
 then gives the DOLFINx mesh, the block and boundary tags and the joint pairs, serially or over MPI.
 
 Tags are the physical tags of the groups: the minus side of a joint is the block with the lower

@@ -9,7 +9,7 @@ inside functions, resolved to the package's own modules.
     python3 scripts/import_graph.py --local    # the function-level imports and their reasons
 
 Packages are the layers of docs/architecture.md: `rockjoint.<name>` for the sub-packages
-(fem_coupling, scenes, scans, commands, reference, meshes) and the compiled `_rockjoint` /
+(fem, scenes, scans, commands, reference, meshes) and the compiled `_rockjoint` /
 `_rockjoint_fem_coupling` / `_rockjoint_dolfinx`; the top-level modules are their own layer each. Outside imports
 (dolfinx, ufl, petsc4py, ...) are kept as their top-level name. tests/python/test_architecture.py
 asserts that both graphs are acyclic and that the package edges are the ones the page allows.

@@ -29,7 +29,7 @@ def say(*args, comm=None) -> None:
 
 
 def warnings_as_lines() -> None:
-    """Show Python warnings (a law driven past its table: fem_coupling.RangeWarning) as one line
+    """Show Python warnings (a law driven past its table: rockjoint.fem.RangeWarning) as one line
     each, "warning: <message>", on standard error: what a command-line user reads, without the
     file and source line of the code that raised it. Also when a library routes warnings into
     logging later (logging.captureWarnings, as DOLFINx 0.9's import does): the formatted warning

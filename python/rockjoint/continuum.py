@@ -3,7 +3,7 @@
 (C++ `continuum/`, bound as `rockjoint._rockjoint.continuum`; needs neither PETSc nor DOLFINx).
 Each set is a unit normal, a spacing and a per-point joint behaviour (`rockjoint.joint`); the
 material adds the sets' compliances to the rock's (docs/equivalent-continuum.md). The FE side,
-`rockjoint.fem_coupling` (`JointedRockModel(continuum=...)`), evaluates it at every quadrature
+`rockjoint.fem` (`JointedRockModel(continuum=...)`), evaluates it at every quadrature
 point; a point driver can call it directly.
 
     from rockjoint import BartonBandis

@@ -2,7 +2,7 @@
 """The per-point joint behaviour, without the FE stack: closure law + shear stiffness + residual
 stiffness + shear strength of a joint, its traction and consistent tangent at a local jump, and
 its path-dependent state (C++ `joint/`, bound as `rockjoint._rockjoint.joint`; needs neither
-PETSc nor DOLFINx). The FE joints (`rockjoint.fem_coupling`) evaluate every quadrature point through it,
+PETSc nor DOLFINx). The FE joints (`rockjoint.fem`) evaluate every quadrature point through it,
 and so can a point driver: direct-shear curves, a calibration, an equivalent-continuum material.
 
     from math import radians

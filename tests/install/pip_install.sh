@@ -20,7 +20,7 @@ echo "pip install: $((SECONDS - t0)) s"
 mkdir "$work/run" && cd "$work/run"
 version="$("$work/venv/bin/python" -c "import rockjoint, os; assert '$repo' not in rockjoint.__file__; print(rockjoint.__version__)")"
 test "$("$work/venv/bin/rockjoint" --version)" = "rockjoint $version"
-"$work/venv/bin/python" -c "import rockjoint.fem_coupling, rockjoint.meshes, rockjoint.scenes"
+"$work/venv/bin/python" -c "import rockjoint.fem, rockjoint.meshes, rockjoint.scenes"
 "$work/venv/bin/python" "$repo/demos/demo_lab_closure_test.py" > demo.txt
 grep -q "max relative difference" demo.txt
 "$work/venv/bin/rockjoint" run "$repo/demos/scenes/blocky_rock_mass.yaml" --reduced --output scene > scene.txt 2>&1

@@ -5,7 +5,7 @@ from mpi4py import MPI
 
 import rockjoint
 from rockjoint import continuum as rj_continuum, joint as rj_joint, meshes
-from rockjoint.fem_coupling import JointedRockModel, NewtonOptions, distribute
+from rockjoint.fem import JointedRockModel, NewtonOptions, distribute
 
 E, NU = 20e9, 0.25
 E_PLANE = E / (1 - NU**2)  # plane-strain modulus
@@ -91,8 +91,8 @@ def sliding_answer(model):
 def fail_first_newton(monkeypatch):
     """Make the first Newton of the next load step report failure without touching the model, so
     that pseudo-transient continuation solves it; returns the switch ({"first": bool})."""
-    from rockjoint.fem_coupling import pseudo_transient
-    from rockjoint.fem_coupling.newton import StepReport
+    from rockjoint.fem import pseudo_transient
+    from rockjoint.fem.solvers.newton import StepReport
     real = pseudo_transient.newton
     calls = {"first": True}
 

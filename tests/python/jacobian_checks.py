@@ -8,8 +8,8 @@ from petsc4py import PETSc
 
 import rockjoint
 from rockjoint import meshes
-from rockjoint.fem_coupling import JointedRockModel, NewtonOptions
-from rockjoint.fem_coupling.distributed_mesh import distribute
+from rockjoint.fem import JointedRockModel, NewtonOptions
+from rockjoint.fem.mesh.distributed_mesh import distribute
 
 
 def sheared_block(dim, comm=MPI.COMM_WORLD, **model_options):

@@ -9,9 +9,9 @@ from mpi4py import MPI
 
 import rockjoint
 from rockjoint import meshes
-from rockjoint.fem_coupling import JointedRockModel, NewtonOptions
-from rockjoint.fem_coupling.distributed_mesh import distribute
-from rockjoint.fem_coupling.joint_flow import Fluid
+from rockjoint.fem import JointedRockModel, NewtonOptions
+from rockjoint.fem.mesh.distributed_mesh import distribute
+from rockjoint.fem.water.joint_flow import Fluid
 
 E, NU = 20e9, 0.25
 KNI, VM = 1e10, 1e-3                 # Barton-Bandis K_ni [Pa/m], V_m [m]

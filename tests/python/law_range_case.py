@@ -11,7 +11,7 @@ from petsc4py import PETSc
 
 import rockjoint
 from rockjoint import meshes
-from rockjoint.fem_coupling import JointCoupling, JointedNonlinearProblem, distribute
+from rockjoint.fem import JointCoupling, JointedNonlinearProblem, distribute
 
 E, NU = 20e9, 0.25                        # [Pa], plane strain
 LOAD = 10e6                               # σ_n on the joint [Pa]

@@ -5,8 +5,8 @@ from mpi4py import MPI
 
 import rockjoint
 from rockjoint import meshes
-from rockjoint.fem_coupling import JointedRockModel, NewtonOptions
-from rockjoint.fem_coupling.distributed_mesh import distribute
+from rockjoint.fem import JointedRockModel, NewtonOptions
+from rockjoint.fem.mesh.distributed_mesh import distribute
 from rockjoint.meshes.node_splitting import build_jointed_mesh
 
 E, NU = 20e9, 0.25

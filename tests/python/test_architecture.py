@@ -7,7 +7,7 @@
 - a function-level import says why (a comment on its line or the line above: only optional or
   slow dependencies are imported late);
 - scenes, commands, benchmarks and demos use the public API only: no `_rockjoint`, no private name
-  of another module or object, no DOLFINx / UFL / basix (the FE work is `rockjoint.fem_coupling`'s).
+  of another module or object, no DOLFINx / UFL / basix (the FE work is `rockjoint.fem`'s).
 
 Each check is also shown failing on a small made-up source, so that a check that sees nothing
 cannot pass unnoticed.
@@ -39,7 +39,7 @@ def rel(path):
 
 def test_no_import_cycle_between_modules_or_packages():
     mods = graph.modules()
-    assert "rockjoint.fem_coupling.model" in mods and "rockjoint.meshes.builders" in mods
+    assert "rockjoint.fem.mechanics.model" in mods and "rockjoint.meshes.builders" in mods
     modules = graph.module_graph(mods)
     assert graph.find_cycle(modules) is None, graph.find_cycle(modules)
     packages = {a: {b for b in bs if b.startswith("rockjoint")} for a, bs in graph.package_graph(mods).items()}
@@ -195,7 +195,7 @@ def test_reaching_below_the_public_api_is_caught(tmp_path):
 def test_jointed_rock_model_is_small_and_sets_its_attributes_in_init():
     """Issue 29, item 2: JointedRockModel at most 300 lines, composed of parts; every attribute it
     assigns anywhere is first assigned in __init__ (no state appearing later)."""
-    path = os.path.join(os.path.dirname(__file__), "..", "..", "python", "rockjoint", "fem_coupling", "model.py")
+    path = os.path.join(os.path.dirname(__file__), "..", "..", "python", "rockjoint", "fem", "mechanics", "model.py")
     with open(path, encoding="utf-8") as fh:
         tree = ast.parse(fh.read())
     (cls,) = [n for n in tree.body if isinstance(n, ast.ClassDef) and n.name == "JointedRockModel"]

@@ -29,7 +29,7 @@ NAMES = ("right sidewall", "crown", "left sidewall", "invert")
 # Coulomb strength of granite joints: basic friction φ_b = 30° (Barton & Choubey 1977), c = 0
 FRICTION_ANGLE, COHESION = math.radians(30.0), 0.0
 RESIDUAL_STIFFNESS = 1e6  # [Pa/m], demos/scenes/tunnel.yaml
-STICK, SLIP, OPEN = 0, 1, 2  # rockjoint.fem_coupling.ShearState values
+STICK, SLIP, OPEN = 0, 1, 2  # rockjoint.fem.ShearState values
 
 
 def run_demo(out, ranks):

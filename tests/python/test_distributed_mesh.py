@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: MIT
-"""rockjoint.fem_coupling.distributed_mesh in serial: DOLFINx mesh, tags and joint pairs from a JointedMesh.
+"""rockjoint.fem.mesh.distributed_mesh in serial: DOLFINx mesh, tags and joint pairs from a JointedMesh.
 
 References: the JointedMesh's own facet pairs (built by a different code path: glued facet table on the
 input mesh) and closed-form block volumes / face areas. Facet vertices are read through DOLFINx's
@@ -12,7 +12,7 @@ import pytest
 from mpi4py import MPI
 
 import dolfinx
-from rockjoint.fem_coupling.distributed_mesh import distribute, pair_vertex_positions
+from rockjoint.fem.mesh.distributed_mesh import distribute, pair_vertex_positions
 from rockjoint.meshes import Joint, column, jointed_block
 
 from mesh_checks import facet_coordinates, owned_block_measures, sorted_rows
@@ -134,7 +134,7 @@ _PARTITION_SCRIPT = """
 import hashlib
 import numpy as np
 from mpi4py import MPI
-import rockjoint.fem_coupling  # noqa: F401 - the import sets the partitioner's threads
+import rockjoint.fem  # noqa: F401 - the import sets the partitioner's threads
 from dolfinx.mesh import CellType, create_unit_cube
 comm = MPI.COMM_WORLD
 mesh = create_unit_cube(comm, 30, 30, 30, CellType.tetrahedron)
@@ -149,7 +149,7 @@ if comm.rank == 0:
 def test_partition_is_the_same_at_every_launch():
     """Three launches on 2 ranks partition a mesh of 162k cells identically. PT-SCOTCH's threads
     made Debian 13's partition differ at every launch (distributed_mesh.py, docs/fem.md pitfall 17);
-    rockjoint.fem_coupling runs it with one thread unless the user chose otherwise."""
+    rockjoint.fem runs it with one thread unless the user chose otherwise."""
     import subprocess
     import sys
     env = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in sys.path if p),
@@ -172,7 +172,7 @@ def test_serial_mesh_keeps_the_cells_in_order_and_equals_dolfinx():
     With the module the cells stay in input order; the module must be built where it can be."""
     import ufl
     import basix.ufl
-    from rockjoint.fem_coupling import compat
+    from rockjoint.fem import compat
     from rockjoint.meshes import CircularOpening, joint_set, tunnel_section
     has_hook = tuple(int(p) for p in dolfinx.__version__.split(".")[:2]) >= (0, 10)
     assert (compat.create_mesh_in_order is not None) == has_hook

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: MIT
-"""rockjoint.fem_coupling.distributed_mesh under `mpirun -n 2` (ctest pytest_mpi2_meshes).
+"""rockjoint.fem.mesh.distributed_mesh under `mpirun -n 2` (ctest pytest_mpi2_meshes).
 
 The global set of pairs gathered over ranks must equal the serial set (the JointedMesh's pairs, computed
 on the input mesh); both cells of every pair are owned by the assembling rank; block volumes summed over
@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 from mpi4py import MPI
 
-from rockjoint.fem_coupling.distributed_mesh import distribute, pair_vertex_positions
+from rockjoint.fem.mesh.distributed_mesh import distribute, pair_vertex_positions
 from rockjoint.meshes import Joint, column, jointed_block
 
 from mesh_checks import facet_coordinates, owned_block_measures, sorted_rows

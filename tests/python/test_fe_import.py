@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: MIT
-"""rockjoint.fem_coupling leaves the joint elements out only when the build has no FE extension
+"""rockjoint.fem leaves the joint elements out only when the build has no FE extension
 file (-DROCKJOINT_FEM=OFF), and then says what is missing; an extension that exists but does not
 load, or any missing one under CI / ROCKJOINT_REQUIRE_FE=1, is an ImportError (issue 30: a
 swallowed import error turned the FE suite into skips). Each case imports in a process of its
@@ -17,7 +17,7 @@ from fe_stack import require
 require("dolfinx")
 
 SOURCE_PYTHON = os.path.dirname(os.path.dirname(os.path.abspath(rockjoint.__file__)))
-PROBE = ("import rockjoint.fem_coupling as fc\n"
+PROBE = ("import rockjoint.fem as fc\n"
          "print('imported')\n"
          "fc.JointedRockModel\n")
 

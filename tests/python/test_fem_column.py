@@ -23,8 +23,8 @@ from mpi4py import MPI  # noqa: E402
 
 import rockjoint  # noqa: E402
 from rockjoint import meshes  # noqa: E402
-from rockjoint.fem_coupling import JointedRockModel, NewtonOptions, RangeWarning  # noqa: E402
-from rockjoint.fem_coupling.distributed_mesh import distribute  # noqa: E402
+from rockjoint.fem import JointedRockModel, NewtonOptions, RangeWarning  # noqa: E402
+from rockjoint.fem.mesh.distributed_mesh import distribute  # noqa: E402
 
 E, NU = 20e9, 0.25
 HEIGHT, JOINTS = 3.0, (1.0, 2.0)
@@ -71,7 +71,7 @@ def test_column_barton_bandis_matches_closed_form(dim, caplog):
     top = [0.0] * dim
     top[-1] = -stress
     model.add_traction("top", top)
-    caplog.set_level(logging.INFO, logger="rockjoint.fem_coupling.newton")
+    caplog.set_level(logging.INFO, logger="rockjoint.fem.solvers.newton")
     sol = model.solve(load_steps=1)
     closure = stress * VM / (KNI * VM + stress)  # Barton-Bandis inverse, closed form
     u_top = model.boundary_mean_displacement("top")[dim - 1]
@@ -81,7 +81,7 @@ def test_column_barton_bandis_matches_closed_form(dim, caplog):
     np.testing.assert_allclose(joints["closure"], closure, rtol=1e-8)
     np.testing.assert_allclose(joints["normal_stress"], stress, rtol=1e-8)
     assert np.max(np.abs(joints["shear_traction"])) < 1e-8 * stress
-    # The residual norms Newton logs (INFO, rockjoint.fem_coupling.newton) are the ones it records.
+    # The residual norms Newton logs (INFO, rockjoint.fem.solvers.newton) are the ones it records.
     logged = printed_residuals(caplog.text)
     assert logged == pytest.approx([n for r in sol.reports for n in r.residual_norms], rel=1e-6)
     assert_quadratic(logged)
@@ -143,7 +143,7 @@ def test_body_force_joint_carries_the_weight_above():
 def test_a_table_driven_past_its_range_is_reported_not_silent():
     """A Barton-Bandis table up to 5 MPa loaded to 8 MPa: the joints answer on the table's
     linear continuation (status validity_limit); the solution says so per joint and the model
-    warns (fem_coupling.RangeWarning, once). Inside the range nothing is reported."""
+    warns (rockjoint.fem.RangeWarning, once). Inside the range nothing is reported."""
     law = rockjoint.BartonBandis(KNI, VM)
     table = rockjoint.tabulate(law, max_stress=5e6)
     model = column_model(2, table, newton=NewtonOptions(verbose=False))

@@ -19,7 +19,7 @@ require_fe()
 from mpi4py import MPI  # noqa: E402
 
 from rockjoint import meshes  # noqa: E402
-from rockjoint.fem_coupling import InSituStress, JointedRockModel, distribute  # noqa: E402
+from rockjoint.fem import InSituStress, JointedRockModel, distribute  # noqa: E402
 from continuum_cases import (E, HEIGHT, NU, QUIET, bb_closure, column, material,  # noqa: E402
                              rock_strain, top_load, vertical)
 

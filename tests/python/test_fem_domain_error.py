@@ -15,7 +15,7 @@ from fe_stack import require_fe  # noqa: E402
 require_fe()
 
 import rockjoint  # noqa: E402
-from rockjoint.fem_coupling import NewtonOptions  # noqa: E402
+from rockjoint.fem import NewtonOptions  # noqa: E402
 
 from test_fem_column import KNI, VM, column_model, expected_top  # noqa: E402
 

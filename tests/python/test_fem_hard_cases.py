@@ -11,8 +11,8 @@ from mpi4py import MPI  # noqa: E402
 
 import rockjoint  # noqa: E402
 from rockjoint import meshes  # noqa: E402
-from rockjoint.fem_coupling import JointedRockModel, LinearSolveError, NewtonOptions  # noqa: E402
-from rockjoint.fem_coupling.distributed_mesh import distribute  # noqa: E402
+from rockjoint.fem import JointedRockModel, LinearSolveError, NewtonOptions  # noqa: E402
+from rockjoint.fem.mesh.distributed_mesh import distribute  # noqa: E402
 
 E, NU = 20e9, 0.25
 

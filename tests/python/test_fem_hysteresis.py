@@ -15,7 +15,7 @@ from hysteresis_cases import (KNI, M, PEAK, R, VM, check_cycle, expected_closure
                               hysteretic_column, run_cycle, virgin_closure)
 
 import rockjoint  # noqa: E402
-from rockjoint.fem_coupling import InSituStress  # noqa: E402
+from rockjoint.fem import InSituStress  # noqa: E402
 
 
 def test_column_follows_the_hysteretic_law_through_a_cycle():
@@ -45,8 +45,8 @@ def test_sheared_joint_jacobian_at_and_around_the_switch():
     and a small unloading from the peak converges."""
     from mpi4py import MPI
     from rockjoint import meshes
-    from rockjoint.fem_coupling import JointedRockModel, NewtonOptions
-    from rockjoint.fem_coupling.distributed_mesh import distribute
+    from rockjoint.fem import JointedRockModel, NewtonOptions
+    from rockjoint.fem.mesh.distributed_mesh import distribute
     comm = MPI.COMM_WORLD
     jm = meshes.jointed_block((1.0, 1.0), [meshes.Joint((0.5, 0.5), 25.0, 90.0, "j")], dim=2,
                               mesh_size=0.35, comm=comm)

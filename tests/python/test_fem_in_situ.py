@@ -16,7 +16,7 @@ from mpi4py import MPI  # noqa: E402
 
 import rockjoint  # noqa: E402
 from rockjoint import meshes  # noqa: E402
-from rockjoint.fem_coupling import InSituStress, JointedRockModel, distribute  # noqa: E402
+from rockjoint.fem import InSituStress, JointedRockModel, distribute  # noqa: E402
 from staged_cases import (E, E_PLANE, KNI, NU, QUIET, VM, bb_closure, column,  # noqa: E402
                           lame_radial_displacement, quarter_annulus, radial_displacement_at)
 
@@ -284,7 +284,7 @@ def test_a_joint_with_residual_stiffness_is_pre_closed_to_the_quadratic_root():
 
 
 def test_closure_at_normal_stress_keeps_the_shape_and_names_a_refused_entry():
-    from rockjoint.fem_coupling import JointBehaviour, closure_at_normal_stress
+    from rockjoint.fem import JointBehaviour, closure_at_normal_stress
     behaviour = JointBehaviour(rockjoint.BartonBandis(KNI, VM))  # k_r = 0: the law's closed form
     stress = np.array([[0.0, 1e6], [5e6, 20e6]])
     closure = closure_at_normal_stress(behaviour, stress)

@@ -20,8 +20,8 @@ from petsc4py import PETSc  # noqa: E402
 
 import rockjoint  # noqa: E402
 from rockjoint import meshes  # noqa: E402
-from rockjoint.fem_coupling import JointedRockModel, NewtonOptions  # noqa: E402
-from rockjoint.fem_coupling.distributed_mesh import distribute  # noqa: E402
+from rockjoint.fem import JointedRockModel, NewtonOptions  # noqa: E402
+from rockjoint.fem.mesh.distributed_mesh import distribute  # noqa: E402
 
 STRESS = np.array([2e6, 2e6, 5e6])   # compression along x, y, z [Pa]
 LAW = rockjoint.BartonBandis(1e10, 1e-3)

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: MIT
-"""The joint element's DOLFINx side (rockjoint.fem_coupling.JointInterface): pair dofs from V.dofmap (P1,
+"""The joint element's DOLFINx side (rockjoint.fem.JointInterface): pair dofs from V.dofmap (P1,
 P2), one tangent frame per joint on every rank, the initial jump (in-situ pre-closure) and the
 point-state arrays.
 
@@ -21,8 +21,8 @@ from mpi4py import MPI  # noqa: E402
 
 import rockjoint  # noqa: E402
 from rockjoint import meshes  # noqa: E402
-from rockjoint.fem_coupling import JointBehaviour, JointInterface  # noqa: E402
-from rockjoint.fem_coupling.distributed_mesh import distribute  # noqa: E402
+from rockjoint.fem import JointBehaviour, JointInterface  # noqa: E402
+from rockjoint.fem.mesh.distributed_mesh import distribute  # noqa: E402
 
 DIP, AZIMUTH = 40.0, 45.0
 

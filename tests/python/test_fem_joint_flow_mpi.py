@@ -10,7 +10,7 @@ require_fe()
 
 from joint_flow_cases import HEADS, WIDTH, cubic_law, expected_rate, solved_column  # noqa: E402
 from mpi_ranks import two_ranks  # noqa: E402
-from rockjoint.fem_coupling.joint_flow import network_flow  # noqa: E402
+from rockjoint.fem.water.joint_flow import network_flow  # noqa: E402
 
 
 @pytest.mark.mpi

@@ -24,9 +24,9 @@ from scipy.optimize import brentq  # noqa: E402
 
 import rockjoint  # noqa: E402
 from rockjoint import meshes  # noqa: E402
-from rockjoint.fem_coupling import (ConvergenceError, JointedRockModel, LinearSolveError,  # noqa: E402
+from rockjoint.fem import (ConvergenceError, JointedRockModel, LinearSolveError,  # noqa: E402
                            NewtonOptions, ShearState)
-from rockjoint.fem_coupling.distributed_mesh import distribute  # noqa: E402
+from rockjoint.fem.mesh.distributed_mesh import distribute  # noqa: E402
 from jacobian_checks import assert_jacobian_matches_fd, sheared_block  # noqa: E402
 
 THETA = math.radians(30.0)
@@ -302,7 +302,7 @@ def test_jacobian_matches_finite_differences_in_stick_slip_and_open_states(dim, 
 
 
 def test_bad_strength_input_is_refused_with_named_errors():
-    from rockjoint.fem_coupling import make_strength
+    from rockjoint.fem import make_strength
     with pytest.raises(ValueError, match=r"friction_angle.*\[0, pi/2\)"):
         make_strength({"friction_angle": math.radians(95.0)})
     with pytest.raises(ValueError, match=r"joint 'j'.*unknown parameter.*frction_angle"):
@@ -327,7 +327,7 @@ def test_bad_strength_input_is_refused_with_named_errors():
 def test_barton_bandis_shear_stiffness_is_the_secant_to_the_peak_at_one_percent_of_the_block():
     """K_s = 100/L σ_n tan(φ_r + JRC log10(JCS/σ_n)) (Barton & Choubey 1977): JRC 10, JCS 100 MPa,
     φ_r = 28°, σ_n = 2 MPa, L = 1 m: angle 28 + 10 log10(50) = 44.99°, K_s ≈ 199.9 MPa/m."""
-    from rockjoint.fem_coupling import barton_bandis_shear_stiffness
+    from rockjoint.fem import barton_bandis_shear_stiffness
     angle = math.radians(28.0 + 10.0 * math.log10(50.0))
     expected = 100.0 * 2e6 * math.tan(angle) / 1.0
     assert barton_bandis_shear_stiffness(10.0, 100e6, math.radians(28.0), 2e6, 1.0) == pytest.approx(expected, rel=1e-12)
@@ -343,8 +343,8 @@ def test_barton_bandis_shear_stiffness_is_the_secant_to_the_peak_at_one_percent_
 def test_public_coupling_takes_the_strength_and_reports_an_unsymmetric_tangent():
     from dolfinx import fem
 
-    from rockjoint.fem_coupling import StrengthModel
-    from rockjoint.fem_coupling.coupling import JointCoupling
+    from rockjoint.fem import StrengthModel
+    from rockjoint.fem.mechanics.coupling import JointCoupling
     dmesh = _block()
     V = fem.functionspace(dmesh.mesh, ("Lagrange", 1, (dmesh.mesh.geometry.dim,)))
     law = {"j": rockjoint.BartonBandis(KNI, VM)}

@@ -69,8 +69,8 @@ def test_3d_extrusion_with_axial_rollers_is_the_plane_strain_tunnel():
     from mpi4py import MPI
 
     from rockjoint import meshes
-    from rockjoint.fem_coupling import InSituStress, JointedRockModel, NewtonOptions, distribute
-    from rockjoint.fem_coupling.probe import probe
+    from rockjoint.fem import InSituStress, JointedRockModel, NewtonOptions, distribute
+    from rockjoint.fem.output.probe import probe
     from rockjoint.reference import KirschSolution
 
     a, W, L, p, k0, E, nu = 1.0, 20.0, 0.25, 10e6, 0.5, 20e9, 0.25

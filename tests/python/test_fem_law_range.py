@@ -23,11 +23,11 @@ from mpi4py import MPI  # noqa: E402
 
 import rockjoint  # noqa: E402
 from rockjoint.continuum import EquivalentContinuum, JointSet  # noqa: E402
-from rockjoint.fem_coupling import (BeyondRangeError, JointCoupling, JointedRockModel, NewtonOptions,  # noqa: E402
+from rockjoint.fem import (BeyondRangeError, JointCoupling, JointedRockModel, NewtonOptions,  # noqa: E402
                                     RangeWarning, ShearState, Status)
 
-from rockjoint.fem_coupling import joint_behaviours  # noqa: E402
-from rockjoint.fem_coupling.law_range import law_range  # noqa: E402
+from rockjoint.fem import joint_behaviours  # noqa: E402
+from rockjoint.fem.mechanics.law_range import law_range  # noqa: E402
 
 import law_range_case as case  # noqa: E402
 

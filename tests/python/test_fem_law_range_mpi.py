@@ -14,7 +14,7 @@ require_fe()
 
 from mpi4py import MPI  # noqa: E402
 
-from rockjoint.fem_coupling import BeyondRangeError, JointedRockModel, NewtonOptions, RangeWarning  # noqa: E402
+from rockjoint.fem import BeyondRangeError, JointedRockModel, NewtonOptions, RangeWarning  # noqa: E402
 
 import law_range_case as case  # noqa: E402
 from mpi_ranks import two_ranks  # noqa: E402

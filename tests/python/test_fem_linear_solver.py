@@ -9,7 +9,7 @@ require("dolfinx")
 
 from petsc4py import PETSc  # noqa: E402
 
-from rockjoint.fem_coupling.linear_solver import LinearSolver, LinearSolveError  # noqa: E402
+from rockjoint.fem.solvers.linear_solver import LinearSolver, LinearSolveError  # noqa: E402
 
 
 def laplacian(n, shift=0.0):
@@ -106,7 +106,7 @@ def test_bad_tolerances_are_refused_with_their_range():
 def test_auto_picks_mumps_only_below_the_measured_crossover():
     """bench/results/direct_vs_iterative.md: in 3D GAMG wins from a few thousand dofs on, in 2D
     the two are comparable up to ~90k dofs."""
-    from rockjoint.fem_coupling.linear_solver import DIRECT_DOF_LIMIT, resolve_kind
+    from rockjoint.fem.solvers.linear_solver import DIRECT_DOF_LIMIT, resolve_kind
 
     assert resolve_kind("auto", 40_000, 2) == "direct"
     assert resolve_kind("auto", 40_000, 3) == "iterative"
@@ -124,7 +124,7 @@ def test_auto_keeps_a_nonsymmetric_2d_jacobian_on_mumps_further():
     """bench/results/tunnel_profile.md: on the 90k-dof slipping tunnel (a non-symmetric Jacobian)
     MUMPS LU took 0.22 s CPU per solve against 1.04 s for GMRES + GAMG; kept over several Newton
     iterations (lagged) from 60k dofs on, 8 factorisations did the work of 18 at the same answer."""
-    from rockjoint.fem_coupling.linear_solver import (DIRECT_DOF_LIMIT, DIRECT_DOF_LIMIT_NONSYMMETRIC,
+    from rockjoint.fem.solvers.linear_solver import (DIRECT_DOF_LIMIT, DIRECT_DOF_LIMIT_NONSYMMETRIC,
                                                       resolve_kind)
 
     assert resolve_kind("auto", 90_052, 2, symmetric=True) == "iterative"
@@ -283,7 +283,7 @@ def test_a_kept_factorisation_is_rebuilt_sooner_than_a_gamg_hierarchy():
     """LAGGED_REBUILD_FACTOR (bench/results/tunnel_profile.md, the discrete tunnel's solvers): a
     factorisation is rebuilt from 1.5 Krylov iterations per decade on, GAMG from 2; an explicit
     rebuild_factor wins."""
-    from rockjoint.fem_coupling.linear_solver import LAGGED_REBUILD_FACTOR
+    from rockjoint.fem.solvers.linear_solver import LAGGED_REBUILD_FACTOR
     assert LAGGED_REBUILD_FACTOR == 1.5
     assert LinearSolver(PETSc.COMM_SELF, "lagged", symmetric=False).rebuild_factor == 1.5
     assert LinearSolver(PETSc.COMM_SELF, "iterative").rebuild_factor == 2.0

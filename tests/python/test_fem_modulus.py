@@ -16,8 +16,8 @@ from mpi4py import MPI  # noqa: E402
 
 import rockjoint  # noqa: E402
 from rockjoint import meshes  # noqa: E402
-from rockjoint.fem_coupling import JointedRockModel  # noqa: E402
-from rockjoint.fem_coupling.distributed_mesh import distribute  # noqa: E402
+from rockjoint.fem import JointedRockModel  # noqa: E402
+from rockjoint.fem.mesh.distributed_mesh import distribute  # noqa: E402
 
 
 @pytest.mark.parametrize("dim", [2, 3])

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: MIT
-"""rockjoint.fem_coupling.output.gather_triangles: every owned cell once, on rank 0, with the displacement
+"""rockjoint.fem.output.fields.gather_triangles: every owned cell once, on rank 0, with the displacement
 at its vertices; the same picture on 1 and 2 ranks."""
 import numpy as np
 import pytest
@@ -11,8 +11,8 @@ require("rockjoint._rockjoint_fem_coupling")
 from dolfinx import fem  # noqa: E402
 
 from rockjoint import meshes  # noqa: E402
-from rockjoint.fem_coupling import distribute  # noqa: E402
-from rockjoint.fem_coupling.output import gather_triangles  # noqa: E402
+from rockjoint.fem import distribute  # noqa: E402
+from rockjoint.fem.output.fields import gather_triangles  # noqa: E402
 
 WIDTH, HEIGHT = 2.0, 3.0
 

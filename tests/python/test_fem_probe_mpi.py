@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: MIT
-"""rockjoint.fem_coupling.probe: point values of DOLFINx functions, the same on every rank and partition.
+"""rockjoint.fem.output.probe: point values of DOLFINx functions, the same on every rank and partition.
 
 Reference: a P1 function interpolating a linear field f(x, y) = 2 + 3x - 5y is exact everywhere,
 so the probe must return f at any point of the mesh (here a tunnel section with joints: points in
@@ -14,8 +14,8 @@ from dolfinx import fem  # noqa: E402
 from mpi4py import MPI  # noqa: E402
 
 from rockjoint import meshes  # noqa: E402
-from rockjoint.fem_coupling import distribute  # noqa: E402
-from rockjoint.fem_coupling.probe import probe  # noqa: E402
+from rockjoint.fem import distribute  # noqa: E402
+from rockjoint.fem.output.probe import probe  # noqa: E402
 
 
 def linear_function():

@@ -9,7 +9,7 @@ import pytest
 from fe_stack import require_fe  # noqa: E402
 require_fe()
 
-from rockjoint.fem_coupling import ConvergenceError, NewtonOptions  # noqa: E402
+from rockjoint.fem import ConvergenceError, NewtonOptions  # noqa: E402
 from continuum_cases import fail_first_newton, sliding_answer as answer, sliding_column  # noqa: E402
 
 

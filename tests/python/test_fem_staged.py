@@ -19,7 +19,7 @@ require_fe()
 from mpi4py import MPI  # noqa: E402
 from scipy.optimize import brentq  # noqa: E402
 
-from rockjoint.fem_coupling import JointedRockModel, Stage  # noqa: E402
+from rockjoint.fem import JointedRockModel, Stage  # noqa: E402
 from staged_cases import (E, E_PLANE, M_OEDOMETER, NU, QUIET, bb_closure, column,  # noqa: E402
                           lame_radial_displacement, quarter_annulus, radial_displacement_at)
 
@@ -226,10 +226,10 @@ def test_snes_and_the_problem_object_agree_with_newton():
 def test_progress_of_a_run_is_logged(caplog):
     model = column()
     load = model.add_traction("top", (0.0, 0.0))
-    caplog.set_level(logging.INFO, logger="rockjoint.fem_coupling.stages")
+    caplog.set_level(logging.INFO, logger="rockjoint.fem.mechanics.stages")
     model.run([Stage("load", 2, lambda m: setattr(load, "value", (0.0, -4e6))),
                Stage("unload", 1, lambda m: load.remove())])
-    lines = [r.getMessage() for r in caplog.records if r.name == "rockjoint.fem_coupling.stages"]
+    lines = [r.getMessage() for r in caplog.records if r.name == "rockjoint.fem.mechanics.stages"]
     assert any(re.match(r"stage 1/2 \(load\): λ = 0\.5 converged in \d+ Newton iteration", s) for s in lines), lines
     assert any(re.match(r"stage 2/2 \(unload\): λ = 1 converged .* s elapsed", s) for s in lines), lines
 

@@ -13,7 +13,7 @@ require_fe()
 
 from mpi4py import MPI  # noqa: E402
 
-from rockjoint.fem_coupling import InSituStress, JointedRockModel  # noqa: E402
+from rockjoint.fem import InSituStress, JointedRockModel  # noqa: E402
 from staged_cases import E, NU, QUIET, column, quarter_annulus  # noqa: E402
 from mpi_ranks import two_ranks  # noqa: E402
 

@@ -22,7 +22,7 @@ from petsc4py import PETSc  # noqa: E402
 
 import rockjoint  # noqa: E402
 from rockjoint import meshes  # noqa: E402
-from rockjoint.fem_coupling import (JointCoupling, JointedNonlinearProblem, NewtonSolverError, distribute,  # noqa: E402
+from rockjoint.fem import (JointCoupling, JointedNonlinearProblem, NewtonSolverError, distribute,  # noqa: E402
                                     supported_dofs)
 from rockjoint.meshes.builders import _ensure_gmsh  # noqa: E402
 

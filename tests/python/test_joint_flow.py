@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: MIT
-"""Steady flow along the joint network (rockjoint.fem_coupling.joint_flow, docs/flow.md) against
+"""Steady flow along the joint network (rockjoint.fem.water.joint_flow, docs/flow.md) against
 the closed form of n parallel joints between two heads (joint_flow_cases.py), 2D and 3D; the head
 falls linearly along each joint; a closed joint carries nothing; bad input is refused by name."""
 import numpy as np
@@ -9,7 +9,7 @@ from fe_stack import require_fe  # noqa: E402
 require_fe()
 
 from joint_flow_cases import HEADS, WIDTH, cubic_law, expected_rate, solved_column  # noqa: E402
-from rockjoint.fem_coupling.joint_flow import Fluid, network_flow  # noqa: E402
+from rockjoint.fem.water.joint_flow import Fluid, network_flow  # noqa: E402
 
 
 @pytest.mark.parametrize("dim, heights", [(2, (1.0, 2.0)), (2, (0.7, 1.5, 2.4)), (3, (1.0, 2.0))])
@@ -62,7 +62,7 @@ def test_flow_passes_from_one_joint_into_another_where_they_meet():
     from mpi4py import MPI
     import rockjoint
     from rockjoint import meshes
-    from rockjoint.fem_coupling import JointedRockModel, NewtonOptions, distribute
+    from rockjoint.fem import JointedRockModel, NewtonOptions, distribute
     from rockjoint.meshes.joint_geometry import Joint
 
     comm = MPI.COMM_WORLD
@@ -96,8 +96,8 @@ def test_smeared_set_carries_what_its_discrete_joints_carry(dim):
     the same flow rate, and both the closed form n (ρ g / μ) T Δh W / L."""
     from mpi4py import MPI
     from rockjoint import meshes
-    from rockjoint.fem_coupling import distribute
-    from rockjoint.fem_coupling.darcy import darcy_flow, equivalent_permeability
+    from rockjoint.fem import distribute
+    from rockjoint.fem.water.darcy import darcy_flow, equivalent_permeability
     from joint_flow_cases import HEIGHT, LOAD, KNI, VM
 
     heights = (0.5, 1.5, 2.5)

@@ -1,13 +1,13 @@
 # SPDX-License-Identifier: MIT
 """Newton's stopping rules on scalar problems with known answers: the residual tolerance relative
 to the load (or to the initial residual when the load is zero), an increment at round-off, and
-stagnation (rockjoint.fem_coupling.newton; no DOLFINx needed)."""
+stagnation (rockjoint.fem.solvers.newton; no DOLFINx needed)."""
 import math
 
 import numpy as np
 import pytest
 
-from rockjoint.fem_coupling.newton import NewtonOptions, newton, solve_load_path
+from rockjoint.fem.solvers.newton import NewtonOptions, newton, solve_load_path
 
 
 class Scalar:

@@ -14,7 +14,7 @@ require_fe()
 
 from petsc4py import PETSc  # noqa: E402
 
-from rockjoint.fem_coupling.linear_solver import LinearSolver  # noqa: E402
+from rockjoint.fem.solvers.linear_solver import LinearSolver  # noqa: E402
 
 WARNING = "options you set that were not used"
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -23,7 +23,7 @@ SCRIPT = """
 import sys
 from petsc4py import PETSc
 import rockjoint
-from rockjoint.fem_coupling.linear_solver import LinearSolver
+from rockjoint.fem.solvers.linear_solver import LinearSolver
 from test_fem_column import column_model
 for kind in ("direct", "iterative"):
     model = column_model(2, rockjoint.BartonBandis(1e10, 1e-3), linear_solver=kind)

@@ -54,7 +54,7 @@ def test_sliding_block_names_the_set_and_its_mobilised_friction(tmp_path):
 def test_a_joint_past_its_table_is_named_with_its_stress(tmp_path):
     code, out, err = run("past_table", tmp_path)
     assert code == 0, out + err
-    # the model's own check (fem_coupling.law_range), then the scene's remedy
+    # the model's own check (rockjoint.fem.mechanics.law_range), then the scene's remedy
     assert ("joint 'joint_1': 12 of 12 points past the range of its law; σ_n reaches 10 MPa where its "
             "table covers σ_n 0 - 5 MPa") in out + err
     # said once, as one line (not again as a log record, nor with the raising code's source line)

@@ -133,7 +133,7 @@ def test_the_table_range_check_covers_smeared_sets(tmp_path):
     assert code == 0, out + err
     assert ("warning: smeared joint set bed: σ_n reaches 10 MPa in stage 'load', beyond its table "
             "(0 - 5 MPa)") in out + err
-    # the model's own check of its smeared sets (fem_coupling.law_range, from the law's status)
+    # the model's own check of its smeared sets (rockjoint.fem.mechanics.law_range, from the law's status)
     assert "in stage 'load' (smeared joint sets): joint 'bed':" in out + err
     assert "σ_n reaches 10 MPa where its table covers σ_n 0 - 5 MPa" in out + err
     assert "warning: joint set vertical" not in out + err  # the discrete set stays at 0

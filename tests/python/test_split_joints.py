@@ -8,11 +8,11 @@ import pytest
 
 from fe_stack import require  # noqa: E402
 require("dolfinx")
-from rockjoint.fem_coupling.compat import io_gmsh  # noqa: E402  (dolfinx.io.gmsh on 0.10+)
+from rockjoint.fem.compat import io_gmsh  # noqa: E402  (dolfinx.io.gmsh on 0.10+)
 from mpi4py import MPI  # noqa: E402
 
 from rockjoint import meshes  # noqa: E402
-from rockjoint.fem_coupling import distribute, split_joints  # noqa: E402
+from rockjoint.fem import distribute, split_joints  # noqa: E402
 from rockjoint.meshes.builders import _ensure_gmsh  # noqa: E402
 
 import user_model_geometry as case  # noqa: E402

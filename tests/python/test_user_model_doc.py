@@ -11,7 +11,7 @@ import subprocess
 import sys
 
 from demo_runner import SOURCE
-from rockjoint.fem_coupling.compat import DOLFINX_VERSION
+from rockjoint.fem.compat import DOLFINX_VERSION
 
 IMPORT_011 = "from dolfinx.io import gmsh as gmshio\n"
 CHECKS = """
@@ -37,7 +37,7 @@ def page_script() -> str:
     blocks = page_blocks()
     assert len(blocks) >= 5, "the page's example, 0.9 line, strength, range and by-hand blocks"
     example, line_09 = blocks[:2]
-    assert example.count(IMPORT_011) == 1 and line_09.startswith("from rockjoint.fem_coupling.compat import")
+    assert example.count(IMPORT_011) == 1 and line_09.startswith("from rockjoint.fem.compat import")
     if DOLFINX_VERSION < (0, 10):
         blocks[0] = example.replace(IMPORT_011, line_09)
         blocks[1] = ""   # the same line, already in place

@@ -16,7 +16,7 @@ from petsc4py import PETSc
 
 import rockjoint
 from rockjoint import meshes
-from rockjoint.fem_coupling import JointCoupling, JointedNonlinearProblem, JointedRockModel, NewtonOptions, distribute
+from rockjoint.fem import JointCoupling, JointedNonlinearProblem, JointedRockModel, NewtonOptions, distribute
 from user_model_geometry import DIP, SIZE, build_gmsh_model  # noqa: F401  (re-exported for the tests)
 
 E_BLOCK = {"lower": 30e9, "upper": 10e9}       # [Pa]

@@ -30,7 +30,7 @@ def main(args) -> int:
     scene, plan = checked
     # the FE stack (mpi4py, DOLFINx) is optional: `rockjoint plan` and --help work without it
     from mpi4py import MPI
-    from ..fem_coupling import ConvergenceError, LinearSolveError  # FE stack, as above
+    from ..fem import ConvergenceError, LinearSolveError  # FE stack, as above
     from ..scenes.runner import NoEquilibrium, run_scene, summary_table  # FE stack, as above
     quiet_compiler_logging()
     log = logging.getLogger("rockjoint.scenes")

@@ -15,7 +15,7 @@ import rockjoint
 from rockjoint import contact, flow
 from rockjoint import topography as topo
 
-from ..fem_coupling import darcy_flow, network_flow
+from ..fem import darcy_flow, network_flow
 from . import geometry, joint_laws, ladder
 
 log = logging.getLogger("rockjoint.scenes")

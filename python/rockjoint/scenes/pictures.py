@@ -37,7 +37,7 @@ def joint_states(model) -> dict:
     """The joint points of `model` (all ranks, on every rank): coordinates (n, gdim) [m], state
     names (n,) ('stick', 'slip', 'open'; 'closed' for joints without strength) and joint tags.
     Collective."""
-    from ..fem_coupling import ShearState  # the FE stack is optional: imported when drawing
+    from ..fem import ShearState  # the FE stack is optional: imported when drawing
     state = model.solution.gather_joints()
     x = np.asarray(state["coordinates"], dtype=float).reshape(-1, model.gdim)
     if "shear_state" in state:
@@ -108,7 +108,7 @@ def draw(models: dict, scene, path: str) -> list:
     2D: filled triangles with block outlines; 3D: the boundary faces of the deformed mesh, and
     for a tunnel the section through the opening. Joints by state in every 2D view and section.
     Collective; rank 0 writes `path`."""
-    from ..fem_coupling.output import gather_triangles, section_triangles  # FE stack: optional
+    from ..fem.output.fields import gather_triangles, section_triangles  # FE stack: optional
     if any(m.degree != 1 for m in models.values()):
         return []
     geometry = scene.data["geometry"]
@@ -251,7 +251,7 @@ def _outline(tri: np.ndarray, u: np.ndarray, scale: float) -> np.ndarray:
 
 
 def _draw_3d(models: dict, scene, path: str, sections, joints) -> list:
-    from ..fem_coupling.output import boundary_triangles  # FE stack: optional
+    from ..fem.output.fields import boundary_triangles  # FE stack: optional
     gathered = {label: boundary_triangles(m.u) for label, m in models.items()}
     if models["jointed"].comm.rank != 0:
         return [path]

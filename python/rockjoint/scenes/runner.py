@@ -22,7 +22,7 @@ from mpi4py import MPI
 from ..continuum import EquivalentContinuum, JointSet
 from .. import curve_table
 from ..joint import joint_behaviours
-from ..fem_coupling import (ConvergenceError, InSituStress, JointedRockModel, LinearSolveError, NewtonOptions,
+from ..fem import (ConvergenceError, InSituStress, JointedRockModel, LinearSolveError, NewtonOptions,
                             ShearState, distribute)
 from . import flow as scene_flow
 from . import geometry, joint_laws, pictures, planner, statics, stresses
@@ -193,7 +193,7 @@ def _record(scene, plan, model, label, stage, solution, transmissivity=None) -> 
 def beyond_tables(rows, tables: dict) -> list:
     """Words for every (stage, set) past its table's last knot: the answer there is the table's
     linear continuation, not the law. Discrete joints are found and reported by the model itself
-    after every stage (fem_coupling.law_range, the check of every path, from the points' status):
+    after every stage (rockjoint.fem.mechanics.law_range, the check of every path, from the points' status):
     here only the scene's remedy is added; a smeared set has no such status, so its largest σ_n
     is compared with its table's range here."""
     out = [f"joint set {name}: past its table in stage '{row.stage}' (the model's warning above names the "

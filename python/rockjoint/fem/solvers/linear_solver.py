@@ -25,7 +25,7 @@ from __future__ import annotations
 import numpy as np
 from petsc4py import PETSc
 
-from .compat import la_petsc
+from ..compat import la_petsc
 
 
 class LinearSolveError(RuntimeError):

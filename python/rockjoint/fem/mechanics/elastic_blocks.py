@@ -12,7 +12,7 @@ import numpy as np
 import ufl
 from dolfinx import fem
 
-from .distributed_mesh import names_of
+from ..mesh.distributed_mesh import names_of
 
 
 class ElasticBlocks:

@@ -31,10 +31,10 @@ from dolfinx.graph import adjacencylist
 from dolfinx.io.utils import distribute_entity_data
 from dolfinx.mesh import GhostMode, create_mesh, meshtags, meshtags_from_entities
 
-from .compat import cpp_adjacency_list, create_cell_partitioner, create_serial_mesh, io_gmsh
+from ..compat import cpp_adjacency_list, create_cell_partitioner, create_serial_mesh, io_gmsh
 
-from ..meshes.jointed_mesh import JointedMesh
-from ..meshes.node_splitting import cell_facets, facet_keys
+from ...meshes.jointed_mesh import JointedMesh
+from ...meshes.node_splitting import cell_facets, facet_keys
 
 _GMSH_CELL_ID = {"triangle": 2, "tetrahedron": 4}
 _ROOT = 0
@@ -52,7 +52,7 @@ KEEP_CELL_ORDER_BLOCKS = 100
 # the blocky benchmark on 2 ranks needed 85 to 121 Krylov iterations on one mesh, launch to launch
 # (docs/fem.md, pitfall 17). With one thread the partition is the same at every launch. SCOTCH
 # reads the variable when it partitions, so setting it here covers every mesh created after
-# rockjoint.fem_coupling is imported, also the user's own; a value the user set is kept.
+# rockjoint.fem is imported, also the user's own; a value the user set is kept.
 os.environ.setdefault("SCOTCH_PTHREAD_NUMBER", "1")
 
 

@@ -23,7 +23,7 @@ from typing import Mapping
 import numpy as np
 from petsc4py import PETSc
 
-from .. import _rockjoint_fem_coupling
+from ... import _rockjoint_fem_coupling
 from .petsc_options import check_options_prefix, check_petsc_options
 
 log = logging.getLogger(__name__)

@@ -21,8 +21,8 @@ from dolfinx.fem import petsc as fem_petsc
 from mpi4py import MPI
 from petsc4py import PETSc
 
-from .compat import la_petsc
-from .distributed_mesh import lookup, names_of
+from ..compat import la_petsc
+from ..mesh.distributed_mesh import lookup, names_of
 from .in_situ import InSituStress
 from .loads import Load, Support, load_term, make_coefficient, set_coefficient
 

@@ -24,7 +24,7 @@ def write_joint_points(path: str, state: dict, gdim: int) -> None:
     heavy data in <stem>.h5 (meshio's XDMF writer, HDF5 through h5py). Attribute names carry
     their units: closure_m, normal_stress_Pa, shear_traction_Pa (vector, local axes t1[, t2]),
     status (rockjoint.Status values), joint_tag, and when the state has them slip_m (vector,
-    local axes), dilation_m, shear_state (rockjoint.fem_coupling.ShearState values)."""
+    local axes), dilation_m, shear_state (rockjoint.fem.ShearState values)."""
     import meshio  # Debian python3-meshio; imported here so the FE layer loads without it
 
     x = np.asarray(state["coordinates"], dtype=float).reshape(-1, gdim)

@@ -18,10 +18,10 @@ import numpy as np
 from dolfinx.fem import petsc as fem_petsc
 from petsc4py import PETSc
 
-from .compat import la_petsc
+from ..compat import la_petsc
 from .joint_initial_state import initial_jump
-from .linear_solver import LinearSolver, resolve_kind, rigid_body_modes
-from .snes_problem import JointedSNESProblem
+from ..solvers.linear_solver import LinearSolver, resolve_kind, rigid_body_modes
+from ..solvers.snes_problem import JointedSNESProblem
 
 
 def make_linear_solver(V, kind: str, options: dict, prefix: str | None, symmetric: bool) -> LinearSolver:

@@ -24,9 +24,9 @@ from dolfinx import fem
 from dolfinx.fem import petsc as fem_petsc
 from petsc4py import PETSc
 
-from .compat import create_vector
+from ..compat import create_vector
 from .coupling import JointCoupling, same_space
-from .snes_problem import JointedSNESProblem
+from ..solvers.snes_problem import JointedSNESProblem
 
 log = logging.getLogger(__name__)
 

@@ -36,7 +36,7 @@ from scipy.spatial import cKDTree
 
 from dolfinx import mesh as dmesh
 
-from .distributed_mesh import lookup, names_of
+from ..mesh.distributed_mesh import lookup, names_of
 
 
 #: points of the network closer than this fraction of its extent are one node (round-off only:

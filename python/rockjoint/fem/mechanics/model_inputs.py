@@ -5,8 +5,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..validation import positive_number
-from .distributed_mesh import names_of
+from ...validation import positive_number
+from ..mesh.distributed_mesh import names_of
 
 
 def per_block(blocks: dict, value, what: str, missing_message: str) -> dict:

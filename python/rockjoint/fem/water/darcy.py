@@ -25,7 +25,7 @@ from dolfinx import fem
 from dolfinx.fem import petsc as fem_petsc
 from petsc4py import PETSc
 
-from .distributed_mesh import lookup
+from ..mesh.distributed_mesh import lookup
 from .joint_flow import Fluid
 
 

@@ -16,8 +16,8 @@ from dolfinx import cpp as _dcpp
 from mpi4py import MPI
 from petsc4py import PETSc
 
-from .. import _rockjoint  # noqa: F401  (registers the ClosureLaw and JointBehaviour types used by _rockjoint_fem_coupling)
-from .. import _rockjoint_fem_coupling as _cpp
+from ... import _rockjoint  # noqa: F401  (registers the ClosureLaw and JointBehaviour types used by _rockjoint_fem_coupling)
+from ... import _rockjoint_fem_coupling as _cpp
 
 QuadratureRule = _cpp.QuadratureRule
 
@@ -226,7 +226,7 @@ class JointInterface:
     def state(self) -> dict:
         """Point state on this rank: coordinates, tag, closure [m], normal_stress [Pa, compression +],
         shear_traction [Pa] (points, gdim-1) along t1[, t2], status (rockjoint.Status values),
-        shear_state (rockjoint.fem_coupling.ShearState values: stick, slip, open), normal (of the pair), and
+        shear_state (rockjoint.fem.ShearState values: stick, slip, open), normal (of the pair), and
         the trial path-dependent state: slip [m] (points, gdim-1), dilation [m],
         accumulated_slip [m], bond_broken."""
         c = self._cpp

@@ -36,8 +36,8 @@ from dolfinx.fem import petsc as fem_petsc
 from mpi4py import MPI
 from petsc4py import PETSc
 
-from ..continuum import ContinuumPoints, EquivalentContinuum
-from .compat import create_vector
+from ...continuum import ContinuumPoints, EquivalentContinuum
+from ..compat import create_vector
 
 log = logging.getLogger(__name__)
 
@@ -135,7 +135,7 @@ class SmearedBlocks:
             self.tangent.x.array.reshape(-1, nv * nv)[self._dofs(tag)] = D
 
     def set_in_situ(self, in_situ) -> None:
-        """Start from the in-situ stress σ0 (rockjoint.fem_coupling.InSituStress): the sets pre-closed
+        """Start from the in-situ stress σ0 (rockjoint.fem.InSituStress): the sets pre-closed
         by σ0 at every quadrature point, ε0 the strain carrying it."""
         nv = self.nv
         for tag, pts in self.points.items():

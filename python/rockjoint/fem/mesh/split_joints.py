@@ -5,7 +5,7 @@ A FEniCSx user meshes with gmsh and reads the model with DOLFINx 0.11's
 
     mesh_data = dolfinx.io.gmsh.model_to_mesh(gmsh.model, comm, 0, gdim=2)
 
-(on DOLFINx 0.9, ``rockjoint.fem_coupling.compat.io_gmsh`` is that module).
+(on DOLFINx 0.9, ``rockjoint.fem.compat.io_gmsh`` is that module).
 That mesh is conforming: the two sides of a joint share their nodes. A zero-thickness joint needs
 them split (one copy per side) and both cells of every joint facet on one rank, so
 
@@ -25,7 +25,7 @@ from typing import Mapping
 import numpy as np
 from dolfinx.mesh import entities_to_geometry
 
-from ..meshes.node_splitting import build_jointed_mesh
+from ...meshes.node_splitting import build_jointed_mesh
 from .distributed_mesh import DistributedJointMesh, distribute
 
 _CELL_TYPE = {2: "triangle", 3: "tetrahedron"}

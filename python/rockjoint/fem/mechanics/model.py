@@ -27,22 +27,23 @@ import time
 import numpy as np
 from dolfinx import fem
 
-from ..joint import joint_behaviours, symmetric_tangent
-from . import monitors, output
+from ...joint import joint_behaviours, symmetric_tangent
+from ..output import monitors
+from ..output import fields as output
 from .coupling import JointCoupling
-from .distributed_mesh import lookup, names_of
+from ..mesh.distributed_mesh import lookup, names_of
 from .elastic_blocks import ElasticBlocks
 from .equivalent_continuum import SmearedBlocks
 from .in_situ import STANDARD_GRAVITY, InSituStress
 from .law_range import check_beyond_range
-from .linear_solver import LinearSolver
+from ..solvers.linear_solver import LinearSolver
 from .load_path import LoadPath
 from .loads import Load, Support
 from .model_inputs import check_density, check_element, check_plane, check_rock
-from .newton import NewtonOptions, solve_load_path
-from .petsc_options import check_options_prefix, check_petsc_options
+from ..solvers.newton import NewtonOptions, solve_load_path
+from ..solvers.petsc_options import check_options_prefix, check_petsc_options
 from .problem import JointedProblem, make_linear_solver
-from .pseudo_transient import solve_step_with_relaxation
+from ..solvers.pseudo_transient import solve_step_with_relaxation
 from .stages import Stage, StageClock, StageResult, snes_load_path, stage_result
 
 log = logging.getLogger(__name__)
@@ -51,7 +52,7 @@ log = logging.getLogger(__name__)
 class JointedRockModel:
     """A jointed rock mass: elastic blocks + joints with closure laws, loads, supports.
 
-    dmesh: rockjoint.fem_coupling.distributed_mesh.DistributedJointMesh (mesh, cell_blocks, boundaries,
+    dmesh: rockjoint.fem.mesh.distributed_mesh.DistributedJointMesh (mesh, cell_blocks, boundaries,
         names, pairs).
     element_degree: 1 or 2 (P2 uses the nodal joint rule).
     rock: {block name: (E [Pa], ν)} for every block, or one (E, ν) for all blocks.
@@ -65,7 +66,7 @@ class JointedRockModel:
     strength: joint shear strength (docs/joint-strength.md): None (elastic joints), one description
         for every joint, or {joint name: description}; a description is a JointStrength or a dict
         {"model": "coulomb" | "barton", "friction_angle": rad, "cohesion": Pa, ...} (see
-        rockjoint.fem_coupling.make_strength). With a strength the Jacobian is non-symmetric (LU / GMRES)
+        rockjoint.fem.make_strength). With a strength the Jacobian is non-symmetric (LU / GMRES)
         and the slip is committed only when a load step converges.
     plane: "strain" (default) or "stress" in 2D; None (or "3D") in 3D.
     quadrature: "nodal" (default; smooth tractions for stiff joints) or "gauss".

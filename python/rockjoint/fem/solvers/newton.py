@@ -71,7 +71,7 @@ class NewtonOptions:
     #: stagnation_window iterations earlier; the load step is then cut
     stagnation_window: int = 8
     stagnation_factor: float = 0.9
-    verbose: bool = True  #: log the residual of every iteration (INFO, logger rockjoint.fem_coupling.newton)
+    verbose: bool = True  #: log the residual of every iteration (INFO, logger rockjoint.fem.solvers.newton)
     #: linear tolerance of each Newton step: "eisenstat_walker" (inexact Newton, module docstring)
     #: or "fixed" (every step to the linear solver's own rtol)
     forcing: str = "eisenstat_walker"

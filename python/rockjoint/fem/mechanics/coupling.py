@@ -35,9 +35,9 @@ from dolfinx import fem
 from mpi4py import MPI
 from petsc4py import PETSc
 
-from ..joint import joint_behaviours, symmetric_tangent
-from .compat import la_petsc
-from .distributed_mesh import DistributedJointMesh, JointPairs, names_of
+from ...joint import joint_behaviours, symmetric_tangent
+from ..compat import la_petsc
+from ..mesh.distributed_mesh import DistributedJointMesh, JointPairs, names_of
 from .interface import JointInterface
 from .law_range import check_beyond_range, check_range, summarize
 

@@ -7,7 +7,7 @@ import numpy as np
 import ufl
 from dolfinx import fem
 
-from .distributed_mesh import lookup
+from ..mesh.distributed_mesh import lookup
 
 
 def _boundary_measure(model, boundary: str):

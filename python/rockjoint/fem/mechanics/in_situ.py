@@ -17,7 +17,7 @@ import numpy as np
 import ufl
 from dolfinx import fem
 
-from ..validation import positive_number
+from ...validation import positive_number
 
 #: standard gravity [m/s²]
 STANDARD_GRAVITY = 9.81

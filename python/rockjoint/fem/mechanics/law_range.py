@@ -29,8 +29,8 @@ from typing import Mapping
 import numpy as np
 from mpi4py import MPI
 
-from .._rockjoint import constitutive as _constitutive
-from .._rockjoint import joint as _joint
+from ..._rockjoint import constitutive as _constitutive
+from ..._rockjoint import joint as _joint
 
 
 #: the per-point status codes of a joint's state (coupling.state(u)["status"]): rockjoint.Status

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..joint import ShearModel, closure_at_normal_stress
+from ...joint import ShearModel, closure_at_normal_stress
 
 
 def initial_jump(interface, in_situ, behaviours: dict, gdim: int, joint_names: dict,

@@ -17,9 +17,9 @@ import numpy as np
 from dolfinx import fem
 from petsc4py import PETSc
 
-from .distributed_mesh import names_of
+from ..mesh.distributed_mesh import names_of
 from .law_range import check_range, summarize
-from .newton import StepReport, solve_load_path
+from ..solvers.newton import StepReport, solve_load_path
 
 log = logging.getLogger(__name__)
 
@@ -138,7 +138,7 @@ def _flag_matrix(solver, A) -> None:
 
 
 class StageClock:
-    """Progress of a stage on rank 0 (logger rockjoint.fem_coupling.stages, INFO): stage k/n, load factor,
+    """Progress of a stage on rank 0 (logger rockjoint.fem.mechanics.stages, INFO): stage k/n, load factor,
     Newton iterations of the step, elapsed time."""
 
     def __init__(self, comm, label: str):
