@@ -97,7 +97,7 @@ class Phases:
     def active(self):
         import gmsh
         from rockjoint.meshes import builders
-        from rockjoint.fem import model as model_module
+        from rockjoint.fem.mechanics import model as model_module
         from rockjoint.meshes import planar_section
         targets = [(gmsh.model.occ, n, "geometry") for n in ("cut", "fragment", "synchronize", "remove")]
         targets += [(gmsh.model.geo, "synchronize", "geometry"), (gmsh.model.mesh, "embed", "geometry"),

@@ -262,7 +262,7 @@ def load_cycle(aperture, params, table, jointed_mesh, intact_mesh, out):
         fig.tight_layout()
         fig.savefig(out("lab_closure_cycle.png"), dpi=120)
         plt.close(fig)
-    return law, solutions
+    return law, jointed, solutions
 
 
 def flow_cycle(bem, cycle, out):
@@ -273,12 +273,12 @@ def flow_cycle(bem, cycle, out):
     hysteretic law. The FE cube: each joint point's T from its closure, flow along the joint
     (rockjoint.fem.network_flow); closed form for the uniform joint spanning the cube:
     Q = (ρ g / μ) T Δh (the joint is as wide as it is long)."""
-    law, solutions = cycle
+    law, jointed, solutions = cycle
     walls = flow.transmissivity_law("walls", curve=bem)
     fluid = Fluid()
     rows = []
     for stress, solution, t in zip(CYCLE, solutions, flow.transmissivity_along(walls, law, CYCLE)):
-        q = network_flow(solution, {"joint": walls.transmissivity}, FLOW_HEADS, fluid).flow_rates["left"]
+        q = network_flow(jointed, {"joint": walls.transmissivity}, FLOW_HEADS, fluid, stage=solution).flow_rates["left"]
         rows.append((stress, t, q, fluid.conductivity_factor * t * (FLOW_HEADS["left"] - FLOW_HEADS["right"])))
     rows = np.array(rows)
     closure = law.closure_path(CYCLE)

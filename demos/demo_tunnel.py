@@ -176,7 +176,7 @@ def flow_lines(state, dist, theta, model, intact_dmesh, laws, names, out):
     crown = near & (np.abs(np.sin(theta)) > 0.9) & (sets == "bedding")
     side = near & (np.abs(np.cos(theta)) > 0.9) & (sets == "bedding")
     per_joint = {n: laws[n.rsplit("_", 1)[0]].transmissivity for n in names.values()}
-    networks = {stage: network_flow(model.stages[i], per_joint, FLOW_HEADS)
+    networks = {stage: network_flow(model, per_joint, FLOW_HEADS, stage=model.stages[i])
                 for i, stage in ((0, "in-situ"), (1, "excavation"))}
     networks["excavation"].write(out("tunnel_flow.xdmf"), COMM)
     rates = {stage: network.flow_rates["opening"] for stage, network in networks.items()}

@@ -91,7 +91,7 @@ def sliding_answer(model):
 def fail_first_newton(monkeypatch):
     """Make the first Newton of the next load step report failure without touching the model, so
     that pseudo-transient continuation solves it; returns the switch ({"first": bool})."""
-    from rockjoint.fem import pseudo_transient
+    from rockjoint.fem.solvers import pseudo_transient
     from rockjoint.fem.solvers.newton import StepReport
     real = pseudo_transient.newton
     calls = {"first": True}

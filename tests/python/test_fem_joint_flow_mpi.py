@@ -17,8 +17,8 @@ from rockjoint.fem.water.joint_flow import network_flow  # noqa: E402
 @pytest.mark.parametrize("dim", [2, 3])
 def test_parallel_joints_on_two_ranks(dim):
     comm = two_ranks()
-    result = solved_column(dim, (1.0, 2.0), comm=comm)
-    flow = network_flow(result, {"joint_1": cubic_law, "joint_2": cubic_law}, HEADS)
+    model = solved_column(dim, (1.0, 2.0), comm=comm)
+    flow = network_flow(model, {"joint_1": cubic_law, "joint_2": cubic_law}, HEADS)
     assert flow.flow_rates["left"] == pytest.approx(expected_rate(dim, 2), rel=1e-9)
     linear = HEADS["left"] + (HEADS["right"] - HEADS["left"]) * flow.nodes[:, 0] / WIDTH
     np.testing.assert_allclose(flow.head, linear, rtol=0, atol=1e-9 * HEADS["left"])

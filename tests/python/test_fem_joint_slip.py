@@ -288,7 +288,7 @@ def jacobian_against_finite_differences(dim, case, comm=MPI.COMM_WORLD):
         t1 = next(f for f in comm.allgather(frames[0, 1] if len(frames) else None) if f is not None)
         u0 = u1 + _translate_block(model, "block_2", 3e-3 * t1)
     model.u.x.array[:] = u0
-    model.problem().residual()
+    model.problem().residual_norm()
     states = np.concatenate(comm.allgather(model.interface.state()["shear_state"]))
     assert np.all(states == int(getattr(ShearState, case))), f"set-up: states {np.bincount(states)}"
     # A small step: no point may cross the strength within it (central differences of a kink).

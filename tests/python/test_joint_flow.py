@@ -14,8 +14,8 @@ from rockjoint.fem.water.joint_flow import Fluid, network_flow  # noqa: E402
 
 @pytest.mark.parametrize("dim, heights", [(2, (1.0, 2.0)), (2, (0.7, 1.5, 2.4)), (3, (1.0, 2.0))])
 def test_parallel_joints_carry_the_closed_form_rate(dim, heights):
-    result = solved_column(dim, heights)
-    flow = network_flow(result, {f"joint_{i + 1}": cubic_law for i in range(len(heights))}, HEADS)
+    model = solved_column(dim, heights)
+    flow = network_flow(model, {f"joint_{i + 1}": cubic_law for i in range(len(heights))}, HEADS)
     q = expected_rate(dim, len(heights))
     assert flow.flow_rates["left"] == pytest.approx(q, rel=1e-9)
     assert flow.flow_rates["right"] == pytest.approx(-q, rel=1e-9)
@@ -26,30 +26,30 @@ def test_parallel_joints_carry_the_closed_form_rate(dim, heights):
 
 
 def test_a_closed_joint_carries_nothing_and_its_nodes_are_unreached():
-    result = solved_column(2, (1.0, 2.0))
+    model = solved_column(2, (1.0, 2.0))
     laws = {"joint_1": cubic_law, "joint_2": lambda d: np.zeros_like(d)}
-    flow = network_flow(result, laws, HEADS)
+    flow = network_flow(model, laws, HEADS)
     assert flow.flow_rates["left"] == pytest.approx(expected_rate(2, 1), rel=1e-9)
     tags = flow.element_tags
-    closed = np.unique(flow.elements[tags == result.model.dmesh.joint_tag("joint_2")])
+    closed = np.unique(flow.elements[tags == model.dmesh.joint_tag("joint_2")])
     inside = closed[(flow.nodes[closed, 0] > 0) & (flow.nodes[closed, 0] < WIDTH)]
     assert inside.size == closed.size - 2          # its two ends keep the heads given there
     assert np.all(np.isnan(flow.head[inside])) and flow.unreached_nodes == inside.size
 
 
 def test_bad_input_is_refused_by_name():
-    result = solved_column(2, (1.0, 2.0))
+    model = solved_column(2, (1.0, 2.0))
     laws = {"joint_1": cubic_law, "joint_2": cubic_law}
     with pytest.raises(ValueError, match="joint_2"):
-        network_flow(result, {"joint_1": cubic_law}, HEADS)
+        network_flow(model, {"joint_1": cubic_law}, HEADS)
     with pytest.raises(ValueError, match="joint_9"):
-        network_flow(result, dict(laws, joint_9=cubic_law), HEADS)
+        network_flow(model, dict(laws, joint_9=cubic_law), HEADS)
     with pytest.raises(ValueError, match="head on 'left'"):
-        network_flow(result, laws, {"left": float("nan")})
+        network_flow(model, laws, {"left": float("nan")})
     with pytest.raises(ValueError, match="unknown boundary 'east'"):
-        network_flow(result, laws, {"east": 1.0})
+        network_flow(model, laws, {"east": 1.0})
     with pytest.raises(ValueError, match="joint 'joint_1'.*>= 0"):
-        network_flow(result, dict(laws, joint_1=lambda d: -np.ones_like(d)), HEADS)
+        network_flow(model, dict(laws, joint_1=lambda d: -np.ones_like(d)), HEADS)
     with pytest.raises(ValueError, match="viscosity"):
         Fluid(viscosity=-1.0)
 
@@ -76,9 +76,9 @@ def test_flow_passes_from_one_joint_into_another_where_they_meet():
     model.fix("left", "x")
     model.add_traction("top", (0.0, -1e6))
     model.add_traction("right", (-1e6, 0.0))
-    result = model.solve()
+    model.solve()
     t_a, t_b = 1e-10, 4e-10                 # [m³]
-    flow = network_flow(result, {"A": lambda d: np.full_like(d, t_a), "B": lambda d: np.full_like(d, t_b)},
+    flow = network_flow(model, {"A": lambda d: np.full_like(d, t_a), "B": lambda d: np.full_like(d, t_b)},
                         {"left": 10.0, "top": 4.0})
     q = Fluid().conductivity_factor * (10.0 - 4.0) / (1.0 / t_a + 1.0 / t_b)
     assert flow.flow_rates["left"] == pytest.approx(q, rel=1e-9)
@@ -118,8 +118,8 @@ def test_smeared_set_carries_what_its_discrete_joints_carry(dim):
 
 def test_the_network_is_written_for_paraview(tmp_path):
     import meshio
-    result = solved_column(2, (1.0, 2.0))
-    flow = network_flow(result, {"joint_1": cubic_law, "joint_2": cubic_law}, HEADS)
+    model = solved_column(2, (1.0, 2.0))
+    flow = network_flow(model, {"joint_1": cubic_law, "joint_2": cubic_law}, HEADS)
     path = flow.write(str(tmp_path / "network.xdmf"))
     back = meshio.read(path)
     np.testing.assert_allclose(back.points[:, :2], flow.nodes)

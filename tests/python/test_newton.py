@@ -7,11 +7,11 @@ import math
 import numpy as np
 import pytest
 
-from rockjoint.fem.solvers.newton import NewtonOptions, newton, solve_load_path
+from rockjoint.fem.solvers.newton import NewtonOptions, NewtonProblem, newton, solve_load_path
 
 
-class Scalar:
-    """r(u) = k u + c u³ - λ f: a stiffening spring with the problem interface of newton.py."""
+class Scalar(NewtonProblem):
+    """r(u) = k u + c u³ - λ f: a stiffening spring, a NewtonProblem (newton.py's protocol)."""
 
     def __init__(self, k=2.0, c=1.0, f=3.0, u=0.0, noise=0.0):
         self.k, self.c, self.f, self.u, self.noise = k, c, f, u, noise
@@ -23,13 +23,13 @@ class Scalar:
     def r(self):
         return self.k * self.u + self.c * self.u**3 - self.load_factor * self.f
 
-    def residual(self):
+    def residual_norm(self):
         return abs(self.r()) + self.noise
 
-    def jacobian(self):
+    def update_jacobian(self):
         pass
 
-    def solve_increment(self):
+    def solve_increment(self, rtol=None):
         self.du = -self.r() / (self.k + 3 * self.c * self.u**2)
 
     def admissible_step(self, fraction):
@@ -82,7 +82,7 @@ def test_a_residual_floor_above_the_tolerance_stops_on_the_increment():
 
 def test_a_step_that_does_not_reduce_the_residual_is_stagnation_and_cuts_the_load():
     p = Scalar()
-    p.solve_increment = lambda: setattr(p, "du", 0.0)   # a useless linear solve
+    p.solve_increment = lambda rtol=None: setattr(p, "du", 0.0)   # a useless linear solve
     p.increment_norms = lambda: (1.0, 1.0)              # (and no increment convergence)
     report = newton(p, 1.0, NewtonOptions(verbose=False, stagnation_window=4))
     assert not report.converged and report.reason.startswith("stagnation")
@@ -97,8 +97,8 @@ def test_a_step_into_a_non_finite_residual_is_halved_instead_of_failing_the_load
     # The residual is not finite beyond u = 1.3 (a closure past a law's maximum, a failed local
     # solve): the first full step from rest, du = 1.5, lands there and is halved to 0.75.
     p = Scalar()
-    finite = p.residual
-    p.residual = lambda: finite() if p.u <= 1.3 else math.inf
+    finite = p.residual_norm
+    p.residual_norm = lambda: finite() if p.u <= 1.3 else math.inf
     report = newton(p, 1.0, QUIET)
     assert report.converged and p.u == pytest.approx(1.0, rel=1e-12)
     assert report.step_lengths[0] == 0.5
@@ -125,7 +125,7 @@ class Recording(Scalar):
 
     def solve_increment(self, rtol=None):
         self.asked.append(rtol)
-        super().solve_increment()
+        super().solve_increment(rtol)
         return 1
 
 
@@ -176,3 +176,21 @@ def test_bad_forcing_options_are_refused_with_their_range():
         NewtonOptions(forcing_max=1.5)
     with pytest.raises(ValueError, match=r"forcing_alpha must be in \(1, 2\]"):
         NewtonOptions(forcing_alpha=3.0)
+
+
+def test_newton_drives_a_newton_problem_and_names_the_protocol_otherwise():
+    class Duck:   # the methods, but not the declared protocol: refused, not probed
+        load_factor = 0.0
+    for solve in (lambda p: newton(p, 1.0, QUIET), lambda p: solve_load_path(p, 1, QUIET)):
+        with pytest.raises(TypeError, match="NewtonProblem"):
+            solve(Duck())
+
+
+def test_a_problem_without_increment_norms_stops_on_the_residual_alone():
+    class NoNorms(Scalar):
+        def increment_norms(self):
+            return None
+    p = NoNorms()
+    report = newton(p, 1.0, QUIET)
+    assert report.converged and "round-off" not in report.reason
+    assert p.u == pytest.approx(1.0, rel=1e-12)

@@ -56,7 +56,7 @@ def stage_flow(scene, model, solution, laws: dict | None):
     if laws is not None:
         names = model.dmesh.names["joints"].values()
         per_joint = {n: laws[geometry.joint_set_of(scene, n)].transmissivity for n in names}
-        network = network_flow(solution, per_joint, heads)
+        network = network_flow(model, per_joint, heads, stage=solution)
         return network.flow_rates, network
     k = scene.data["rock"].get("permeability")
     if k is None:

@@ -14,8 +14,6 @@ import shutil
 import tempfile
 import time
 
-import math
-
 import numpy as np
 from mpi4py import MPI
 
@@ -25,7 +23,7 @@ from ..joint import joint_behaviours
 from ..fem import (ConvergenceError, InSituStress, JointedRockModel, LinearSolveError, NewtonOptions,
                             ShearState, distribute)
 from . import flow as scene_flow
-from . import geometry, joint_laws, pictures, planner, statics, stresses
+from . import geometry, joint_laws, pictures, statics
 
 log = logging.getLogger("rockjoint.scenes")
 
@@ -132,29 +130,6 @@ def _strength(spec):
     return None if spec is None else dict(spec)
 
 
-def smeared_state(scene, plan, model) -> dict:
-    """{smeared set: (max closure [m], max σ_n [Pa], slipping points)} over all ranks, from the
-    sets' converged point state (SmearedBlocks.point_state: closure -j_n, σ_n = -n·σ·n, |τ|),
-    slipping where τ reaches c + σ_n tan φ (sets the plan lets slip)."""
-    sm = getattr(model, "smeared", None)
-    if sm is None:
-        return {}
-    state, sets, _ = sm.point_state()
-    out = {}
-    for name, tag in sorted(sets.items()):
-        at = state["tag"] == tag
-        closure, sn, tau = state["closure"][at], state["normal_stress"][at], state["shear_traction"][at]
-        strength = scene.data["joints"][name].get("strength") if plan.slip.get(name) else None
-        slipping = 0
-        if strength is not None and sn.size:
-            cap = stresses.shear_capacity(strength, np.maximum(sn, 0.0))
-            slipping = int(np.sum((cap > 0) & (tau >= (1.0 - 1e-6) * cap)))
-        out[name] = (model.comm.allreduce(float(closure.max(initial=-np.inf)), op=MPI.MAX),
-                     model.comm.allreduce(float(sn.max(initial=-np.inf)), op=MPI.MAX),
-                     model.comm.allreduce(slipping, op=MPI.SUM))
-    return out
-
-
 def _record(scene, plan, model, label, stage, solution, transmissivity=None) -> StageRow:
     monitors = {b: np.r_[model.boundary_mean_displacement(b), model.mean_normal_displacement(b)]
                 for b in scene.data["outputs"]["monitor"]}
@@ -176,7 +151,7 @@ def _record(scene, plan, model, label, stage, solution, transmissivity=None) -> 
             slip = np.asarray(state["shear_state"]) == int(ShearState.slip)
             row.slipping = int(np.sum(slip))
             row.slipping_per_set = {str(name): int(np.sum(slip[sets == name])) for name in np.unique(sets)}
-    smeared = smeared_state(scene, plan, model)
+    smeared = model.smeared.set_summary() if model.smeared is not None else {}
     for name, (closure, sn, slipping) in smeared.items():
         row.per_set[name] = (closure, sn)
         row.slipping_per_set[name] = slipping

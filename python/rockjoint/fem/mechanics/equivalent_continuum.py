@@ -37,6 +37,7 @@ from mpi4py import MPI
 from petsc4py import PETSc
 
 from ...continuum import ContinuumPoints, EquivalentContinuum
+from ...joint import StrengthModel
 from ..compat import create_vector
 
 log = logging.getLogger(__name__)
@@ -231,6 +232,27 @@ class SmearedBlocks:
         keys = ("tag", "closure", "normal_stress", "shear_traction", "status")
         state = {key: np.concatenate([p[i] for p in parts]) if parts else np.zeros(0) for i, key in enumerate(keys)}
         return state, labels, behaviours
+
+    def set_summary(self) -> dict:
+        """{set label: (largest closure [m], largest σ_n [Pa], slipping points)} of the smeared sets
+        over all ranks (the same on every rank; collective), from point_state(): slipping where τ
+        reaches (1 - 1e-6) of the set's own shear strength at max(σ_n, 0) (JointStrength of its
+        behaviour; a set without a strength never slips)."""
+        state, sets, behaviours = self.point_state()
+        comm = self.mesh.comm
+        out = {}
+        for label, tag in sorted(sets.items()):
+            at = state["tag"] == tag
+            closure, sn, tau = state["closure"][at], state["normal_stress"][at], state["shear_traction"][at]
+            strength = behaviours[label].strength
+            slipping = 0
+            if strength.model != StrengthModel.none and sn.size:
+                cap = np.array([strength.shear_strength(float(v)) for v in np.maximum(sn, 0.0)])
+                slipping = int(np.sum((cap > 0) & (tau >= (1.0 - 1e-6) * cap)))
+            out[label] = (comm.allreduce(float(closure.max(initial=-np.inf)), op=MPI.MAX),
+                          comm.allreduce(float(sn.max(initial=-np.inf)), op=MPI.MAX),
+                          comm.allreduce(slipping, op=MPI.SUM))
+        return out
 
     def reset_state(self) -> None:
         """Back to the virgin state (no in-situ stress, no slip, sets unloaded): a restarted model."""

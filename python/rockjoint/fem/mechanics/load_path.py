@@ -10,9 +10,12 @@ the whole boundary: the support carries them) and gravity; JointedRockModel pre-
 (joint_initial_state.py) so that u = 0 is an equilibrium, and checks it.
 
 `LoadPath` works on the blocks' space and forms (elastic_blocks.ElasticBlocks) and the named
-groups of the mesh only: it knows nothing of joints or solvers.
+groups of the mesh only: it knows nothing of joints or solvers. It owns where the model stands on
+its path (`StageState`): the one record of it the model reads and changes.
 """
 from __future__ import annotations
+
+from dataclasses import dataclass
 
 import numpy as np
 import ufl
@@ -27,6 +30,21 @@ from .in_situ import InSituStress
 from .loads import Load, Support, load_term, make_coefficient, set_coefficient
 
 _COMPONENTS = {"x": 0, "y": 1, "z": 2}
+
+
+@dataclass
+class StageState:
+    """Where a model stands on its load path, in one place (LoadPath.stage)."""
+
+    #: the initial state (in-situ loads, joint pre-closure) is set; a new in-situ stress or a
+    #: restarted solve clears it
+    initial_state_set: bool = False
+    #: a stage has begun since the model was set up (model.problem() begins one only before that)
+    begun: bool = False
+    #: a stage opened by advance() is in progress (the next solve() ends it at the factor reached)
+    advancing: bool = False
+    #: "k/n" while run() drives the stages (the progress log's stage label), else None
+    label: str | None = None
 
 
 class LoadPath:
@@ -63,6 +81,7 @@ class LoadPath:
         self.support_dofs: dict = {}
         self.constrained_local = np.zeros(0, dtype=np.int32)
         self.any_prescribed = False
+        self.stage = StageState()  #: where the model stands on its path
         self.applied = None   # the load factor whose loads are in f_lambda and u
         self.state = None     # external loads the next stage starts from
         self._prescribed = np.zeros(blocks.num_local_dofs)  # per local dof (collect_prescribed)
@@ -186,6 +205,7 @@ class LoadPath:
         self.in_situ = in_situ
         self.equilibrium_tolerance = float(equilibrium_tolerance)
         self._forms_changed = True
+        self.stage.initial_state_set = False
 
     def _multiplier(self, boundary: str):
         """The fraction of σ0·n carried by `boundary` (a Constant, 1 until excavated)."""
@@ -331,14 +351,12 @@ class LoadPath:
         moved = bool(np.any(self._g_prev != 0.0) or np.any(self._g_delta != 0.0))
         self.any_prescribed = self.blocks.mesh.comm.allreduce(moved, op=MPI.MAX)
         self.applied = None
-
-    @property
-    def stage_open(self) -> bool:
-        """A stage has begun (begin_stage) since the model was set up."""
-        return self._f_prev is not None
+        self.stage.begun = True
 
     def end_stage(self, reached: float) -> None:
-        """The external loads of load factor `reached` become the state the next stage starts from."""
+        """The external loads of load factor `reached` become the state the next stage starts from
+        (a stage advance() opened is closed)."""
+        self.stage.advancing = False
         state = self.state.copy()
         state.scale(1.0 - reached)
         state.axpy(reached, self._next)

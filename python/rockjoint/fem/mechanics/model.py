@@ -128,9 +128,6 @@ class JointedRockModel:
             self.smeared = SmearedBlocks(self.blocks, dmesh, {lookup(dmesh, "blocks", name): m
                                                               for name, m in continuum.items()}, self.rock)
         self._problem = JointedProblem(self.blocks, self.load_path, self.smeared, self.newton_options.closure_limit)
-        self._initialised = False    # initial state (in-situ loads, joint pre-closure) set
-        self._advancing = False      # a stage opened by advance() is in progress
-        self._stage_label = None     # "k/n" while run() drives the stages
         self._problem.timings["setup"] = time.perf_counter() - t0
 
     # ---- what the parts hold -----------------------------------------------------------------
@@ -200,7 +197,6 @@ class JointedRockModel:
             raise RuntimeError("set_in_situ_stress: the in-situ stress is the initial state; set it before "
                                "the first solve()")
         self.load_path.set_in_situ_stress(in_situ, equilibrium_tolerance)
-        self._initialised = False
 
     # ---- setup -----------------------------------------------------------------------------
     def prepare(self) -> JointedProblem:
@@ -219,8 +215,8 @@ class JointedRockModel:
         supports = self.load_path.refresh(self.u.x.array)
         if supports is not None:
             p.set_supports(supports)
-        if not self._initialised:
-            self._initialised = True
+        if not self.load_path.stage.initial_state_set:
+            self.load_path.stage.initial_state_set = True
             vertex_rule = self.quadrature == "nodal" and self.degree == 1  # joint_initial_state.py
             p.set_initial_state(self.behaviours, names_of(self.dmesh, "joints"), vertex_rule)
         return p
@@ -229,7 +225,7 @@ class JointedRockModel:
         """The model's nonlinear problem (F, J) for PETSc SNES or a user's Newton, at the current
         stage's load factor (`problem.load_factor`): the object the model's own solvers drive."""
         p = self.prepare()
-        if not self.load_path.stage_open:
+        if not self.load_path.stage.begun:
             p.begin_stage()
         return p
 
@@ -246,13 +242,13 @@ class JointedRockModel:
             raise ValueError(f"solver must be 'newton' or 'snes', got {solver!r}")
         if restart and self._problem.coupling is not None:
             self._problem.reset_state()  # path-dependent point state
-            self._initialised = False
-            self._advancing = False
+            self.load_path.stage.initial_state_set = False
+            self.load_path.stage.advancing = False
         p = self.prepare()
         self._close_advanced_stage()
         k = len(self.stages) + 1
         name = name or f"stage_{k}"
-        p.clock = StageClock(self.comm, f"{self._stage_label or str(k)} ({name})")
+        p.clock = StageClock(self.comm, f"{self.load_path.stage.label or str(k)} ({name})")
         p.begin_stage()
         t0 = time.perf_counter()
         try:
@@ -280,9 +276,9 @@ class JointedRockModel:
         target = float(load_factor)
         if not np.isfinite(target):
             raise ValueError(f"load_factor must be finite, got {load_factor!r}")
-        if not self._advancing:
+        if not self.load_path.stage.advancing:
             self.prepare().begin_stage()
-            self._advancing = True
+            self.load_path.stage.advancing = True
         t0 = time.perf_counter()
         reports = solve_load_path(self._problem, load_steps, self.newton_options, target=target, adaptive=False,
                                   solve_step=self._step_solver())
@@ -301,9 +297,8 @@ class JointedRockModel:
 
     def _close_advanced_stage(self) -> None:
         """After advance(): the loads of the factor reached become the next stage's start."""
-        if self._advancing:
+        if self.load_path.stage.advancing:
             self.load_path.end_stage(self._problem.load_factor)
-            self._advancing = False
 
     def run(self, stages: list) -> list:
         """Solve a sequence of Stage(name, load_steps, actions, solver) in order (actions(model)
@@ -314,11 +309,11 @@ class JointedRockModel:
                 raise ValueError(f"run: stage {k} is a {type(stage).__name__}, not a Stage")
             if stage.actions is not None:
                 stage.actions(self)
-            self._stage_label = f"{k}/{len(stages)}"
+            self.load_path.stage.label = f"{k}/{len(stages)}"
             try:
                 out.append(self.solve(stage.load_steps, stage.name, stage.solver))
             finally:
-                self._stage_label = None
+                self.load_path.stage.label = None
         return out
 
     def _stage_result(self, name: str, reports: list, elapsed: float) -> StageResult:

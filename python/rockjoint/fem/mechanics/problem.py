@@ -21,6 +21,7 @@ from petsc4py import PETSc
 from ..compat import la_petsc
 from .joint_initial_state import initial_jump
 from ..solvers.linear_solver import LinearSolver, resolve_kind, rigid_body_modes
+from ..solvers.newton import NewtonProblem
 from ..solvers.snes_problem import JointedSNESProblem
 
 
@@ -35,14 +36,15 @@ def make_linear_solver(V, kind: str, options: dict, prefix: str | None, symmetri
                         symmetric=symmetric, options=options, prefix=prefix)
 
 
-class JointedProblem(JointedSNESProblem):
+class JointedProblem(JointedSNESProblem, NewtonProblem):
     """F(u) = 0 of a jointed rock model at its load factor `load_factor`, for the project's Newton,
     PETSc SNES (`snes_solver()`, `snes_F`, `snes_J`) or a user's Newton.
 
-    Newton's protocol (newton.py): residual() -> ||F|| (inf if not finite), jacobian(),
-    solve_increment(rtol), increment_norms(), admissible_step(fraction), apply_increment(α),
-    load_norm(λ), save_state() / restore_state() / commit_state(). SNES's: residual(x, b) and
-    jacobian(x, A) at a trial x (copied into u first), matrix(), vector(). A non-finite joint
+    Newton's protocol (newton.NewtonProblem): residual_norm() -> ||F|| (inf if not finite),
+    update_jacobian(), solve_increment(rtol), increment_norms(), admissible_step(fraction),
+    apply_increment(α), load_norm(λ), save_state() / restore_state() / commit_state(). SNES's
+    (snes_problem.JointedSNESProblem): residual(x, b) and jacobian(x, A) at a trial x (copied
+    into u first), matrix(), vector(). A non-finite joint
     traction or a failed local solve of a smeared set gives an infinite residual (a SNES
     function-domain error). Built by JointedRockModel, which calls connect() and set_supports()
     before the first solve (model.problem() returns it ready)."""
@@ -115,7 +117,7 @@ class JointedProblem(JointedSNESProblem):
         if self.smeared is not None:
             self.smeared.set_in_situ(lp.in_situ)
         self.begin_stage(hold=True)
-        lp.check_initial_equilibrium(self.residual())
+        lp.check_initial_equilibrium(self.residual_norm())
 
     # ---- stages --------------------------------------------------------------------------
     def begin_stage(self, hold: bool = False) -> None:
@@ -142,12 +144,9 @@ class JointedProblem(JointedSNESProblem):
         self.counts["interface_residual"] += 1
         return finite
 
-    def residual(self, x: PETSc.Vec | None = None, b: PETSc.Vec | None = None) -> float | None:
-        """Without arguments (the project's Newton): F at the current u into the problem's own
-        vector `r`, returning ||F|| (inf if not finite); the prescribed displacements of the load
-        factor go into u first. With (x, b) (SNES): F at x into b (JointedSNESProblem.residual)."""
-        if x is not None or b is not None:
-            return super().residual(x, b)
+    def residual_norm(self) -> float:
+        """F at the current u into the problem's own vector `r`, returning ||F|| (inf if not
+        finite); the prescribed displacements of the load factor go into u first."""
         lp = self.load_path
         lp.apply(self.load_factor, self.u)
         r = self.r
@@ -169,16 +168,12 @@ class JointedProblem(JointedSNESProblem):
         nrm = r.norm()
         return nrm if np.isfinite(nrm) else np.inf
 
-    def jacobian(self, x: PETSc.Vec | None = None, A: PETSc.Mat | None = None) -> None:
-        """Without arguments (the project's Newton): the Jacobian at the current u into `J`. With
-        (x, A) (SNES): at x into A (JointedSNESProblem.jacobian)."""
-        if x is not None or A is not None:
-            super().jacobian(x, A)
-        else:
-            self.assemble_jacobian(self.J)
+    def update_jacobian(self) -> None:
+        """The Jacobian at the current u into the problem's own matrix `J`."""
+        self.assemble_jacobian(self.J)
 
     def assemble_residual(self, b: PETSc.Vec) -> bool:
-        finite = bool(np.isfinite(self.residual()))
+        finite = bool(np.isfinite(self.residual_norm()))
         self.r.copy(b)
         return finite
 

@@ -27,11 +27,13 @@ log = logging.getLogger(__name__)
 @dataclass
 class StageResult:
     """Result of one stage (JointedRockModel.solve): displacement (a copy, relative to the initial
-    state), joint point state, support reactions and the Newton history."""
+    state), joint point state, support reactions and the Newton history; a record of values that
+    holds no part of the model (the model keeps its stages: model.stages)."""
     displacement: fem.Function
     joints: dict       #: point state on this rank (see JointInterface.state)
     reports: list      #: newton.StepReport per attempted load step
-    model: "object"
+    comm: object       #: the model's MPI communicator (gather_joints, summary)
+    joint_names: dict  #: {joint name: tag} of the model's mesh (the same on every rank)
     name: str = ""
     #: {(boundary, "x"|"y"|"z"): force the support exerts on the rock [N; N/m in 2D]}, all ranks
     reactions: dict = field(default_factory=dict)
@@ -39,7 +41,7 @@ class StageResult:
 
     def gather_joints(self) -> dict:
         """The joint point state of all ranks, concatenated (on every rank)."""
-        comm = self.model.comm
+        comm = self.comm
         return {k: np.concatenate(comm.allgather(np.asarray(v)), axis=0) for k, v in self.joints.items()}
 
     @property
@@ -49,7 +51,7 @@ class StageResult:
     def summary(self) -> dict:
         """{joint name: law_range.JointSummary} of the stage's joint state over all ranks (the
         same on every rank; collective)."""
-        return summarize(self.model.comm, self.joints, names_of(self.model.dmesh, "joints"))
+        return summarize(self.comm, self.joints, self.joint_names)
 
     def beyond_law_range(self) -> dict:
         """{joint name: number of points (all ranks)} whose law answered outside its range:
@@ -77,7 +79,8 @@ def stage_result(model, problem, name: str, reports: list, elapsed: float) -> St
     state = problem.coupling.state(problem.u)
     disp = fem.Function(problem.u.function_space, name="displacement")
     disp.x.array[:] = problem.u.x.array
-    result = StageResult(disp, state, reports, model, name, problem.reactions(), elapsed)
+    result = StageResult(disp, state, reports, model.comm, names_of(model.dmesh, "joints"), name,
+                         problem.reactions(), elapsed)
     # Never silent: past a table's last knot the answer is its linear continuation, not the law.
     problem.coupling.check_range(where=f"in stage {name!r}")  # the state just evaluated at u
     if model.smeared is not None:   # the smeared sets, by the same check
@@ -102,7 +105,7 @@ def snes_load_path(problem, load_steps: int, options) -> list:
 
     def solve_step(_, target, step, start):
         problem.load_factor = target
-        problem.residual()  # sets the prescribed displacements of λ = target into u
+        problem.residual_norm()  # sets the prescribed displacements of λ = target into u
         scale = problem.load_norm(target)
         snes.setTolerances(atol=max(options.atol + options.rtol * scale, 1e-300), rtol=1e-14,
                            stol=0.0, max_it=options.max_iterations)

@@ -1,10 +1,11 @@
 # SPDX-License-Identifier: MIT
 """Newton's method with a closure-limiting step and adaptive load stepping.
 
-The problem object supplies residual() (returns ||r||, inf if not finite), jacobian(),
-solve_increment(), admissible_step(fraction), apply_increment(α), load_norm(λ),
-save_state()/restore_state() and optionally increment_norms() -> (||du||, ||u||), comm and
-commit_state() (called after every converged load step).
+The problem is a `NewtonProblem` (below): the one protocol that the project's Newton drives,
+written down rather than probed: residual_norm() (||r||, inf if not finite), update_jacobian(),
+solve_increment(rtol), admissible_step(fraction), apply_increment(α), load_norm(λ),
+save_state()/restore_state()/commit_state() (after every converged load step), increment_norms()
+(or None), is_linear and comm.
 Newton stops on the residual (relative to the load, or to the initial residual when the load
 is zero), on an increment at round-off, and fails on stagnation or a non-finite residual. Stiffening laws (Barton-Bandis: σ → ∞ as Δ → V_m) defeat plain
 Newton from zero once the load passes about K_ni·V_m (docs/fem.md, pitfall 7): every
@@ -20,8 +21,7 @@ converges in at most `easy_iterations` lets the next one grow by `growth`. After
 step the problem's commit_state() (if it has one) makes the path-dependent joint state the new
 reference; after a failed one restore_state() reverts u, the load factor and the trial state.
 
-Inexact Newton (Eisenstat & Walker 1996, choice 2): if the problem's solve_increment accepts an
-rtol and the problem is not linear (`is_linear`), step k is solved only to the relative linear
+Inexact Newton (Eisenstat & Walker 1996, choice 2): unless the problem is linear (`is_linear`), step k is solved only to the relative linear
 residual η_k = γ (||r_k|| / ||r_k-1||)^α, safeguarded by η_k >= γ η_k-1^α when that exceeds 0.1
 (no sudden tightening), η_k <= forcing_max, and η_k >= 0.5 tol / ||r_k|| (no oversolving of the
 last step, Kelley 1995, Eq. 6.20); when the predicted residual η_k ||r_k|| is within 10 tol, the
@@ -32,7 +32,7 @@ linear solves.
 """
 from __future__ import annotations
 
-import inspect
+import abc
 import logging
 import time
 from dataclasses import dataclass, field
@@ -45,6 +45,73 @@ log = logging.getLogger(__name__)
 
 class ConvergenceError(RuntimeError):
     """Newton or the load stepping could not reach the requested load."""
+
+
+class NewtonProblem(abc.ABC):
+    """The protocol of a problem F(u; λ) = 0 that `newton` and `solve_load_path` drive (the model's
+    `JointedProblem`, a user's own). The solver calls exactly these and nothing else:
+
+    - residual_norm() -> ||F|| at the current u and load_factor (inf if not finite: the step is
+      cut); update_jacobian(); solve_increment(rtol) -> Krylov iterations or None (rtol: the
+      linear tolerance of inexact Newton, None: the solver's own);
+    - admissible_step(fraction) -> the largest α <= 1 keeping every closure within `fraction` of
+      its room (1.0 without joints); apply_increment(α): u += α du;
+    - load_norm(λ): the force scale the tolerance is relative to;
+    - save_state() / restore_state() around a load step, commit_state() after a converged one
+      (path-dependent state; nothing by default);
+    - increment_norms() -> (||du||, ||u||) for the round-off stop, or None (the default: no such
+      stop); is_linear (no inexact Newton: one exact solve is the answer); comm (the rank that
+      logs; None: serial).
+    """
+
+    load_factor: float = 0.0
+    is_linear: bool = False
+    comm = None
+
+    @abc.abstractmethod
+    def residual_norm(self) -> float:
+        """||F|| at the current u and load factor (inf if not finite)."""
+
+    @abc.abstractmethod
+    def update_jacobian(self) -> None:
+        """The Jacobian at the current u."""
+
+    @abc.abstractmethod
+    def solve_increment(self, rtol: float | None = None) -> int | None:
+        """du = -J⁻¹ F to the relative linear tolerance rtol; the Krylov iterations or None."""
+
+    @abc.abstractmethod
+    def admissible_step(self, fraction: float) -> float:
+        """The step length α in (0, 1] the closure limiter allows."""
+
+    @abc.abstractmethod
+    def apply_increment(self, alpha: float) -> None:
+        """u += α du."""
+
+    @abc.abstractmethod
+    def load_norm(self, load_factor: float) -> float:
+        """The scale of the forces at `load_factor`."""
+
+    @abc.abstractmethod
+    def save_state(self) -> None:
+        """Keep u, the load factor and the trial state before a load step."""
+
+    @abc.abstractmethod
+    def restore_state(self) -> None:
+        """Back to the state save_state() kept (a failed load step)."""
+
+    def commit_state(self) -> None:
+        """A load step converged: its trial state becomes the converged one (none by default)."""
+
+    def increment_norms(self) -> tuple | None:
+        """(||du||, ||u||) of the last increment, or None (no round-off stop)."""
+        return None
+
+
+def _check_problem(problem) -> None:
+    if not isinstance(problem, NewtonProblem):
+        raise TypeError(f"Newton drives a rockjoint.fem.solvers.newton.NewtonProblem; got a "
+                        f"{type(problem).__name__} (subclass NewtonProblem and implement its methods)")
 
 
 @dataclass
@@ -154,7 +221,7 @@ def solve_load_path(problem, load_steps: int, options: NewtonOptions, *, target:
     lam = float(problem.load_factor)
     increment = (target - lam) / load_steps
     start = time.perf_counter()
-    commit = getattr(problem, "commit_state", None)  # optional for problems without history
+    _check_problem(problem)
 
     def reached(x: float) -> bool:
         return abs(target - x) <= 1e-12 * max(1.0, abs(target))
@@ -168,8 +235,7 @@ def solve_load_path(problem, load_steps: int, options: NewtonOptions, *, target:
         reports.append(report)
         if report.converged:
             lam = step_to
-            if commit is not None:
-                commit()
+            problem.commit_state()
             if adaptive and report.iterations <= options.easy_iterations:
                 increment *= options.growth
             continue
@@ -193,14 +259,14 @@ def newton(problem, load_factor: float, options: NewtonOptions, step: int = 1,
     """Newton iterations at a fixed load factor (the problem keeps u; restore on failure).
     step, start: load-step number and perf_counter() origin, for the progress log only."""
     start = time.perf_counter() if start is None else start
+    _check_problem(problem)
     problem.load_factor = load_factor
     report = StepReport(load_factor)
     scale = problem.load_norm(load_factor)
     tol = options.atol + options.rtol * scale
-    inexact = options.forcing == "eisenstat_walker" and _accepts_rtol(problem) \
-        and not getattr(problem, "is_linear", False)
+    inexact = options.forcing == "eisenstat_walker" and not problem.is_linear
     for it in range(options.max_iterations + 1):
-        rnorm = problem.residual()
+        rnorm = problem.residual_norm()
         cuts = 0  # halvings of the last step after a non-finite residual
         while not np.isfinite(rnorm) and report.step_lengths and cuts < options.max_backtracks:
             # The step led where the residual is not finite (a local solve failed, a closure
@@ -209,7 +275,7 @@ def newton(problem, load_factor: float, options: NewtonOptions, step: int = 1,
             problem.apply_increment(-half)
             report.step_lengths[-1] = half
             cuts += 1
-            rnorm = problem.residual()
+            rnorm = problem.residual_norm()
         report.residual_norms.append(rnorm)
         if it == 0 and scale == 0.0 and np.isfinite(rnorm):
             # No load at this step (e.g. unloading to zero): relative to the initial residual.
@@ -237,9 +303,9 @@ def newton(problem, load_factor: float, options: NewtonOptions, step: int = 1,
             report.reason = (f"stagnation: ||r|| = {rnorm:.3e} has not fallen below "
                              f"{options.stagnation_factor:g} × its value {window} iterations ago")
             return report
-        problem.jacobian()
+        problem.update_jacobian()
         eta = _forcing(report, options, tol) if inexact else None
-        its = problem.solve_increment(rtol=eta) if inexact else problem.solve_increment()
+        its = problem.solve_increment(rtol=eta)
         report.forcing.append(eta)
         report.linear_iterations.append(its)
         # Closure-limiting step: no closure may move more than `closure_limit` of its remaining
@@ -253,9 +319,9 @@ def newton(problem, load_factor: float, options: NewtonOptions, step: int = 1,
         else:
             problem.apply_increment(alpha)
         report.step_lengths.append(alpha)
-        norms = getattr(problem, "increment_norms", None)
+        norms = problem.increment_norms()
         if norms is not None:
-            du, u = norms()
+            du, u = norms
             if alpha * du <= options.increment_rtol * u:
                 report.converged = True
                 report.reason = (f"step {alpha * du:.3e} <= increment_rtol × ||u|| (residual "
@@ -286,19 +352,11 @@ def _forcing(report: StepReport, options: NewtonOptions, tol: float) -> float:
     return float(min(max(eta, finish), options.forcing_max))
 
 
-def _accepts_rtol(problem) -> bool:
-    """Whether problem.solve_increment takes the linear tolerance (rtol=...)."""
-    try:
-        return "rtol" in inspect.signature(problem.solve_increment).parameters
-    except (TypeError, ValueError):
-        return False
-
-
 def _backtrack(problem, alpha: float, rnorm: float, options: NewtonOptions) -> float:
     """Apply α du, halving α until ||r|| decreases (Armijo, c = 1e-4); returns the α applied."""
     for k in range(options.max_backtracks + 1):
         problem.apply_increment(alpha)
-        trial = problem.residual()
+        trial = problem.residual_norm()
         if trial <= (1.0 - 1e-4 * alpha) * rnorm or k == options.max_backtracks:
             return alpha
         problem.apply_increment(-alpha)
@@ -308,5 +366,4 @@ def _backtrack(problem, alpha: float, rnorm: float, options: NewtonOptions) -> f
 
 def _rank(problem) -> int:
     """MPI rank of the problem's communicator (0 without one): progress is logged once."""
-    comm = getattr(problem, "comm", None)
-    return comm.rank if comm is not None else 0
+    return problem.comm.rank if problem.comm is not None else 0

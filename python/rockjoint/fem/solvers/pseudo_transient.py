@@ -66,7 +66,7 @@ def solve_step_with_relaxation(problem, smeared, load_factor: float, options, st
                 continue
             problem.commit_state()
             smeared.relaxation = None
-            rnorm = problem.residual()
+            rnorm = problem.residual_norm()
             tol = options.atol + options.rtol * problem.load_norm(load_factor)
             if options.verbose and problem.comm.rank == 0:
                 log.info("  pseudo-time step %d (r = %.3g, %d Newton its): rate-independent ||r|| = %.3e "

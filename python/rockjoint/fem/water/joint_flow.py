@@ -156,13 +156,16 @@ def _boundary_points(model, name: str) -> np.ndarray:
     return np.concatenate(mesh.comm.allgather(x), axis=0)
 
 
-def network_flow(result, transmissivity: Mapping[str, Callable], heads: Mapping[str, float],
-                 fluid: Fluid = Fluid()) -> NetworkFlow:
-    """Steady flow (F1) along the joints of a solved stage `result` (StageResult) with heads
+def network_flow(model, transmissivity: Mapping[str, Callable], heads: Mapping[str, float],
+                 fluid: Fluid = Fluid(), stage=None) -> NetworkFlow:
+    """Steady flow (F1) along the joints of a solved JointedRockModel `model` with heads
     {boundary name: h [m]} on named boundaries of the mesh and transmissivity {joint name:
-    T(closure [m]) -> [m³]} per joint (docs/flow.md). Collective; the same NetworkFlow on every
+    T(closure [m]) -> [m³]} per joint (docs/flow.md), at the closures of `stage` (a StageResult
+    of the model; default: its last, model.solution). Collective; the same NetworkFlow on every
     rank. Needs the nodal joint rule on P1 (the joint points are the facet vertices)."""
-    model = result.model
+    result = model.solution if stage is None else stage
+    if result is None:
+        raise ValueError("network_flow: the model has no solved stage yet (solve() it first)")
     if model.degree != 1 or model.quadrature != "nodal":
         raise ValueError("network_flow: the joint network is built from the joint points as facet "
                          "vertices: P1 with quadrature='nodal' is needed, got degree "
