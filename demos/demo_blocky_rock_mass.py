@@ -113,9 +113,7 @@ def compare_with_barton_peak():
 
 def model_of(dmesh, tables, strength=None):
     """The model with its supports and loads; returns it and the handle of the top load."""
-    joints = {}
-    for name in dmesh.names["joints"].values():
-        joints[name] = tables[name.split("_")[0]]
+    joints = {name: tables[s] for name, s in meshes.joint_sets_of(dmesh.names).items()}
     model = JointedRockModel(dmesh, rock=(YOUNG, POISSON), joints=joints,
                              shear_stiffness_ratio=SHEAR_RATIO if joints else None,
                              strength=strength if joints else None,
@@ -196,7 +194,8 @@ def main():
         model.write_xdmf(out(f"blocky_{label}.xdmf"))
 
     # %% 4. What slip adds ------------------------------------------------------------------------
-    names = {int(t): n for t, n in jointed.names["joints"].items()}
+    sets = meshes.joint_sets_of(jointed.names)   # the mesh's record of each joint's set
+    set_of_tag = {int(t): sets[n] for t, n in jointed.names["joints"].items()}
     lines = [f"{'':32}{'intact':>12}{'elastic j.':>12}{'slipping j.':>12}"]
     for k, (stage, vertical, _) in enumerate(STAGES):
         lines.append(f"# stage {k + 1} ({stage}): σ_v = {vertical * 1e-6:g} MPa, "
@@ -223,7 +222,7 @@ def main():
     for label in ("jointed", "slip"):
         for k, row in enumerate(results[label]):
             state = row[4]
-            set_of = np.array([names[int(t)].split("_")[0] for t in state["tag"]])
+            set_of = np.array([set_of_tag[int(t)] for t in state["tag"]])
             lines += joint_rows(label, k + 1, state, set_of)
     lines.append("(max atan: largest mobilised friction angle atan(|τ|/σ_n) of the closed points [°])")
     say("\n" + "\n".join(lines))

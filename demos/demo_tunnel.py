@@ -164,7 +164,7 @@ def flow_lines(state, dist, theta, model, intact_dmesh, laws, names, out):
     """The joints' transmissivity before and after excavation (elastic joints) and the inflow into
     the drained tunnel: along the joint network with the in-situ and the excavated closures, and
     through the intact rock (Darcy) beside them."""
-    sets = joint_set_of(state["in-situ"], names)
+    sets = joint_set_of(state["in-situ"], names)   # names: the mesh's groups (dmesh.names)
     t = {}
     for stage in ("in-situ", "excavation"):
         closure = np.asarray(state[stage]["closure"])
@@ -175,7 +175,7 @@ def flow_lines(state, dist, theta, model, intact_dmesh, laws, names, out):
     near = dist < 0.5
     crown = near & (np.abs(np.sin(theta)) > 0.9) & (sets == "bedding")
     side = near & (np.abs(np.cos(theta)) > 0.9) & (sets == "bedding")
-    per_joint = {n: laws[n.rsplit("_", 1)[0]].transmissivity for n in names.values()}
+    per_joint = {n: laws[s].transmissivity for n, s in meshes.joint_sets_of(names).items()}
     networks = {stage: network_flow(model, per_joint, FLOW_HEADS, stage=model.stages[i])
                 for i, stage in ((0, "in-situ"), (1, "excavation"))}
     networks["excavation"].write(out("tunnel_flow.xdmf"), COMM)
@@ -205,7 +205,7 @@ def staged_model(dmesh, tables, steps, after_excavation, strength=None):
     """In-situ → excavation → lining pressure; after_excavation(model) runs between the last two
     stages; strength: the joints' (None: elastic joints). Returns the model (its stages kept in
     model.stages)."""
-    joints = {name: tables[name.split("_")[0]] for name in dmesh.names["joints"].values()}
+    joints = {name: tables[s] for name, s in meshes.joint_sets_of(dmesh.names).items()}
     model = JointedRockModel(dmesh, rock=(YOUNG, POISSON), joints=joints,
                              shear_stiffness_ratio=SHEAR_RATIO if joints else None,
                              residual_stiffness=RESIDUAL_STIFFNESS if joints else 0.0,
@@ -262,15 +262,17 @@ def joint_segments(state):
     return xy[groups], groups
 
 
-def joint_set_of(state, joint_names):
-    """The joint set ("bedding", "cross") of every joint point, from its tag."""
-    return np.array([joint_names[int(t)].split("_")[0] for t in state["tag"]])
+def joint_set_of(state, mesh_names):
+    """The joint set ("bedding", "cross") of every joint point, from its tag: the mesh's own
+    record of each joint's set (its names["joint_sets"])."""
+    sets = meshes.joint_sets_of(mesh_names)
+    return np.array([sets[mesh_names["joints"][int(t)]] for t in state["tag"]])
 
 
-def slip_rows(state, joint_names):
+def slip_rows(state, mesh_names):
     """Per joint set after excavation (slipping model): points, slipping points (count and fraction),
     the farthest slipping point from the wall [tunnel radii], the largest slip [mm]."""
-    set_of = joint_set_of(state, joint_names)
+    set_of = joint_set_of(state, mesh_names)
     slips = np.asarray(state["shear_state"]) == int(ShearState.slip)
     xy = np.asarray(state["coordinates"]).reshape(-1, 2)
     dist = (np.hypot(xy[:, 0] - CENTRE[0], xy[:, 1] - CENTRE[1]) - RADIUS) / RADIUS
@@ -373,7 +375,7 @@ def main():
     lines.append(f"lining pressure {LINING_PRESSURE * 1e-6:g} MPa moves the crown up by [mm]: intact "
                  f"{push[0] * 1e3:.4f}, jointed {push[1] * 1e3:.4f}, slipping {push[2] * 1e3:.4f}")
     slipping = models["slip"].stages[1].gather_joints()
-    lines += slip_rows(slipping, jointed.names["joints"])
+    lines += slip_rows(slipping, jointed.names)
     # Hysteretic joints: excavation unloads the joints near the wall on their stiff branches.
     hs = {name: models["hyst"].stages[i].gather_joints() for i, name in ((0, "in-situ"), (1, "excavation"))}
     h_change = np.asarray(hs["excavation"]["closure"]) - np.asarray(hs["in-situ"]["closure"])
@@ -394,7 +396,7 @@ def main():
     xy0 = np.asarray(state["in-situ"]["coordinates"]).reshape(-1, 2)
     theta = np.arctan2(xy0[:, 1] - CENTRE[1], xy0[:, 0] - CENTRE[0])
     lines += flow_lines(state, dist, theta, models["jointed"], intact, transmissivity_laws(bedding_walls),
-                        jointed.names["joints"], out)
+                        jointed.names, out)
     elapsed = time.perf_counter() - t_start
     lines.append(f"demo wall time [s]: {COMM.allreduce(elapsed, op=MPI.MAX):.1f} on {COMM.size} rank(s)")
     if COMM.rank == 0:
@@ -403,7 +405,7 @@ def main():
             f.write(f"# rockjoint tunnel demo: a = {RADIUS} m at {DEPTH:g} m depth, σ_v = {SIGMA_V * 1e-6:.2f} MPa, "
                     f"K0 = {K0}, plane strain, mesh size {h} m (wall {h / 8} m)\n")
             f.write("\n".join(lines) + "\n")
-        np.savez(out("tunnel_slip_joints.npz"), set=joint_set_of(slipping, jointed.names["joints"]),
+        np.savez(out("tunnel_slip_joints.npz"), set=joint_set_of(slipping, jointed.names),
                  **{k: np.asarray(slipping[k]) for k in ("coordinates", "normal_stress", "shear_traction",
                                                          "shear_state", "slip")})
     plot(models, stress_at, wall, pts, th, state, closure_change, out("tunnel.png"))

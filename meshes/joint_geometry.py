@@ -33,6 +33,9 @@ class Joint:
         joint is kept on the side of each of them where ``point`` lies. Without it the joint crosses
         the whole block. Every joint must separate blocks completely: a joint whose edge ends inside
         a block (a dangling crack tip) is rejected by the builder.
+    joint_set: the name of the set the joint belongs to (``joint_set`` gives its own name; None: the
+        joint is a set of its own). The mesh carries it as the group names["joint_sets"]
+        ({joint tag: set name}), so that a model reads a joint's set from its mesh.
     """
 
     point: tuple
@@ -40,21 +43,22 @@ class Joint:
     dip_direction: float = 90.0
     name: str | None = None
     bounded_by: tuple = field(default_factory=tuple)
+    joint_set: str | None = None
 
 
 def joint_set(spacing: float, dip: float = 0.0, dip_direction: float = 90.0, *, origin: Sequence[float],
               count: int, name: str = "set", bounded_by: tuple = ()) -> list[Joint]:
     """``count`` parallel joints ``spacing`` [m] apart along their normal, the first through ``origin``.
 
-    Names are ``<name>_1`` ... ``<name>_<count>``.
+    Names are ``<name>_1`` ... ``<name>_<count>``; each joint's ``joint_set`` is ``name``.
     """
     spacing = _positive("spacing", spacing)
     if int(count) != count or count < 1:
         raise ValueError(f"joint_set: count must be an integer >= 1, got {count!r}")
     origin = np.asarray(origin, dtype=float)
     n = unit_normal(dip, dip_direction, origin.size)
-    return [Joint(tuple(origin + k * spacing * n), dip, dip_direction, f"{name}_{k + 1}", tuple(bounded_by))
-            for k in range(int(count))]
+    return [Joint(tuple(origin + k * spacing * n), dip, dip_direction, f"{name}_{k + 1}", tuple(bounded_by),
+                  joint_set=name) for k in range(int(count))]
 
 
 def unit_normal(dip: float, dip_direction: float, gdim: int) -> np.ndarray:

@@ -44,7 +44,9 @@ class JointedMesh:
     joint_tags: (n_pairs,) int32 joint tag (physical group of the joint surface).
     boundary_facets: (n_bf, nvf) int64 exterior facets carrying a named boundary group.
     boundary_tags: (n_bf,) int32.
-    names: {"blocks": {tag: name}, "joints": {tag: name}, "boundaries": {tag: name}}.
+    names: {"blocks": {tag: name}, "joints": {tag: name}, "boundaries": {tag: name}} and optionally
+        "joint_sets": {joint tag: set name} (the set of each joint; without it, or for a joint it
+        leaves out, a joint is a set of its own: joint_sets()).
     """
 
     points: np.ndarray
@@ -85,6 +87,10 @@ class JointedMesh:
                 return int(tag)
         raise KeyError(f"no {kind[:-1] if kind != 'boundaries' else 'boundary'} group named {name!r}; "
                        f"available: {sorted(self.names[kind].values())}")
+
+    def joint_sets(self) -> dict:
+        """{joint name: set name} of every joint (a joint without a set is its own)."""
+        return joint_sets_of(self.names)
 
     def cell_measures(self) -> np.ndarray:
         """Area (2D) or volume (3D) of every cell [m^2 or m^3]."""
@@ -135,9 +141,14 @@ class JointedMesh:
                              "(glue of minus and plus facet nodes differ)")
         if np.any(self.joint_facets_minus == self.joint_facets_plus):
             raise ValueError("JointedMesh: a joint facet node is not split (same node on both sides)")
-        if not isinstance(self.names, dict) or set(self.names) != {"blocks", "joints", "boundaries"}:
-            raise ValueError("JointedMesh.names must be a dict with keys 'blocks', 'joints', 'boundaries'")
+        if not isinstance(self.names, dict) or not ({"blocks", "joints", "boundaries"} <= set(self.names)
+                                                    <= {"blocks", "joints", "boundaries", "joint_sets"}):
+            raise ValueError("JointedMesh.names must be a dict with keys 'blocks', 'joints', 'boundaries' "
+                             "(and optionally 'joint_sets')")
         self.names = {k: {int(t): str(v) for t, v in d.items()} for k, d in self.names.items()}
+        stray = set(self.names.get("joint_sets", {})) - set(self.names["joints"])
+        if stray:
+            raise ValueError(f"JointedMesh.names['joint_sets'] names tags {sorted(stray)} that are no joints")
         for kind, arr in (("blocks", self.cell_blocks), ("joints", self.joint_tags),
                           ("boundaries", self.boundary_tags)):
             unknown = set(np.unique(arr).tolist()) - set(self.names[kind])
@@ -182,6 +193,13 @@ class JointedMesh:
             arrays = {a: data[a] for a in _ARRAYS}
         names = {k: {int(t): v for t, v in d.items()} for k, d in header["names"].items()}
         return cls(cell_type=header["cell_type"], names=names, **arrays)
+
+
+def joint_sets_of(names: dict) -> dict:
+    """{joint name: set name} from a mesh's groups `names` (JointedMesh.names, the distributed
+    mesh's): the group "joint_sets" where it names a joint's set, else the joint's own name."""
+    sets = names.get("joint_sets", {})
+    return {str(n): str(sets.get(t, n)) for t, n in names["joints"].items()}
 
 
 def _as(a, dtype, name: str, ndim: int, shape: tuple | None = None) -> np.ndarray:

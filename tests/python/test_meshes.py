@@ -405,3 +405,26 @@ def test_builders_mesh_simplices_whatever_the_callers_recombination_option():
     finally:
         gmsh.option.setNumber("Mesh.RecombineAll", 0)
     assert m.cell_type == "triangle" and m.block_measures() == pytest.approx({1: 0.5, 2: 0.5}, rel=1e-12)
+
+
+def test_the_mesh_carries_each_joints_set():
+    """names["joint_sets"]: joint_set() names its joints' set, a column's joints are the set
+    'joint', a joint given alone is a set of its own; the record survives save/load."""
+    joints = joint_set(0.3, 0.0, 90.0, origin=(0.5, 0.2), count=2, name="bedding") + [
+        Joint((0.5, 0.5), 90.0, 90.0, "fault")]
+    m = jointed_block((1.0, 1.0), joints, dim=2, mesh_size=0.3)
+    assert m.joint_sets() == {"bedding_1": "bedding", "bedding_2": "bedding", "fault": "fault"}
+    assert set(column(1.0, 1.0, [0.3, 0.6], mesh_size=0.4).joint_sets().values()) == {"joint"}
+
+
+def test_joint_sets_round_trip_and_stray_tags_are_refused(tmp_path):
+    m = jointed_block((1.0, 1.0), joint_set(0.3, 0.0, 90.0, origin=(0.5, 0.2), count=2, name="b"),
+                      dim=2, mesh_size=0.3)
+    m.save(tmp_path / "m.npz")
+    assert JointedMesh.load(tmp_path / "m.npz").joint_sets() == m.joint_sets()
+    names = dict(m.names, joint_sets={**m.names["joint_sets"], 999: "ghost"})
+    arrays = {k: getattr(m, k) for k in ("points", "cells", "cell_blocks", "glue", "joint_facets_minus",
+                                          "joint_facets_plus", "joint_facet_cells", "joint_tags",
+                                          "boundary_facets", "boundary_tags")}
+    with pytest.raises(ValueError, match=r"joint_sets.*\[999\].*no joints"):
+        JointedMesh(cell_type=m.cell_type, names=names, **arrays)

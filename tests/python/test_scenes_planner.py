@@ -184,10 +184,11 @@ def test_rung_meets_the_budget_at_least_total_cost(tmp_path, budget):
 def test_slip_decision_uses_the_joints_own_strength():
     """Coulomb: c + σ_n tan φ; Barton: σ_n tan(φ_r + JRC log10(JCS/σ_n)) capped at the strength's
     maximum_friction_angle (50° here: at 0.1 MPa Barton's angle is 30 + 15·3 = 75°)."""
-    coulomb = {"model": "coulomb", "friction_angle": math.radians(30), "cohesion": 1e5}
+    from rockjoint.joint import make_strength   # the set's strength, as Scene.strengths holds it
+    coulomb = make_strength({"model": "coulomb", "friction_angle": math.radians(30), "cohesion": 1e5})
     assert stresses.shear_capacity(coulomb, 2e6) == pytest.approx(1e5 + 2e6 * math.tan(math.radians(30)), rel=1e-12)
-    barton = {"model": "barton", "friction_angle": math.radians(30), "cohesion": 0.0, "jrc": 15.0, "jcs": 100e6,
-              "maximum_friction_angle": math.radians(50)}
+    barton = make_strength({"model": "barton", "friction_angle": math.radians(30), "cohesion": 0.0, "jrc": 15.0,
+                            "jcs": 100e6, "maximum_friction_angle": math.radians(50)})
     assert stresses.shear_capacity(barton, 0.1e6) == pytest.approx(0.1e6 * math.tan(math.radians(50)), rel=1e-12)
     at_10 = math.radians(30 + 15 * math.log10(100 / 10))
     assert stresses.shear_capacity(barton, 10e6) == pytest.approx(10e6 * math.tan(at_10), rel=1e-12)

@@ -93,3 +93,28 @@ def test_not_yaml_and_missing_file(tmp_path):
     code, _, errors = cli("run", tmp_path / "nothing.yaml", "--output", tmp_path / "out")
     assert code == 2 and "cannot read" in errors
     assert not (tmp_path / "out").exists()   # nothing written for a bad scene
+
+
+def test_each_sets_strength_is_built_once_as_the_joints_own(tmp_path):
+    """Scene.strengths holds each set's JointStrength, built once at loading: the object planner,
+    statics, model and smeared material all use (its capacity is the closed form c + σ_n tan φ)."""
+    import math
+    from rockjoint.joint import JointStrength
+    scene = load_scene(write(tmp_path, COLUMN))
+    strength = scene.strengths["joint"]
+    assert isinstance(strength, JointStrength)
+    assert strength.shear_strength(2e6) == pytest.approx(2e6 * math.tan(math.radians(30)), rel=1e-12)
+    assert scene.at_reduced_size().strengths["joint"] is strength   # not rebuilt
+    plain = load_scene(write(tmp_path, COLUMN.replace(
+        "    strength: {model: coulomb, friction_angle: 30 deg, cohesion: 0 MPa}\n", "")))
+    assert plain.strengths == {"joint": None}
+
+
+def test_a_strength_the_joint_refuses_is_named_at_its_line(tmp_path):
+    """Dilation steeper than friction passes the key-by-key ranges but not the joint's own check
+    (joint/joint_strength.cpp): the message names the set's strength and its line."""
+    bad = COLUMN.replace("cohesion: 0 MPa}", "cohesion: 0 MPa, dilation_angle: 40 deg}")
+    assert bad != COLUMN
+    with pytest.raises(SceneError, match=r"joints\.joint\.strength.*dilation") as err:
+        load_scene(write(tmp_path, bad))
+    assert "line" in str(err.value)

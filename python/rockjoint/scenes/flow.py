@@ -16,6 +16,7 @@ from rockjoint import contact, flow
 from rockjoint import topography as topo
 
 from ..fem import darcy_flow, network_flow
+from ..meshes import joint_sets_of
 from . import geometry, joint_laws, ladder
 
 log = logging.getLogger("rockjoint.scenes")
@@ -54,8 +55,7 @@ def stage_flow(scene, model, solution, laws: dict | None):
     the rock's permeability, or no flow (None) when the rock has none."""
     heads = scene.data["outputs"]["flow"]["heads"]
     if laws is not None:
-        names = model.dmesh.names["joints"].values()
-        per_joint = {n: laws[geometry.joint_set_of(scene, n)].transmissivity for n in names}
+        per_joint = {n: laws[s].transmissivity for n, s in joint_sets_of(model.dmesh.names).items()}
         network = network_flow(model, per_joint, heads, stage=solution)
         return network.flow_rates, network
     k = scene.data["rock"].get("permeability")

@@ -93,10 +93,3 @@ def glued(jm):
         joint_tags=np.zeros(0, np.int32), boundary_facets=g[jm.boundary_facets],
         boundary_tags=jm.boundary_tags,
         names={"blocks": jm.names["blocks"], "joints": {}, "boundaries": jm.names["boundaries"]})
-
-
-def joint_set_of(scene, joint_name: str) -> str:
-    """The scene's joint set of a mesh joint (column: 'joint'; sets: '<set>_<i>' -> '<set>')."""
-    if scene.data["geometry"]["kind"] == "column":
-        return "joint"
-    return joint_name.rsplit("_", 1)[0]

@@ -169,7 +169,7 @@ def slip(ctx: Context, dim: int):
     tensors = stage_stresses(ctx.scene)
     opening = "opening" in ctx.geometry
     for s in ctx.sets:
-        strength = ctx.scene.data["joints"][s["name"]].get("strength")
+        strength = ctx.scene.strengths[s["name"]]
         if strength is None:
             values[s["name"]] = False
             continue

@@ -20,6 +20,7 @@ from mpi4py import MPI
 from ..continuum import EquivalentContinuum, JointSet
 from .. import curve_table
 from ..joint import joint_behaviours
+from ..meshes import joint_sets_of
 from ..fem import (ConvergenceError, InSituStress, JointedRockModel, LinearSolveError, NewtonOptions,
                             ShearState, distribute)
 from . import flow as scene_flow
@@ -84,14 +85,13 @@ def build_model(scene, plan, dmesh, tables: dict | None):
     rocks = {b: (v["young"], v["poisson"]) for b, v in own.items()}
     kw = {}
     if tables is not None:
-        names = list(dmesh.names["joints"].values())
-        of = {n: geometry.joint_set_of(scene, n) for n in names}
+        of = joint_sets_of(dmesh.names)   # {joint: its set}, as the mesh records it
+        names = list(of)
         j = d["joints"]
         kw = dict(joints={n: tables[of[n]] for n in names},
                   shear_stiffness_ratio={n: j[of[n]]["shear_stiffness_ratio"] for n in names},
                   residual_stiffness={n: j[of[n]]["residual_stiffness"] for n in names},
-                  strength={n: _strength(j[of[n]]["strength"]) if plan.slip.get(of[n]) else None
-                            for n in names})
+                  strength={n: scene.strengths[of[n]] if plan.slip.get(of[n]) else None for n in names})
     if tables is not None and plan.smeared:
         kw["continuum"] = smeared_material(scene, plan, tables, rocks)
     model = JointedRockModel(dmesh, element_degree=plan.element_degree, rock=rocks,
@@ -120,14 +120,10 @@ def smeared_material(scene, plan, tables: dict, rocks: dict) -> dict:
         behaviour = joint_behaviours({s["name"]: 0}, {s["name"]: tables[s["name"]]},
                                      shear_stiffness_ratio=j["shear_stiffness_ratio"],
                                      residual_stiffness=j["residual_stiffness"],
-                                     strength=_strength(j["strength"]) if plan.slip.get(s["name"]) else None)[0]
+                                     strength=scene.strengths[s["name"]] if plan.slip.get(s["name"]) else None)[0]
         normal = geometry.set_normal(s, plan.dimension)
         sets.append(JointSet([float(x) for x in normal], s["spacing"], behaviour, label=s["name"]))
     return {b: EquivalentContinuum(plan.dimension, e, nu, sets) for b, (e, nu) in rocks.items()}
-
-
-def _strength(spec):
-    return None if spec is None else dict(spec)
 
 
 def _record(scene, plan, model, label, stage, solution, transmissivity=None) -> StageRow:
@@ -137,12 +133,13 @@ def _record(scene, plan, model, label, stage, solution, transmissivity=None) -> 
     umax = model.comm.allreduce(float(np.linalg.norm(u, axis=1).max(initial=0.0)), op=_max())
     row = StageRow(label, stage, solution.newton_iterations, monitors, umax)
     state = solution.gather_joints()
-    row.past_table = tuple(sorted({geometry.joint_set_of(scene, n) for n in solution.beyond_law_range()}))
+    set_of = joint_sets_of(model.dmesh.names)
+    row.past_table = tuple(sorted({set_of[n] for n in solution.beyond_law_range()}))
     if np.asarray(state.get("closure", [])).size:
         row.max_closure = float(np.max(state["closure"]))
         row.max_normal_stress = float(np.max(state["normal_stress"]))
         names = model.dmesh.names["joints"]
-        sets = np.array([geometry.joint_set_of(scene, names[int(t)]) for t in state["tag"]])
+        sets = np.array([set_of[names[int(t)]] for t in state["tag"]])
         for name in np.unique(sets):
             at = sets == name
             row.per_set[str(name)] = (float(np.max(state["closure"][at])),

@@ -13,6 +13,7 @@ import math
 import os
 
 from .. import flow, law_registry
+from ..joint import make_strength
 from .fields import (Anything, Checker, Flag, Integer, ListOf, Mapping, NamedMapping, Quantity,
                      Text)
 from .units import LAW_UNIT_DIMENSION, parse_quantity
@@ -273,12 +274,15 @@ SCENE = Mapping({
 @dataclasses.dataclass
 class Scene:
     """A checked scene: `data` in SI, where it came from (file, lines) for later messages;
-    `reduced` for the scene at its reduced size (at_reduced_size)."""
+    `reduced` for the scene at its reduced size (at_reduced_size); `strengths`: each joint set's
+    strength, built once from its `strength:` section ({set: JointStrength, or None without one}),
+    the one object the planner, the statics, the model and the smeared material use."""
 
     data: dict
     source: str
     lines: dict
     reduced: bool = False
+    strengths: dict = dataclasses.field(default_factory=dict)
 
     def fail(self, path: tuple, message: str):
         _checker(self.source, self.lines).fail(path, message)
@@ -365,7 +369,20 @@ def check_scene(data, lines: dict, source: str) -> Scene:
     c = _checker(source, lines)
     d = SCENE.check(data, (), c)
     _cross_checks(d, c)
-    return Scene(d, source, lines)
+    return Scene(d, source, lines, strengths=_strengths(d, c))
+
+
+def _strengths(d: dict, c: Checker) -> dict:
+    """{set: JointStrength or None} of the scene's joint sets, built once (the C++ checks of a
+    strength, e.g. Barton's JCS against its friction cap, named at the set's strength line)."""
+    out = {}
+    for name, joint in d["joints"].items():
+        spec = joint.get("strength")
+        try:
+            out[name] = None if spec is None else make_strength(spec, name)
+        except ValueError as err:
+            c.fail(("joints", name, "strength"), str(err))
+    return out
 
 
 def load_scene(path) -> Scene:

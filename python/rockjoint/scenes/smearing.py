@@ -22,7 +22,7 @@ def dominance(scene, sets, dim) -> dict:
     opening = "opening" in d["geometry"]
     out = {}
     for s in sets:
-        strength = d["joints"][s["name"]].get("strength")
+        strength = scene.strengths[s["name"]]
         if strength is None:
             out[s["name"]] = 0.0
             continue

@@ -151,7 +151,7 @@ def set_failures(scene, plan, stage: str) -> dict:
         t = s @ n
         sn = -float(t @ n)                     # compression positive
         tau = float(np.linalg.norm(t + sn * n))
-        strength = j.get("strength") if plan.slip.get(name) else None
+        strength = scene.strengths[name] if plan.slip.get(name) else None
         if sn <= 0.0 and j["residual_stiffness"] == 0.0:
             out[name] = (f"opens: stage '{stage}' puts it in {-sn * 1e-6:.3g} MPa tension (a joint carries "
                          "no tension and it has no residual_stiffness)" if sn < 0 else
@@ -159,11 +159,11 @@ def set_failures(scene, plan, stage: str) -> dict:
         elif strength is not None and tau > 0.0:
             capacity = stresses.shear_capacity(strength, sn)
             if tau >= capacity:
-                phi_tan = (capacity - strength["cohesion"]) / sn   # sn > 0: a capacity above c
+                phi_tan = (capacity - strength.cohesion) / sn   # sn > 0: a capacity above c
                 out[name] = (f"slides: stage '{stage}' mobilises τ/σ_n = {tau / sn:.3f} "
                              f"(tan {math.degrees(math.atan(tau / sn)):.1f}°) on it, its strength allows "
                              f"{capacity / sn:.3f} (tan φ = tan {math.degrees(math.atan(phi_tan)):.1f}°"
-                             + (f", c = {strength['cohesion'] * 1e-6:.3g} MPa" if strength["cohesion"] else "")
+                             + (f", c = {strength.cohesion * 1e-6:.3g} MPa" if strength.cohesion else "")
                              + ")")
         elif strength is None and j["shear_stiffness_ratio"] == 0.0 and tau > 0.0:
             out[name] = (f"carries no shear: shear_stiffness_ratio 0 and no strength, under "
@@ -193,12 +193,13 @@ def free_blocks(scene, jm, failing: dict) -> dict:
     """{free block: [failing sets that bound it]}: blocks joined to no supported block through
     joints of sets that hold."""
     names = jm.names
+    set_of = jm.joint_sets()   # {joint: its set}, as the mesh records it
     block = {int(k): v for k, v in names["blocks"].items()}
     held = _supported_blocks(scene, jm)
     edges, bounds = [], {}
     for (c0, c1), tag in zip(jm.joint_facet_cells, jm.joint_tags):
         a, b = block[int(jm.cell_blocks[c0])], block[int(jm.cell_blocks[c1])]
-        js = geometry.joint_set_of(scene, names["joints"][int(tag)])
+        js = set_of[names["joints"][int(tag)]]
         if js in failing:
             bounds.setdefault(a, set()).add(js)
             bounds.setdefault(b, set()).add(js)

@@ -9,7 +9,6 @@ import math
 
 import numpy as np
 
-from rockjoint.joint import make_strength
 
 from . import defaults, geometry
 
@@ -44,17 +43,17 @@ def stage_stresses(scene) -> list:
     return out
 
 
-def shear_capacity(strength: dict, normal_stress):
-    """τ_max [Pa] of a scene's strength description at `normal_stress` [Pa] (a number or an array;
-    compression +): the joint's own JointStrength.shear_strength (docs/joint-strength.md: Coulomb c + σ_n tan φ,
-    or Barton's angle capped at its maximum_friction_angle), not a copy of it."""
-    joint = make_strength(strength)
+def shear_capacity(strength, normal_stress):
+    """τ_max [Pa] of a set's strength (its JointStrength, Scene.strengths) at `normal_stress` [Pa]
+    (a number or an array; compression +): the joint's own JointStrength.shear_strength
+    (docs/joint-strength.md: Coulomb c + σ_n tan φ, or Barton's angle capped at its
+    maximum_friction_angle), not a copy of it."""
     sn = np.asarray(normal_stress, dtype=float)
-    out = np.array([joint.shear_strength(float(v)) for v in sn.ravel()]).reshape(sn.shape)
+    out = np.array([strength.shear_strength(float(v)) for v in sn.ravel()]).reshape(sn.shape)
     return float(out) if out.ndim == 0 else out
 
 
-def mobilised_friction(strength: dict, normal: np.ndarray, stress: np.ndarray) -> float:
+def mobilised_friction(strength, normal: np.ndarray, stress: np.ndarray) -> float:
     """τ / τ_max on the plane of unit `normal` under `stress` (tension positive)."""
     t = stress @ normal
     sn = -float(t @ normal)
@@ -63,7 +62,7 @@ def mobilised_friction(strength: dict, normal: np.ndarray, stress: np.ndarray) -
     return math.inf if capacity <= 0 else tau / capacity
 
 
-def wall_mobilised_friction(strength: dict, hoop: float) -> float:
+def wall_mobilised_friction(strength, hoop: float) -> float:
     """The largest τ/(c + σ_n tan φ) over every plane through the uniaxial wall state σ_θ = hoop,
     σ_r = 0 (a joint meets the wall at every angle): planes at angle α to the wall carry σ_n =
     σ_θ sin²α, τ = σ_θ sinα cosα."""
