@@ -58,7 +58,7 @@ GRIDS = ((256, 0.5e-3), (512, 0.25e-3))
 STRESSES = np.unique(np.r_[np.geomspace(0.1e6, 1e6, 5), np.geomspace(1e6, 30e6, 11)])
 ASSESSED = STRESSES >= 1e6 * (1 - 1e-12)
 #: the product's topography laws with a row here (the planner's rungs): key -> row
-PRODUCT_ROWS = {k: r.ladder_row for k, r in law_registry.TOPOGRAPHY_LAWS.items() if r.ladder_row}
+PRODUCT_ROWS = {k: r.ladder_row for k, r in law_registry.topography_laws().items() if r.ladder_row}
 #: tolerances whose tabulation time is measured (the planner's: FE settings 1e-2, laws over
 #: measured summits 1e-3, the tightest 1e-6) and the table's top (1.25 x the largest load)
 TABLE_TOLERANCES = (1e-2, 1e-3, 1e-6)

@@ -5,6 +5,7 @@
 /// (GW, Tang substrate, Tang & Jiao), theory §2-§3.
 
 #include "closure_law.hpp"
+#include "parameter_spec.hpp"
 
 #include <limits>
 #include <string>
@@ -23,6 +24,9 @@ struct AsperityParameters
   /// h [m], the sampling interval the statistics were measured at (η ~ h⁻², β ~ h^1.1:
   /// theory §3), NaN when not known. Metadata: no law uses it.
   double sampling_interval = std::numeric_limits<double>::quiet_NaN();
+
+  /// E*, η, β, σ_s and h: units and ranges (checked by validate; h only when known).
+  static const std::vector<ParameterSpec>& parameter_specs();
 };
 
 /// Throw std::invalid_argument naming `owner`, the field, its value and the valid range unless

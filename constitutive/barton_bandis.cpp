@@ -8,11 +8,18 @@
 namespace rockjoint::constitutive
 {
 
+const std::vector<ParameterSpec>& BartonBandis::parameter_specs()
+{
+  static const std::vector<ParameterSpec> specs{
+      {"initial_normal_stiffness", "K_ni", "Pa/m", "MPa/mm"},
+      {"maximum_closure", "V_m", "m", "mm"}};
+  return specs;
+}
+
 BartonBandis::BartonBandis(double initial_normal_stiffness, double maximum_closure)
-    : _initial_normal_stiffness(validation::positive(
-          "BartonBandis", "initial_normal_stiffness", initial_normal_stiffness, "Pa/m")),
-      _maximum_closure(
-          validation::positive("BartonBandis", "maximum_closure", maximum_closure, "m"))
+    : _initial_normal_stiffness(
+          parameter_specs()[0].check("BartonBandis", initial_normal_stiffness)),
+      _maximum_closure(parameter_specs()[1].check("BartonBandis", maximum_closure))
 {
 }
 

@@ -8,6 +8,7 @@
 /// K_ni: initial normal stiffness [Pa/m]; V_m: maximum closure [m].
 
 #include "closure_law.hpp"
+#include "parameter_spec.hpp"
 
 namespace rockjoint::constitutive
 {
@@ -35,6 +36,9 @@ public:
   /// Throws if an estimate is not positive (outside the correlation's range).
   static BartonBandis from_joint_properties(double jrc, double jcs, double initial_aperture,
                                             MaximumClosureCoefficients coefficients = {});
+
+  /// K_ni and V_m: the constructor's arguments, their units and ranges (checked there).
+  static const std::vector<ParameterSpec>& parameter_specs();
 
   std::string name() const override { return "barton_bandis"; }
   std::vector<Parameter> parameters() const override;

@@ -1,6 +1,5 @@
 // SPDX-License-Identifier: MIT
 #include "empirical_laws.hpp"
-#include "validation.hpp"
 
 #include <cmath>
 #include <stdexcept>
@@ -19,11 +18,16 @@ void check_stress(const char* law, double normal_stress)
 }
 } // namespace
 
+const std::vector<ParameterSpec>& LogarithmicLaw::parameter_specs()
+{
+  static const std::vector<ParameterSpec> specs{{"closure_scale", "B", "m", "mm"},
+                                                {"seating_stress", "σ0", "Pa", "MPa"}};
+  return specs;
+}
+
 LogarithmicLaw::LogarithmicLaw(double closure_scale, double seating_stress)
-    : _closure_scale(
-          validation::positive("LogarithmicLaw", "closure_scale", closure_scale, "m")),
-      _seating_stress(
-          validation::positive("LogarithmicLaw", "seating_stress", seating_stress, "Pa"))
+    : _closure_scale(parameter_specs()[0].check("LogarithmicLaw", closure_scale)),
+      _seating_stress(parameter_specs()[1].check("LogarithmicLaw", seating_stress))
 {
 }
 
@@ -47,11 +51,16 @@ double LogarithmicLaw::closure_at_stress(double normal_stress) const
   return _closure_scale * std::log1p(normal_stress / _seating_stress);
 }
 
+const std::vector<ParameterSpec>& ExponentialLaw::parameter_specs()
+{
+  static const std::vector<ParameterSpec> specs{{"maximum_closure", "V_m", "m", "mm"},
+                                                {"characteristic_stress", "σ_c", "Pa", "MPa"}};
+  return specs;
+}
+
 ExponentialLaw::ExponentialLaw(double maximum_closure, double characteristic_stress)
-    : _maximum_closure(
-          validation::positive("ExponentialLaw", "maximum_closure", maximum_closure, "m")),
-      _characteristic_stress(validation::positive("ExponentialLaw", "characteristic_stress",
-                                                  characteristic_stress, "Pa"))
+    : _maximum_closure(parameter_specs()[0].check("ExponentialLaw", maximum_closure)),
+      _characteristic_stress(parameter_specs()[1].check("ExponentialLaw", characteristic_stress))
 {
 }
 

@@ -4,6 +4,7 @@
 /// Logarithmic and exponential empirical closure laws, theory §6.
 
 #include "closure_law.hpp"
+#include "parameter_spec.hpp"
 
 namespace rockjoint::constitutive
 {
@@ -17,6 +18,8 @@ public:
   /// @param closure_scale B [m], > 0
   /// @param seating_stress σ0 [Pa], > 0
   LogarithmicLaw(double closure_scale, double seating_stress);
+  /// B and σ0: the constructor's arguments, their units and ranges (checked there).
+  static const std::vector<ParameterSpec>& parameter_specs();
   std::string name() const override { return "logarithmic"; }
   std::vector<Parameter> parameters() const override;
   double seating_stress() const override { return _seating_stress; }
@@ -39,6 +42,8 @@ public:
   /// @param maximum_closure V_m [m], > 0
   /// @param characteristic_stress σ_c [Pa], > 0
   ExponentialLaw(double maximum_closure, double characteristic_stress);
+  /// V_m and σ_c: the constructor's arguments, their units and ranges (checked there).
+  static const std::vector<ParameterSpec>& parameter_specs();
   std::string name() const override { return "exponential"; }
   std::vector<Parameter> parameters() const override;
   double maximum_closure() const override { return _maximum_closure; }

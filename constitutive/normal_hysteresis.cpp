@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "normal_hysteresis.hpp"
 
-#include "validation.hpp"
 
 #include <cmath>
 #include <limits>
@@ -10,6 +9,16 @@
 
 namespace rockjoint::constitutive
 {
+
+const std::vector<ParameterSpec>& NormalHysteresis::parameter_specs()
+{
+  // r in [0, 1): a permanent closure below the largest closure reached; m >= 1: an unloading
+  // branch at least as stiff as the virgin curve (docs/hysteresis.md, H1-H2).
+  static const std::vector<ParameterSpec> specs{
+      {"permanent_fraction", "r", "-", "-", 0.0, true, 1.0, false},
+      {"unloading_exponent", "m", "-", "-", 1.0, true}};
+  return specs;
+}
 
 NormalHysteresis::NormalHysteresis(std::shared_ptr<const ClosureLaw> virgin,
                                    double permanent_fraction, double unloading_exponent)
@@ -21,10 +30,8 @@ NormalHysteresis::NormalHysteresis(std::shared_ptr<const ClosureLaw> virgin,
     throw std::invalid_argument("NormalHysteresis: the virgin law '" + _virgin->name()
                                 + "' has history itself; give its own virgin law");
   const std::string owner = "NormalHysteresis(" + _virgin->name() + ")";
-  if (!(_r >= 0.0 && _r < 1.0))
-    validation::fail(owner, "permanent_fraction", _r, "-", "in [0, 1)");
-  if (!(std::isfinite(_m) && _m >= 1.0))
-    validation::fail(owner, "unloading_exponent", _m, "-", "finite and >= 1");
+  parameter_specs()[0].check(owner, _r);
+  parameter_specs()[1].check(owner, _m);
 }
 
 HistoryResponse NormalHysteresis::evaluate_with_history(double closure,

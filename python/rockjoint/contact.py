@@ -26,7 +26,9 @@ from typing import List, Optional, Sequence
 import numpy as np
 
 from ._rockjoint import contact as _cpp
+from . import law_registry
 from .flow import ApertureFlow, Transmissivity
+from ._rockjoint.constitutive import ClosureLaw
 from ._rockjoint.topography import Surface
 
 log = logging.getLogger(__name__)
@@ -206,3 +208,28 @@ def exact_elastic_law(curve: ClosureCurve, residual_stiffness: Optional[float] =
                                   float(rows), float(cols), kernel, curve.tolerance,
                                   float("nan") if residual_stiffness is None
                                   else float(residual_stiffness), float(initial_stiffness))
+
+
+# ---- the walls' exact contact as a law of the registry (the planner's rung beside the parametric laws)
+#: its key: the exact contact curve of the walls (BEM), tabulated: the planner's rung that is no
+#: parametric law (built from the walls by scenes.joint_laws.law_of_walls)
+EXACT_CONTACT = "exact_contact"
+#: its table's stiffness at zero closure, as a fraction of the secant to its first load σ1/Δ1:
+#: the walls' own onset is Hertzian (k(0+) = 0), which leaves a FE model's first linearisation
+#: at zero closure without a normal stiffness (a singular Jacobian); 1 % seats it and changes σ
+#: below the first load (1/300 of the table's top) only
+EXACT_CONTACT_SEATING = 0.01
+
+
+def _exact_contact(x) -> ClosureLaw:
+    """The walls' exact elastic contact (BEM) at x.stresses (law_registry.TopographyInputs), as a
+    table (exact_elastic_law)."""
+    curve = closure_curve(x.aperture, x.composite_modulus, x.stresses)
+    seating = EXACT_CONTACT_SEATING * curve.stress[0] / curve.closure[0]
+    return exact_elastic_law(curve, initial_stiffness=seating)
+
+
+law_registry.register(law_registry.derived_law(
+    EXACT_CONTACT, "exact contact of the walls (BEM), tabulated",
+    "the walls' exact elastic contact curve (rockjoint.contact, docs/contact.md) as a table",
+    _exact_contact, needs="walls"))

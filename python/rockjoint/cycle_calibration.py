@@ -39,6 +39,7 @@ import numpy as np
 
 from ._rockjoint import calibration as _cpp_calibration
 from ._rockjoint.constitutive import NormalHysteresis
+from .law_registry import HISTORY_PARAMETERS
 from .calibration import (CLOSURE_OFFSET, FittedParameter, calibration_spec, check_points, closure_of,
                           read_columns)
 
@@ -205,7 +206,7 @@ class CycleCalibration:
             lines.append(f"    cycle {e.cycle}: {e.peak_stress * 1e-6:.4g} -> "
                          f"{e.normal_stress * 1e-6:.4g} MPa (line {e.line}): "
                          f"{e.measured_closure * 1e3:.4g} mm, {e.fitted_closure * 1e3:.4g} mm")
-        r = self.parameter("permanent_fraction")
+        r = self.parameter(HISTORY_PARAMETERS[0].name)
         lowest = min(e.normal_stress for e in ends)
         if not identifiable(r, self.closure_range):
             lines.append("  permanent closure (at zero stress): not identifiable from these data: "
@@ -295,7 +296,9 @@ def calibrate_cycles(cycles: LoadCycles, law: str, *, composite_modulus: Optiona
     if fit_offset:
         o = CLOSURE_OFFSET
         params.append(FittedParameter(o.name, o.symbol, offset, se[npos] * scale, o.unit, o.scale))
-    params.append(FittedParameter("permanent_fraction", "r", r, r * (1 - r) * se[nfit], "-", 1.0))
-    params.append(FittedParameter("unloading_exponent", "m", m, (m - 1) * se[nfit + 1], "-", 1.0))
+    # r = logistic(q), m = 1 + exp(q): their standard errors by the chain rule
+    permanent, exponent = HISTORY_PARAMETERS   # the history's record (NormalHysteresis's own specs)
+    for quantity, value, error in ((permanent, r, r * (1 - r) * se[nfit]), (exponent, m, (m - 1) * se[nfit + 1])):
+        params.append(FittedParameter(quantity.name, quantity.symbol, value, error, quantity.unit, quantity.scale))
     return CycleCalibration(law, build(q), params, cycles, result.residuals * scale, given, result,
                             closure_offset=offset)

@@ -1,13 +1,19 @@
 # SPDX-License-Identifier: MIT
 """The law registry: the one place where a closure law's identity lives.
 
-Each law rockjoint builds by name has one `LawRecord`: its key (a C++ law's ``name()``), words
-for people, its SI builder, its parameters with their units and parameter-file keys, and what a
-calibration fits. Everything that names laws reads from here: ``laws.make_law`` and
-``laws.read_law_file`` (TOML), ``laws.laws_from_topography``, ``calibration.calibrate``, the CLI's
-choices (``python3 -m rockjoint tabulate | calibrate``) and the docs table (``docs_table``). A
-table (.rjt) keeps its source's key (``TabulatedLaw.source_model``) and any FE joint takes any
-law, so a registered law is usable end to end. Adding a law: docs/architecture.md.
+Each law rockjoint builds has one `LawRecord`: its key (a C++ law's ``name()``), words for
+people, its SI builder from its own parameters, those parameters (`Quantity`: keyword, symbol,
+unit and admissible range, read from the C++ law's own metadata, ``<Law>.parameter_specs()``),
+their parameter-file keys, what a calibration fits, its history, and how it is derived from a
+topography (`TopographyInputs`: the statistics, the measured summits or the walls). A law derived
+from a topography only (Tang & Jiao I2 over GW, the laws on measured summits, the walls' exact
+contact, which contact.py registers beside the BEM) is a record too, without a parameter builder.
+Everything that names laws reads from here: ``laws.make_law`` and ``laws.read_law_file`` (TOML),
+``laws.laws_from_topography``, ``calibration.calibrate``, the scenes' law sections, the CLI's
+choices (``python3 -m rockjoint tabulate | calibrate``) and the docs table (``docs_table``); the
+one range check of a law's parameters is `Quantity.problem`. A table (.rjt) keeps its source's key
+(``TabulatedLaw.source_model``) and any FE joint takes any law, so a registered law is usable end
+to end. Adding a law: docs/architecture.md.
 
 Laws can also be registered from outside the package: modules named in the environment variable
 ``ROCKJOINT_LAWS`` (comma separated) or in the entry-point group ``rockjoint.laws`` are imported
@@ -20,17 +26,18 @@ from __future__ import annotations
 
 import dataclasses
 import importlib
+import math
 import os
 from importlib.metadata import entry_points
 from typing import Callable, Dict, Optional, Sequence, Tuple
 
 import numpy as np
 
-from . import contact
 from .units import DIMENSIONS, LAW_UNIT_DIMENSION
 from ._rockjoint.constitutive import (AsperityParameters, BartonBandis, ClosureLaw,
                                       ExponentialLaw, GreenwoodWilliamson, LogarithmicLaw,
-                                      NormalHysteresis, TangJiao, TangSubstrate, composite_modulus)
+                                      NormalHysteresis, ParameterSpec, TangJiao, TangSubstrate,
+                                      composite_modulus)
 
 #: SI per user unit, for files and reports: entries of rockjoint.units (the one unit table)
 UNITS = {unit: DIMENSIONS[dimension][unit] for unit, dimension in LAW_UNIT_DIMENSION.items()}
@@ -41,15 +48,34 @@ _FILE_SUFFIX = {"-": "", "mm": "_mm", "MPa": "_MPa", "GPa": "_GPa", "MPa/mm": "_
 
 @dataclasses.dataclass(frozen=True)
 class Quantity:
-    """A law parameter: its SI keyword, symbol and user unit (files, reports)."""
+    """A law parameter: its SI keyword, symbol, user unit (files, reports) and admissible range:
+    the C++ law's own (`spec`, its ParameterSpec: `Quantity.of`), or finite and > 0 for a
+    parameter of a law composed in Python without C++ metadata."""
 
     name: str
     symbol: str
     unit: str
+    spec: Optional[ParameterSpec] = dataclasses.field(default=None, compare=False, repr=False)
 
     def __post_init__(self):
         if self.unit not in UNITS:
             raise ValueError(f"Quantity {self.name!r}: unit {self.unit!r} unknown; one of {sorted(UNITS)}")
+
+    @classmethod
+    def of(cls, spec: ParameterSpec) -> "Quantity":
+        """The quantity a C++ law's ParameterSpec describes (its file unit, its range)."""
+        return cls(spec.name, spec.symbol, spec.file_unit, spec)
+
+    @property
+    def range(self) -> str:
+        """The admissible range in words (SI), e.g. 'finite and > 0', 'in [0, 1)'."""
+        return self.spec.range if self.spec is not None else "finite and > 0"
+
+    def problem(self, value: float) -> Optional[str]:
+        """None if `value` [SI] is admissible, else what is wrong ('must be ...'): the one range
+        check of a law parameter (parameter files, scenes, calibration)."""
+        ok = self.spec.admits(float(value)) if self.spec is not None else math.isfinite(value) and value > 0
+        return None if ok else f"must be {self.range}"
 
     @property
     def scale(self) -> float:
@@ -60,6 +86,18 @@ class Quantity:
     def file_key(self) -> str:
         """The key in a parameter file, its unit in its name (e.g. maximum_closure_mm)."""
         return self.name + _FILE_SUFFIX[self.unit]
+
+
+def quantities(cls, names: Optional[Sequence[str]] = None) -> Tuple[Quantity, ...]:
+    """The Quantities of a C++ class's parameter_specs() (all, or those `names`, in that order)."""
+    specs = {s.name: s for s in cls.parameter_specs()}
+    return tuple(Quantity.of(specs[n]) for n in (names or specs))
+
+
+#: the summit statistics an asperity law is built from (E* comes from the rock or the file)
+ASPERITY_STATISTICS = quantities(AsperityParameters, ("summit_density", "summit_radius", "summit_height_std"))
+#: the history's own parameters (docs/hysteresis.md, H1-H2), beside its virgin law's
+HISTORY_PARAMETERS = quantities(NormalHysteresis)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -80,21 +118,40 @@ class CalibrationSpec:
 
 @dataclasses.dataclass(frozen=True)
 class LawRecord:
-    """One law of the registry."""
+    """One law of the registry: built from its own parameters (`build`, the file keys, a
+    calibration), derived from a topography (`topography`), or both."""
 
     key: str                 # stable identifier (for a C++ law class: its name())
     label: str               # short display name
     description: str         # what the law is, in one sentence (with its theory section)
-    build: Callable[..., ClosureLaw]            # build(parameters=None, **SI options)
+    build: Optional[Callable[..., ClosureLaw]]  # build(parameters=None, **SI options); None: topography only
     file_required: frozenset                    # parameter-file keys (user units)
     file_optional: frozenset
-    from_file_values: Callable[[dict], ClosureLaw]
+    from_file_values: Optional[Callable[[dict], ClosureLaw]]
     calibration: Optional[CalibrationSpec] = None
     parameters: Tuple[Quantity, ...] = ()       # SI keywords of a law built from its own values
     asperity: bool = False                      # built from AsperityParameters (E*, η, β, σ_s)
     # a law with history over a virgin law (named by the key `virgin`, built from its own values
     # and options): `parameters` are then the history's own, beside the virgin law's
     history: bool = False
+    #: the law derived from a joint's topography: TopographyInputs -> law (None: not derived)
+    topography: Optional[Callable[["TopographyInputs"], ClosureLaw]] = None
+    #: what the derivation needs: "statistics"; "summits" (the measured summit list); "overlap"
+    #: (that and the overlap curve); "walls" (the walls themselves, built outside
+    #: laws_from_topography)
+    needs: str = "statistics"
+    #: its row of the accuracy ladder (bench/results/accuracy_ladder.json; None: not on it)
+    ladder_row: Optional[str] = None
+
+    @property
+    def parametric(self) -> bool:
+        """Built from its own parameters (a model of make_law, parameter files and scenes)."""
+        return self.build is not None
+
+    def quantities(self) -> Tuple[Quantity, ...]:
+        """The parameters a user gives this law (SI keywords; for a law with history, the
+        history's own, beside its virgin law's)."""
+        return ASPERITY_STATISTICS if self.asperity else self.parameters
 
 
 REGISTRY: Dict[str, LawRecord] = {}
@@ -108,8 +165,22 @@ def register(record: LawRecord) -> LawRecord:
         raise ValueError(f"register: law key {record.key!r} must be a lower-case identifier")
     if record.key in REGISTRY:
         raise ValueError(f"register: a law {record.key!r} is registered already")
+    if record.build is None and record.topography is None:
+        raise ValueError(f"register: law {record.key!r} has neither a builder nor a topography derivation")
+    if record.needs not in ("statistics", "summits", "overlap", "walls"):
+        raise ValueError(f"register: law {record.key!r}: needs = {record.needs!r}")
     REGISTRY[record.key] = record
     return record
+
+
+def parametric_laws() -> Dict[str, LawRecord]:
+    """{key: record} of the laws built from their own parameters (make_law, files, scenes)."""
+    return {k: r for k, r in REGISTRY.items() if r.parametric}
+
+
+def topography_laws() -> Dict[str, LawRecord]:
+    """{key: record} of the laws derived from a topography (laws_from_topography, the ladder)."""
+    return {k: r for k, r in REGISTRY.items() if r.topography is not None}
 
 
 def unregister(key: str) -> None:
@@ -118,10 +189,11 @@ def unregister(key: str) -> None:
 
 
 def get(key: str) -> LawRecord:
-    """The record of `key`, or ValueError listing the registered laws."""
-    if key not in REGISTRY:
-        raise ValueError(f"unknown law model {key!r}; expected one of {', '.join(sorted(REGISTRY))}")
-    return REGISTRY[key]
+    """The record of the law built from its parameters named `key`, or ValueError listing them."""
+    laws = parametric_laws()
+    if key not in laws:
+        raise ValueError(f"unknown law model {key!r}; expected one of {', '.join(sorted(laws))}")
+    return laws[key]
 
 
 def calibratable() -> list:
@@ -150,7 +222,7 @@ def docs_table() -> str:
     """The registered laws as a Markdown table (key, law, parameter-file keys, fitted by
     `calibrate`)."""
     rows = ["| key | law | parameter-file keys | fitted by `calibrate` |", "|---|---|---|---|"]
-    for r in REGISTRY.values():
+    for r in parametric_laws().values():
         keys = ", ".join(f"`{k}`" for k in sorted(r.file_required))
         if r.history:
             keys += ", and the virgin law's keys"
@@ -205,17 +277,16 @@ def _exponential_guess(s, d, given, build, offset, closure_of) -> list:
     return [v, float(np.median(-s[pos] / np.log1p(-d[pos] / v)))] + ([0.0] if offset else [])
 
 
-_K_NI = Quantity("initial_normal_stiffness", "K_ni", "MPa/mm")
-_V_M = Quantity("maximum_closure", "V_m", "mm")
+# their parameters, units and ranges: the C++ classes' own (parameter_specs)
 register(law_from_parameters(
     "barton_bandis", "Barton-Bandis", "hyperbolic law σ = K_ni Δ/(1 - Δ/V_m) (theory §6)",
-    BartonBandis, (_K_NI, _V_M), _barton_bandis_guess))
+    BartonBandis, quantities(BartonBandis), _barton_bandis_guess))
 register(law_from_parameters(
     "logarithmic", "logarithmic", "Δ = B ln(σ/σ0) (Swan 1983; theory §6)", LogarithmicLaw,
-    (Quantity("closure_scale", "B", "mm"), Quantity("seating_stress", "σ0", "MPa"))))
+    quantities(LogarithmicLaw)))
 register(law_from_parameters(
     "exponential", "exponential", "Δ = V_m (1 - exp(-σ/σ_c)) (theory §6)", ExponentialLaw,
-    (_V_M, Quantity("characteristic_stress", "σ_c", "MPa")), _exponential_guess))
+    quantities(ExponentialLaw), _exponential_guess))
 
 
 # ---- asperity laws: built from the statistics of the composite topography -----------------------
@@ -304,8 +375,6 @@ def _tang_jiao_build(default_base: Callable[..., ClosureLaw]) -> Callable[..., C
 _GW_BUILD = _summit_law_build("greenwood_williamson", GreenwoodWilliamson, substrate=False)
 _TANG_BUILD = _summit_law_build("tang_substrate", TangSubstrate, substrate=True)
 _TANG_JIAO_BUILD = _tang_jiao_build(_TANG_BUILD)
-#: the bases of TANG_JIAO_BASES: (builder, takes Tang's substrate options)
-_TANG_JIAO_BASE_BUILD = dict(zip(TANG_JIAO_BASES, ((_TANG_BUILD, True), (_GW_BUILD, False))))
 
 
 def _asperity_from_file(build: Callable[..., ClosureLaw]) -> Callable[[dict], ClosureLaw]:
@@ -331,9 +400,10 @@ def _gw_type(tang_jiao: bool) -> Callable[[Sequence[float], dict], ClosureLaw]:
         distribution = given.get("distribution", "gaussian")
         if not tang_jiao:
             return _GW_BUILD(stats, distribution=distribution)
-        base_build, substrate = _TANG_JIAO_BASE_BUILD[given.get("base", DEFAULT_TANG_JIAO_BASE)]
+        base = given.get("base", DEFAULT_TANG_JIAO_BASE)
+        substrate = base == "tang_substrate"   # Tang's substrate options (the base radius)
         kw = {} if given.get("base_radius") is None or not substrate else {"base_radius": given["base_radius"]}
-        return _TANG_JIAO_BUILD(stats, base=base_build(stats, distribution=distribution, **kw),
+        return _TANG_JIAO_BUILD(stats, base=get(base).build(stats, distribution=distribution, **kw),
                                 variant=given.get("variant", "I1"))
     return build
 
@@ -358,28 +428,87 @@ def _gw_type_guess(s, d, given, build, offset, closure_of) -> list:
     return [eta, sigma_s] + ([c] if offset else [])
 
 
-_ETA = Quantity("summit_density", "η", "1/mm²")
-_SIGMA_S = Quantity("summit_height_std", "σ_s", "mm")
+_ETA, _, _SIGMA_S = ASPERITY_STATISTICS
 _GIVEN = ("composite_modulus", "summit_radius")
-for _key, _label, _description, _build, _optional, _options in (
+
+
+# ---- laws derived from a topography (laws.laws_from_topography, the planner's rungs) ------------
+@dataclasses.dataclass
+class TopographyInputs:
+    """What a law derived from a topography is built from: the statistics (AsperityParameters),
+    the seating options of the parametric laws, their height `distribution`, the Tang & Jiao
+    `variant`, Tang's `substrate` options, the measured summit list (topography.empirical_summits
+    of the analysis; None: not measured) and the geometric overlap curve (closure, ratio) or None.
+    For the laws built from the walls themselves: their `aperture`, `composite_modulus` and the
+    `stresses` of the contact curve. `law(key)` builds each derived law once (a composed law
+    reuses its base)."""
+
+    parameters: AsperityParameters
+    seat: dict
+    distribution: str = "gaussian"
+    variant: str = "I1"
+    substrate: dict = dataclasses.field(default_factory=dict)
+    summits: Optional[list] = None
+    overlap: Optional[tuple] = None
+    aperture: object = None                 # the walls' aperture (topography.Surface), for "walls"
+    composite_modulus: Optional[float] = None   # E* [Pa], for "walls"
+    stresses: Optional[Sequence[float]] = None  # the loads of the exact contact curve [Pa]
+    _built: dict = dataclasses.field(default_factory=dict, repr=False)
+
+    def law(self, key: str) -> ClosureLaw:
+        """The closure law registered under key, built from these inputs once and then reused."""
+        if key not in self._built:
+            self._built[key] = topography_laws()[key].topography(self)
+        return self._built[key]
+
+
+def _parametric(build_law, substrate: bool) -> Callable[[TopographyInputs], ClosureLaw]:
+    """GW or Tang (`substrate`: with Tang's options) on the parametric height distribution,
+    seated as asked."""
+    def build(x: TopographyInputs) -> ClosureLaw:
+        return build_law(x.parameters, distribution=x.distribution, **x.seat,
+                         **(x.substrate if substrate else {}))
+    return build
+
+
+def _on_summits(build_law, substrate: bool) -> Callable[[TopographyInputs], ClosureLaw]:
+    """GW or Tang over the measured summit list (each summit its own radius, seated at the highest)."""
+    def build(x: TopographyInputs) -> ClosureLaw:
+        return build_law(x.parameters, distribution=x.summits, **(x.substrate if substrate else {}))
+    return build
+
+
+def _tang_jiao_over(base: str, variant: Optional[str] = None, geometric: bool = False):
+    """Tang & Jiao's cell over the derived law `base` (`variant`: fixed, or the inputs' own)."""
+    def build(x: TopographyInputs) -> ClosureLaw:
+        options = dict(base=x.law(base), variant=variant or x.variant)
+        if geometric:
+            options.update(overlap_closure=x.overlap[0], overlap_area_ratio=x.overlap[1])
+        return _TANG_JIAO_BUILD(None, **options)
+    return build
+
+
+for _key, _label, _description, _build, _optional, _options, _derived, _row in (
         ("greenwood_williamson", "GW", "Greenwood-Williamson on the composite topography (theory §2)",
-         _GW_BUILD, _ASPERITY_KEYS, ("distribution",)),
+         _GW_BUILD, _ASPERITY_KEYS, ("distribution",), _parametric(_GW_BUILD, substrate=False),
+         "gw|first contact"),
         ("tang_substrate", "Tang", "GW with Tang's substrate deformation (theory §4)",
-         _TANG_BUILD, _ASPERITY_KEYS | _SUBSTRATE_KEYS, None),
+         _TANG_BUILD, _ASPERITY_KEYS | _SUBSTRATE_KEYS, None, _parametric(_TANG_BUILD, substrate=True),
+         "tang|first contact"),
         ("tang_jiao", "Tang & Jiao", "Tang & Jiao's interaction cell over Tang's substrate law (theory §5)",
          _TANG_JIAO_BUILD, _ASPERITY_KEYS | _SUBSTRATE_KEYS | {"variant"},
-         ("distribution", "base", "variant", "base_radius"))):
+         ("distribution", "base", "variant", "base_radius"), _tang_jiao_over("tang_substrate"),
+         "tj_I1_Tang|first contact")):
     register(LawRecord(
         _key, _label, _description, _build, _STATISTICS_KEYS, _optional, _asperity_from_file(_build),
         None if _options is None else CalibrationSpec((_ETA, _SIGMA_S), _gw_type(_build is _TANG_JIAO_BUILD),
                                                       _gw_type_guess, needs=_GIVEN, options=_options,
                                                       fit_offset=True),
-        asperity=True))
+        asperity=True, topography=_derived, ladder_row=_row))
 
 
 # ---- a law with history: the hysteretic wrapper of any law above ------------------------------
-#: the history's own parameters (docs/hysteresis.md, H1-H2), beside its virgin law's
-HISTORY_PARAMETERS = (Quantity("permanent_fraction", "r", "-"), Quantity("unloading_exponent", "m", "-"))
+# its own parameters r and m: HISTORY_PARAMETERS (NormalHysteresis.parameter_specs, at the top)
 
 
 def _virgin_record(key) -> LawRecord:
@@ -387,7 +516,7 @@ def _virgin_record(key) -> LawRecord:
     record = get(key) if isinstance(key, str) else None
     if record is None or record.history:
         raise ValueError(f"virgin = {key!r}: name a law without history, one of "
-                         f"{', '.join(sorted(k for k, r in REGISTRY.items() if not r.history))}")
+                         f"{', '.join(sorted(k for k, r in parametric_laws().items() if not r.history))}")
     return record
 
 
@@ -424,92 +553,7 @@ register(LawRecord(
     _history_from_file, None, HISTORY_PARAMETERS, history=True))
 
 
-# ---- laws derived from a topography (laws.laws_from_topography, the planner's rungs) ------------
-
-
-@dataclasses.dataclass
-class TopographyInputs:
-    """What a law derived from a topography is built from: the statistics (AsperityParameters),
-    the seating options of the parametric laws, their height `distribution`, the Tang & Jiao
-    `variant`, Tang's `substrate` options, the measured summit list (topography.empirical_summits
-    of the analysis; None: not measured) and the geometric overlap curve (closure, ratio) or None.
-    For the laws built from the walls themselves: their `aperture`, `composite_modulus` and the
-    `stresses` of the contact curve. `law(key)` builds each derived law once (a composed law
-    reuses its base)."""
-
-    parameters: AsperityParameters
-    seat: dict
-    distribution: str = "gaussian"
-    variant: str = "I1"
-    substrate: dict = dataclasses.field(default_factory=dict)
-    summits: Optional[list] = None
-    overlap: Optional[tuple] = None
-    aperture: object = None                 # the walls' aperture (topography.Surface), for "walls"
-    composite_modulus: Optional[float] = None   # E* [Pa], for "walls"
-    stresses: Optional[Sequence[float]] = None  # the loads of the exact contact curve [Pa]
-    _built: dict = dataclasses.field(default_factory=dict, repr=False)
-
-    def law(self, key: str) -> ClosureLaw:
-        """The closure law registered under key, built from these inputs once and then reused."""
-        if key not in self._built:
-            self._built[key] = TOPOGRAPHY_LAWS[key].build(self)
-        return self._built[key]
-
-
-@dataclasses.dataclass(frozen=True)
-class TopographyLaw:
-    """A law derived from a joint's topography: its key, words, builder (TopographyInputs ->
-    law), what it needs ("statistics"; "summits": the measured summit list; "overlap": that and
-    the overlap curve; "walls": the walls themselves, built outside laws_from_topography) and its
-    row of the accuracy ladder (bench/results/accuracy_ladder.json; None: not on the ladder)."""
-
-    key: str
-    label: str
-    description: str
-    build: Callable[[TopographyInputs], ClosureLaw]
-    needs: str = "statistics"
-    ladder_row: Optional[str] = None
-
-
-TOPOGRAPHY_LAWS: Dict[str, TopographyLaw] = {}
-
-
-def register_topography_law(record: TopographyLaw) -> TopographyLaw:
-    """Add a topography-derived law (ValueError for a key already taken, by either registry)."""
-    if record.key in TOPOGRAPHY_LAWS:
-        raise ValueError(f"register_topography_law: {record.key!r} is registered already")
-    if record.needs not in ("statistics", "summits", "overlap", "walls"):
-        raise ValueError(f"register_topography_law: needs = {record.needs!r}")
-    TOPOGRAPHY_LAWS[record.key] = record
-    return record
-
-
-def _parametric(build_law, substrate: bool) -> Callable[[TopographyInputs], ClosureLaw]:
-    """GW or Tang (`substrate`: with Tang's options) on the parametric height distribution,
-    seated as asked."""
-    def build(x: TopographyInputs) -> ClosureLaw:
-        return build_law(x.parameters, distribution=x.distribution, **x.seat,
-                         **(x.substrate if substrate else {}))
-    return build
-
-
-def _on_summits(build_law, substrate: bool) -> Callable[[TopographyInputs], ClosureLaw]:
-    """GW or Tang over the measured summit list (each summit its own radius, seated at the highest)."""
-    def build(x: TopographyInputs) -> ClosureLaw:
-        return build_law(x.parameters, distribution=x.summits, **(x.substrate if substrate else {}))
-    return build
-
-
-def _tang_jiao_over(base: str, variant: Optional[str] = None, geometric: bool = False):
-    """Tang & Jiao's cell over the derived law `base` (`variant`: fixed, or the inputs' own)."""
-    def build(x: TopographyInputs) -> ClosureLaw:
-        options = dict(base=x.law(base), variant=variant or x.variant)
-        if geometric:
-            options.update(overlap_closure=x.overlap[0], overlap_area_ratio=x.overlap[1])
-        return _TANG_JIAO_BUILD(None, **options)
-    return build
-
-
+# ---- laws derived from a topography only ---------------------------------------------------------
 #: The law recommended for a joint described by its topography, and why. Evidence:
 #: bench/results/accuracy_ladder.md (every law against the exact elastic contact, BEM, of
 #: the same walls on the project's synthetic granite-like and sandstone-like joints).
@@ -520,46 +564,29 @@ RECOMMENDATION = (
     "of the same walls on the project's synthetic joints (loads 1-30 MPa; the errors per joint "
     "family and its cost: bench/results/accuracy_ladder.md, and its JSON that rockjoint.scenes.ladder "
     "reads).")
-#: the exact contact curve of the walls (BEM, rockjoint.contact), tabulated: the planner's rung
-#: that is no parametric law (built from the walls by scenes.joint_laws.law_of_walls)
-EXACT_CONTACT = "exact_contact"
-#: its table's stiffness at zero closure, as a fraction of the secant to its first load σ1/Δ1:
-#: the walls' own onset is Hertzian (k(0+) = 0), which leaves a FE model's first linearisation
-#: at zero closure without a normal stiffness (a singular Jacobian); 1 % seats it and changes σ
-#: below the first load (1/300 of the table's top) only
-EXACT_CONTACT_SEATING = 0.01
 
 
-def _exact_contact(x: TopographyInputs) -> ClosureLaw:
-    """The walls' exact elastic contact (BEM) at x.stresses, as a table (contact.exact_elastic_law)."""
-    curve = contact.closure_curve(x.aperture, x.composite_modulus, x.stresses)
-    seating = EXACT_CONTACT_SEATING * curve.stress[0] / curve.closure[0]
-    return contact.exact_elastic_law(curve, initial_stiffness=seating)
+def derived_law(key: str, label: str, description: str, topography, needs: str = "statistics",
+                ladder_row: Optional[str] = None) -> LawRecord:
+    """The record of a law derived from a topography only (no parameter builder, no file keys)."""
+    return LawRecord(key, label, description, None, frozenset(), frozenset(), None,
+                     topography=topography, needs=needs, ladder_row=ladder_row)
 
 
 for _record in (
-        TopographyLaw("greenwood_williamson", REGISTRY["greenwood_williamson"].label,
-                      REGISTRY["greenwood_williamson"].description, _parametric(_GW_BUILD, substrate=False),
-                      ladder_row="gw|first contact"),
-        TopographyLaw("tang_substrate", REGISTRY["tang_substrate"].label, REGISTRY["tang_substrate"].description,
-                      _parametric(_TANG_BUILD, substrate=True), ladder_row="tang|first contact"),
-        TopographyLaw("tang_jiao", REGISTRY["tang_jiao"].label, REGISTRY["tang_jiao"].description,
-                      _tang_jiao_over("tang_substrate"), ladder_row="tj_I1_Tang|first contact"),
-        TopographyLaw(RECOMMENDED, "Tang & Jiao I2 over GW (recommended)", RECOMMENDATION,
-                      _tang_jiao_over("greenwood_williamson", "I2"), ladder_row="tj_I2_GW|first contact"),
-        TopographyLaw("greenwood_williamson_empirical", "GW (empirical summits)",
-                      REGISTRY["greenwood_williamson"].description, _on_summits(_GW_BUILD, substrate=False),
-                      needs="summits", ladder_row="gw_empirical"),
-        TopographyLaw("tang_substrate_empirical", "Tang (empirical summits)", REGISTRY["tang_substrate"].description,
-                      _on_summits(_TANG_BUILD, substrate=True), needs="summits", ladder_row="tang_empirical"),
-        TopographyLaw("tang_jiao_empirical", "Tang & Jiao (empirical summits)", REGISTRY["tang_jiao"].description,
-                      _tang_jiao_over("tang_substrate_empirical"), needs="summits",
-                      ladder_row="tj_I1_tang_empirical"),
-        TopographyLaw("tang_jiao_empirical_geometric", "Tang & Jiao (empirical, geometric area)",
-                      "Tang & Jiao over the empirical Tang law with the geometric overlap ratio "
-                      "fraction{e <= Δ} in Eq. (2) (theory §3, §5)",
-                      _tang_jiao_over("tang_substrate_empirical", geometric=True), needs="overlap"),
-        TopographyLaw(EXACT_CONTACT, "exact contact of the walls (BEM), tabulated",
-                      "the walls' exact elastic contact curve (rockjoint.contact, docs/contact.md) as "
-                      "a table", _exact_contact, needs="walls")):
-    register_topography_law(_record)
+        derived_law(RECOMMENDED, "Tang & Jiao I2 over GW (recommended)", RECOMMENDATION,
+                    _tang_jiao_over("greenwood_williamson", "I2"), ladder_row="tj_I2_GW|first contact"),
+        derived_law("greenwood_williamson_empirical", "GW (empirical summits)",
+                    REGISTRY["greenwood_williamson"].description, _on_summits(_GW_BUILD, substrate=False),
+                    needs="summits", ladder_row="gw_empirical"),
+        derived_law("tang_substrate_empirical", "Tang (empirical summits)", REGISTRY["tang_substrate"].description,
+                    _on_summits(_TANG_BUILD, substrate=True), needs="summits", ladder_row="tang_empirical"),
+        derived_law("tang_jiao_empirical", "Tang & Jiao (empirical summits)", REGISTRY["tang_jiao"].description,
+                    _tang_jiao_over("tang_substrate_empirical"), needs="summits",
+                    ladder_row="tj_I1_tang_empirical"),
+        derived_law("tang_jiao_empirical_geometric", "Tang & Jiao (empirical, geometric area)",
+                    "Tang & Jiao over the empirical Tang law with the geometric overlap ratio "
+                    "fraction{e <= Δ} in Eq. (2) (theory §3, §5)",
+                    _tang_jiao_over("tang_substrate_empirical", geometric=True), needs="overlap")):
+    register(_record)
+# The walls' exact contact (BEM) registers itself from rockjoint.contact, beside its solver.

@@ -23,7 +23,8 @@ import numpy as np
 
 from ._rockjoint.constitutive import AsperityParameters, ClosureLaw
 from . import law_registry
-from .law_registry import MM, MPA, MPA_PER_MM, REGISTRY, TOPOGRAPHY_LAWS, get
+from . import contact  # noqa: F401  (registers the walls' exact contact, beside its BEM solver)
+from .law_registry import MM, MPA, MPA_PER_MM, get, parametric_laws, topography_laws
 from .tabulation import DEFAULT_MAXIMUM_KNOTS, DEFAULT_TOLERANCE
 from .topography import empirical_summits
 
@@ -78,16 +79,17 @@ def read_law_file(path: str | os.PathLike) -> Tuple[NamedLaw, dict]:
             raise ValueError(f"{path}: unknown section [{section}]; expected [law] and [table]")
     values = dict(doc.get("law", {}))
     key = values.pop("model", None)
-    if key not in REGISTRY:
+    laws = parametric_laws()
+    if key not in laws:
         raise ValueError(f"{path}: [law] model = {key!r}; expected one of "
-                         f"{', '.join(sorted(REGISTRY))}")
-    model = REGISTRY[key]
+                         f"{', '.join(sorted(laws))}")
+    model = laws[key]
     required, optional, asperity = model.file_required, model.file_optional, model.asperity
     if model.history:   # the history's keys beside its virgin law's own
-        virgin = REGISTRY.get(values.get("virgin"))
+        virgin = laws.get(values.get("virgin"))
         if virgin is None or virgin.history:
             raise ValueError(f"{path}: [law] virgin = {values.get('virgin')!r}; expected one of "
-                             f"{', '.join(sorted(k for k, r in REGISTRY.items() if not r.history))}")
+                             f"{', '.join(sorted(k for k, r in laws.items() if not r.history))}")
         required, optional = required | virgin.file_required, optional | virgin.file_optional
         asperity = virgin.asperity
     missing = sorted(required - values.keys())
@@ -103,6 +105,12 @@ def read_law_file(path: str | os.PathLike) -> Tuple[NamedLaw, dict]:
     for k, v in values.items():
         if k not in _TEXT_KEYS and (isinstance(v, bool) or not isinstance(v, (int, float))):
             raise ValueError(f"{path}: [law] {k} = {v!r} must be a number")
+    # the one range check of a law's parameters (law_registry.Quantity.problem, the C++ law's ranges)
+    for q in model.quantities() + (virgin.quantities() if model.history else ()):
+        problem = q.problem(values[q.file_key] * q.scale)
+        if problem:
+            raise ValueError(f"{path}: [law] {q.file_key} = {values[q.file_key]!r} is out of range: "
+                             f"{q.symbol} {problem} ({q.unit} in the file)")
     try:
         law = model.from_file_values(values)
     except (TypeError, ValueError) as err:
@@ -193,13 +201,13 @@ def laws_from_topography(parameters: AsperityParameters, *, summits=None,
     available = {"statistics": True, "summits": inputs.summits is not None,
                  "overlap": inputs.summits is not None and overlap is not None, "walls": False}
     return {r.key: NamedLaw(r.key, r.label, inputs.law(r.key), r.description)
-            for r in TOPOGRAPHY_LAWS.values() if available[r.needs] and (keys is None or r.key in keys)}
+            for r in topography_laws().values() if available[r.needs] and (keys is None or r.key in keys)}
 
 
 def describe_models() -> str:
     """One line per registered model: key, what it is, its parameter-file keys."""
     lines = []
-    for m in REGISTRY.values():
+    for m in parametric_laws().values():
         optional = sorted(m.file_optional - m.file_required)
         lines.append(f"{m.key}: {m.description}; requires {', '.join(sorted(m.file_required))}"
                      + (f"; optional {', '.join(optional)}" if optional else ""))

@@ -14,6 +14,7 @@
 #include <rockjoint/constitutive/interaction_cell.hpp>
 #include <rockjoint/constitutive/interaction_cell_numeric.hpp>
 #include <rockjoint/constitutive/normal_hysteresis.hpp>
+#include <rockjoint/constitutive/parameter_spec.hpp>
 #include <rockjoint/constitutive/substrate.hpp>
 #include <rockjoint/constitutive/summit_population_law.hpp>
 #include <rockjoint/constitutive/tabulated_law.hpp>
@@ -75,6 +76,25 @@ void declare_laws(py::module_& m)
       .def("__repr__", [](const Parameter& p)
            { return p.name + "=" + std::to_string(p.value) + " " + p.unit; });
 
+  py::class_<ParameterSpec>(
+      m, "ParameterSpec",
+      "What a law's parameter is, from the law's own C++ code: keyword, symbol, SI unit, the "
+      "unit of parameter files and reports, and the admissible range its constructor checks")
+      .def_readonly("name", &ParameterSpec::name, "keyword of the SI constructor argument")
+      .def_readonly("symbol", &ParameterSpec::symbol, "symbol in the theory")
+      .def_readonly("unit", &ParameterSpec::unit, "SI unit ('-': dimensionless)")
+      .def_readonly("file_unit", &ParameterSpec::file_unit, "unit of parameter files and reports")
+      .def_readonly("lower", &ParameterSpec::lower, "lower bound of the range")
+      .def_readonly("lower_inclusive", &ParameterSpec::lower_inclusive)
+      .def_readonly("upper", &ParameterSpec::upper, "upper bound of the range (inf: none)")
+      .def_readonly("upper_inclusive", &ParameterSpec::upper_inclusive)
+      .def_property_readonly("range", &ParameterSpec::range,
+                             "the range in words, e.g. 'finite and > 0', 'in [0, 1)'")
+      .def("admits", &ParameterSpec::admits, py::arg("value"),
+           "whether value [SI] lies in the admissible range")
+      .def("__repr__", [](const ParameterSpec& s)
+           { return "ParameterSpec(" + s.name + " " + s.symbol + " [" + s.unit + "], " + s.range() + ")"; });
+
   py::class_<ClosureLaw, std::shared_ptr<ClosureLaw>>(
       m, "ClosureLaw", "Normal-closure law σ(Δ) of a rough joint (SI: Pa, m)")
       .def_property_readonly("name", &ClosureLaw::name)
@@ -115,6 +135,7 @@ void declare_laws(py::module_& m)
       m, "BartonBandis", "Barton-Bandis hyperbola σ = K_ni Δ / (1 - Δ/V_m)")
       .def(py::init<double, double>(), py::arg("initial_normal_stiffness"),
            py::arg("maximum_closure"))
+      .def_static("parameter_specs", &BartonBandis::parameter_specs, "The constructor's parameters: name, symbol, SI unit, file unit and admissible range (ParameterSpec)")
       .def_static(
           "from_joint_properties",
           [](double jrc, double jcs, double aj)
@@ -125,12 +146,14 @@ void declare_laws(py::module_& m)
 
   py::class_<LogarithmicLaw, ClosureLaw, std::shared_ptr<LogarithmicLaw>>(
       m, "LogarithmicLaw", "Δ = B ln(σ_t/σ0); returns σ = σ_t - σ0")
-      .def(py::init<double, double>(), py::arg("closure_scale"), py::arg("seating_stress"));
+      .def(py::init<double, double>(), py::arg("closure_scale"), py::arg("seating_stress"))
+      .def_static("parameter_specs", &LogarithmicLaw::parameter_specs, "The constructor's parameters: name, symbol, SI unit, file unit and admissible range (ParameterSpec)");
 
   py::class_<ExponentialLaw, ClosureLaw, std::shared_ptr<ExponentialLaw>>(
       m, "ExponentialLaw", "Δ = V_m (1 - exp(-σ/σ_c))")
       .def(py::init<double, double>(), py::arg("maximum_closure"),
-           py::arg("characteristic_stress"));
+           py::arg("characteristic_stress"))
+      .def_static("parameter_specs", &ExponentialLaw::parameter_specs, "The constructor's parameters: name, symbol, SI unit, file unit and admissible range (ParameterSpec)");
 
   py::class_<NormalHysteresis, ClosureLaw, std::shared_ptr<NormalHysteresis>>(
       m, "NormalHysteresis",
@@ -139,6 +162,8 @@ void declare_laws(py::module_& m)
       "(evaluate, closure_at_stress) it is the virgin curve")
       .def(py::init<std::shared_ptr<const ClosureLaw>, double, double>(), py::arg("virgin"),
            py::arg("permanent_fraction"), py::arg("unloading_exponent"))
+      .def_static("parameter_specs", &NormalHysteresis::parameter_specs,
+                  "The history's own parameters r and m (beside the virgin law's): ParameterSpec")
       .def_property_readonly("virgin", [](const NormalHysteresis& h)
                              { return std::const_pointer_cast<ClosureLaw>(h.virgin_law()); })
       .def_property_readonly("permanent_fraction", &NormalHysteresis::permanent_fraction)
@@ -337,6 +362,8 @@ void declare_asperity_models(py::module_& m)
              py::arg("composite_modulus"), py::arg("summit_density"),
              py::arg("summit_radius"), py::arg("summit_height_std"),
              py::arg("sampling_interval") = py::none())
+        .def_static("parameter_specs", &AsperityParameters::parameter_specs,
+                    "E*, η, β, σ_s and h: name, symbol, SI unit, file unit and range (ParameterSpec)")
         .def_readonly("composite_modulus", &AsperityParameters::composite_modulus, "E* [Pa]")
         .def_readonly("summit_density", &AsperityParameters::summit_density, "η [1/m²]")
         .def_readonly("summit_radius", &AsperityParameters::summit_radius, "β [m]")

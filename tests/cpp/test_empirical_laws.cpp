@@ -11,6 +11,7 @@
 #include <memory>
 #include <vector>
 
+#include "expect_error.hpp"
 #include "law_checks.hpp"
 
 using namespace rockjoint::constitutive;
@@ -118,4 +119,42 @@ TEST(EmpiricalLaws, RejectBadParametersWithNamedErrors)
   BartonBandis law(20e9, 0.3e-3);
   EXPECT_THROW(law.closure_at_stress(nan), std::invalid_argument);
   EXPECT_THROW(law.closure_at_stress(-1.0), std::invalid_argument);
+}
+
+// The laws' parameter metadata (constitutive/parameter_spec.hpp): the ranges the constructors
+// check are the ones the specs state, and the specs' words are the error's.
+TEST(ParameterSpec, RangesAreTheConstructorsOwn)
+{
+  const auto& bb = BartonBandis::parameter_specs();
+  ASSERT_EQ(bb.size(), 2u);
+  EXPECT_EQ(bb[0].name, "initial_normal_stiffness");
+  EXPECT_EQ(bb[1].symbol, "V_m");
+  EXPECT_EQ(bb[1].unit, "m");
+  EXPECT_EQ(bb[1].file_unit, "mm");
+  EXPECT_EQ(bb[1].range(), "finite and > 0");
+  EXPECT_TRUE(bb[1].admits(1e-3));
+  for (double bad : {0.0, -1e-3, std::numeric_limits<double>::quiet_NaN(),
+                     std::numeric_limits<double>::infinity()})
+  {
+    EXPECT_FALSE(bb[1].admits(bad)) << bad;
+    rockjoint::testing::expect_error([&] { BartonBandis(20e9, bad); },
+                                     {"BartonBandis", "maximum_closure", "finite and > 0"});
+  }
+  for (const auto& specs : {LogarithmicLaw::parameter_specs(), ExponentialLaw::parameter_specs()})
+    for (const auto& s : specs)
+      EXPECT_FALSE(s.admits(0.0)) << s.name;   // every empirical parameter is positive
+}
+
+TEST(ParameterSpec, ClosedAndOpenBoundsInWordsAndInTests)
+{
+  const ParameterSpec r{"permanent_fraction", "r", "-", "-", 0.0, true, 1.0, false};
+  EXPECT_EQ(r.range(), "in [0, 1)");
+  EXPECT_TRUE(r.admits(0.0));
+  EXPECT_FALSE(r.admits(1.0));
+  const ParameterSpec m{"unloading_exponent", "m", "-", "-", 1.0, true};
+  EXPECT_EQ(m.range(), "finite and >= 1");
+  EXPECT_TRUE(m.admits(1.0));
+  EXPECT_FALSE(m.admits(0.999));
+  rockjoint::testing::expect_error([&] { m.check("Owner", 0.5); },
+                                   {"Owner", "unloading_exponent", "0.5", "finite and >= 1"});
 }

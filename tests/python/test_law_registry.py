@@ -97,18 +97,21 @@ def test_fe_joint_takes_the_registered_law():
 
 def test_law_keys_are_spelled_only_in_the_registry():
     """Any string literal of the package (parsed, not grepped: comparisons, arguments, dict keys,
-    defaults) equal to a registered law key or a topography-derived key is in law_registry.py;
-    so is any string ending like the derived keys' suffixes of old ("_empirical")."""
+    defaults) equal to a registered law key (topography-derived ones included) is in the file that
+    registers it: law_registry.py, or contact.py for the walls' exact contact (registered beside
+    its BEM solver); so is any string ending like the derived keys' suffixes of old ("_empirical")."""
     import ast
     package = pathlib.Path(SOURCE) / "python" / "rockjoint"
-    keys = ({k for k in law_registry.REGISTRY if k != toy.KEY} | set(law_registry.TOPOGRAPHY_LAWS))
+    keys = {k for k in law_registry.REGISTRY if k != toy.KEY}
+    assert {"exact_contact", "tang_jiao_i2_gw", "greenwood_williamson_empirical"} <= keys
     offenders = []
     for path in package.rglob("*.py"):
         if path.name == "law_registry.py":
             continue
+        own = {"exact_contact"} if path.name == "contact.py" else set()
         for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
             if isinstance(node, ast.Constant) and isinstance(node.value, str) and (
-                    node.value in keys or node.value.endswith("_empirical")):
+                    node.value in keys - own or node.value.endswith("_empirical")):
                 offenders.append(f"{path.relative_to(package)}:{node.lineno}: {node.value!r}")
     assert not offenders, offenders
 
@@ -130,7 +133,8 @@ def test_architecture_page_shows_the_registry_table():
 def _recipe_files() -> list:
     """The numbered file list of docs/architecture.md, "Adding a closure law"."""
     page = (pathlib.Path(SOURCE) / "docs" / "architecture.md").read_text(encoding="utf-8")
-    section = page[page.index("## Adding a closure law"):page.index("## Where each equation lives")]
+    start = page.index("## Adding a closure law")
+    section = page[start:page.index("\n## ", start)]
     return re.findall(r"^\d+\. `([^`]+)`", section, re.M)
 
 
@@ -165,3 +169,52 @@ def test_a_composed_law_is_one_file():
     """The toy law is named by its plugin file and its own test only (the recipe: one record in
     one file)."""
     assert _naming(pathlib.Path(SOURCE), toy.KEY) == {"tests/python/toy_law_plugin.py"}
+
+
+def test_parameters_units_and_ranges_are_the_cpp_laws_own():
+    """Every parametric record's quantities are its C++ class's parameter_specs() (names, symbols,
+    file units, ranges): nothing re-declared in Python. The ranges are checked against their
+    definitions (positivity; r in [0, 1), m >= 1: docs/hysteresis.md, H1-H2)."""
+    for key, cls in (("barton_bandis", rockjoint.BartonBandis), ("logarithmic", rockjoint.LogarithmicLaw),
+                     ("exponential", rockjoint.ExponentialLaw), ("normal_hysteresis", rockjoint.NormalHysteresis)):
+        record = law_registry.get(key)
+        specs = cls.parameter_specs()
+        assert [(q.name, q.symbol, q.unit) for q in record.quantities()] == \
+            [(s.name, s.symbol, s.file_unit) for s in specs], key
+    r, m = law_registry.HISTORY_PARAMETERS
+    assert (r.problem(0.0), r.problem(0.999), m.problem(1.0)) == (None, None, None)
+    assert r.problem(1.0) == "must be in [0, 1)" and m.problem(0.5) == "must be finite and >= 1"
+    assert law_registry.get("barton_bandis").quantities()[1].problem(-1e-3) == "must be finite and > 0"
+    assert [q.name for q in law_registry.get("greenwood_williamson").quantities()] == \
+        ["summit_density", "summit_radius", "summit_height_std"]
+
+
+def test_one_range_check_for_files_and_scenes(tmp_path):
+    """A parameter out of its C++ range is named the same way by a TOML parameter file and by a
+    scene (the record's Quantity.problem), before any law is built."""
+    from rockjoint.laws import read_law_file
+    from rockjoint.scenes import SceneError, load_scene
+    from scene_cases import COLUMN, write
+    toml = tmp_path / "h.toml"
+    toml.write_text('[law]\nmodel = "normal_hysteresis"\nvirgin = "barton_bandis"\npermanent_fraction = 1.2\n'
+                    'unloading_exponent = 3.0\ninitial_normal_stiffness_MPa_per_mm = 20.0\n'
+                    'maximum_closure_mm = 0.3\n', encoding="utf-8")
+    with pytest.raises(ValueError, match=r"permanent_fraction = 1.2 is out of range: r must be in \[0, 1\)"):
+        read_law_file(toml)
+    scene = COLUMN.replace("model: barton_bandis\n", "model: normal_hysteresis\n      virgin: barton_bandis\n").replace(
+        "parameters: {initial_normal_stiffness", "parameters: {permanent_fraction: 1.2, unloading_exponent: 3, "
+        "initial_normal_stiffness")
+    with pytest.raises(SceneError, match=r"permanent_fraction.*out of range: must be in \[0, 1\)"):
+        load_scene(write(tmp_path, scene))
+
+
+def test_the_exact_contact_registers_itself_beside_its_solver():
+    """The registry does not import the BEM; contact.py registers the walls' exact contact."""
+    import ast
+    from rockjoint import contact
+    source = (pathlib.Path(SOURCE) / "python" / "rockjoint" / "law_registry.py").read_text(encoding="utf-8")
+    imported = {a.name for n in ast.walk(ast.parse(source)) if isinstance(n, ast.ImportFrom) for a in n.names}
+    assert "contact" not in imported
+    record = law_registry.topography_laws()[contact.EXACT_CONTACT]
+    assert record.needs == "walls" and not record.parametric
+    assert contact.EXACT_CONTACT not in law_registry.parametric_laws()

@@ -57,7 +57,7 @@ def test_two_d_scene_is_planned_in_2d_and_cannot_be_forced_to_3d(tmp_path):
 def ladder_rows():
     """{topography-derived law key: its row of the ladder's JSON} (the registry's records)."""
     from rockjoint import law_registry
-    return {k: r.ladder_row for k, r in law_registry.TOPOGRAPHY_LAWS.items() if r.ladder_row}
+    return {k: r.ladder_row for k, r in law_registry.topography_laws().items() if r.ladder_row}
 
 
 def bench_json():

@@ -70,7 +70,7 @@ def law_of_walls(key: str, upper, lower, young: float, poisson: float, top_stres
     """The law of rung `key` for two scanned walls (topography.Surface, mated, no offset): what
     the planner's cost of that rung counts (scenes.ladder)."""
     joint = topo.composite_topography(upper, lower, offset=(0, 0))
-    if law_registry.TOPOGRAPHY_LAWS[key].needs == "walls":   # the walls' own contact: no statistics
+    if law_registry.topography_laws()[key].needs == "walls":   # the walls' own contact: no statistics
         inputs = law_registry.TopographyInputs(None, {}, aperture=joint.aperture,
                                                composite_modulus=rockjoint.composite_modulus(young, poisson),
                                                stresses=ladder.contact_stresses(top_stress))

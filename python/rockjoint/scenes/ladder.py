@@ -37,10 +37,10 @@ from scipy import stats
 
 import rockjoint
 
-from .. import law_registry
+from .. import contact, law_registry
 
 #: the exact contact curve of the walls (BEM), the rung that is not a parametric law
-EXACT_CONTACT = law_registry.EXACT_CONTACT
+EXACT_CONTACT = contact.EXACT_CONTACT
 #: the file of the evidence: in the installed package (rockjoint/evidence/) or the source tree
 EVIDENCE_FILE = "accuracy_ladder.json"
 
@@ -136,14 +136,15 @@ def rungs() -> tuple:
     exact = data["bem"]["families"]
     resolution = {f: upper_prediction_limit(list(v["resolution_errors"].values())) for f, v in exact.items()}
     out = []
-    for key, record in law_registry.TOPOGRAPHY_LAWS.items():
+    derived = law_registry.topography_laws()
+    for key, record in derived.items():
         if record.ladder_row is None:
             continue
         law = data["laws"][record.ladder_row]
         out.append(Rung(key, law["label"], {f: _law_limit(v["closure_errors"]) + resolution[f]
                                             for f, v in law["families"].items()},
                         law["evaluation_seconds"], law["tabulation_seconds"], law["law_seconds"]))
-    out.append(Rung(EXACT_CONTACT, law_registry.TOPOGRAPHY_LAWS[EXACT_CONTACT].label,
+    out.append(Rung(EXACT_CONTACT, derived[EXACT_CONTACT].label,
                     {f: resolution[f] + v["table_error"] for f, v in exact.items()}, 0.0, {},
                     data["bem_seconds"]))
     return tuple(out)

@@ -119,34 +119,27 @@ STRENGTH = Mapping({
     rule=_strength_rule)
 
 
-_ASPERITY_STATISTICS = (law_registry.Quantity("summit_density", "η", "1/mm²"),
-                        law_registry.Quantity("summit_radius", "β", "mm"),
-                        law_registry.Quantity("summit_height_std", "σ_s", "mm"))
-
-
 def _law_parameters(law, path, c):
     """A registered law's parameters (converted to SI): its own, or for an asperity law the summit
     statistics (E* comes from the rock); a law with history takes the history's (r, m) beside those
-    of the registered law its `virgin` names."""
-    record = law_registry.REGISTRY.get(law["model"])
-    if record is None or not (record.parameters or record.asperity):
-        c.fail(path + ("model",), f"{law['model']!r} is not a registered law; one of "
-               f"{', '.join(sorted(law_registry.REGISTRY))}")
-    names, ranges = {}, {}
+    of the registered law its `virgin` names. Names, units and ranges: the law's record
+    (law_registry, from the C++ law's own metadata)."""
+    laws = law_registry.parametric_laws()
+    record = laws.get(law["model"])
+    if record is None:
+        c.fail(path + ("model",), f"{law['model']!r} is not a registered law; one of {', '.join(sorted(laws))}")
+    names = {}
     if record.history:
-        virgin = law_registry.REGISTRY.get(law.get("virgin"))
-        if virgin is None or virgin.history or not (virgin.parameters or virgin.asperity):
+        virgin = laws.get(law.get("virgin"))
+        if virgin is None or virgin.history:
             c.fail(path + ("virgin",), f"a law with history needs virgin: a registered law without history, "
-                   f"one of {', '.join(sorted(k for k, r in law_registry.REGISTRY.items() if not r.history))}; "
+                   f"one of {', '.join(sorted(k for k, r in laws.items() if not r.history))}; "
                    f"got {law.get('virgin')!r}")
-        permanent, exponent = record.parameters   # r in [0, 1), m >= 1 (docs/hysteresis.md, H1-H2)
-        names.update({permanent.name: permanent, exponent.name: exponent})
-        ranges = {permanent.name: (lambda v: 0 <= v < 1, "must be in [0, 1)"),
-                  exponent.name: (lambda v: v >= 1, "must be >= 1")}
+        names.update({q.name: q for q in record.quantities()})   # r and m (docs/hysteresis.md, H1-H2)
         record = virgin
     elif "virgin" in law:
         c.fail(path + ("virgin",), f"goes with a law with history, not {record.key}")
-    names.update({q.name: q for q in (_ASPERITY_STATISTICS if record.asperity else record.parameters)})
+    names.update({q.name: q for q in record.quantities()})
     params = law.get("parameters") or {}
     for key in params:
         if key not in names:
@@ -160,9 +153,9 @@ def _law_parameters(law, path, c):
             out[key] = parse_quantity(params[key], LAW_UNIT_DIMENSION[q.unit])
         except ValueError as err:
             c.fail(path + ("parameters", key), str(err))
-        inside, text = ranges.get(key, (lambda v: v > 0, "must be > 0"))
-        if not inside(out[key]):
-            c.fail(path + ("parameters", key), f"{params[key]!r} is out of range: {text}")
+        problem = q.problem(out[key])   # the one range check (the C++ law's range)
+        if problem:
+            c.fail(path + ("parameters", key), f"{params[key]!r} is out of range: {problem}")
     law["parameters"] = out
 
 
