@@ -356,12 +356,12 @@ def calibration_spec(law: str, composite_modulus, summit_radius, who: str) -> tu
         raise ValueError(f"{who}: law '{law}' cannot be calibrated; choose one of "
                          f"{', '.join(calibratable())}")
     given: Dict[str, object] = {}
-    inputs = {"composite_modulus": (composite_modulus, "Pa"), "summit_radius": (summit_radius, "m")}
-    for key in spec.needs:
-        v, unit = inputs[key]
-        if v is None or not (math.isfinite(v) and v > 0):
-            raise ValueError(f"{who}: law '{law}' needs {key} [{unit}] finite and > 0 (got {v})")
-        given[key] = float(v)
+    inputs = {"composite_modulus": composite_modulus, "summit_radius": summit_radius}
+    for q in spec.needs:   # E*, β: their names, units and ranges from the registry (the C++ specs)
+        v = inputs[q.name]
+        if v is None or q.problem(v):
+            raise ValueError(f"{who}: law '{law}' needs {q.name} [{q.spec.unit}] {q.range} (got {v})")
+        given[q.name] = float(v)
     return spec, given
 
 
@@ -431,9 +431,9 @@ def calibrate(curve: ClosureCurve, law: str, *, composite_modulus: Optional[floa
         else:
             v, e = c, se[j] * scale
         params.append(FittedParameter(u.name, u.symbol, v, e, u.unit, u.scale))
-    shown = {}
-    for k, v in given.items():
-        shown[k] = (f"{v * 1e-9:.6g} GPa" if k == "composite_modulus" else
-                    f"{v * 1e3:.6g} mm" if k in ("summit_radius", "base_radius") else v)
+    shown, needs = {}, {q.name: q for q in spec.needs}
+    for k, v in given.items():   # in the units of files and reports
+        shown[k] = (f"{v / needs[k].scale:.6g} {needs[k].unit}" if k in needs else
+                    f"{v * 1e3:.6g} mm" if k == "base_radius" else v)
     return Calibration(law, fitted_law, params, c, curve, result.residuals * scale, shown,
                        result)

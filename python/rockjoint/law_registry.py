@@ -103,7 +103,7 @@ HISTORY_PARAMETERS = quantities(NormalHysteresis)
 @dataclasses.dataclass(frozen=True)
 class CalibrationSpec:
     """What `calibration.calibrate` fits: `unknowns` (positive, fitted as logarithms), the given
-    inputs `needs` (SI keywords the caller must pass) and `options` (optional ones), the builder
+    inputs `needs` (Quantities the caller must pass, SI) and `options` (optional SI keywords), the builder
     (values SI, given) -> law, the starting values initial_guess(stress, closure, given, build,
     offset, closure_of) -> values SI (+ the closure offset when `offset`; closure_of(law,
     stresses) -> closures), and whether a closure offset is fitted by default."""
@@ -111,7 +111,7 @@ class CalibrationSpec:
     unknowns: Tuple[Quantity, ...]
     build: Callable[[Sequence[float], dict], ClosureLaw]
     initial_guess: Callable[..., list]
-    needs: Tuple[str, ...] = ()
+    needs: Tuple[Quantity, ...] = ()
     options: Tuple[str, ...] = ()
     fit_offset: bool = False
 
@@ -429,7 +429,8 @@ def _gw_type_guess(s, d, given, build, offset, closure_of) -> list:
 
 
 _ETA, _, _SIGMA_S = ASPERITY_STATISTICS
-_GIVEN = ("composite_modulus", "summit_radius")
+#: what a GW-type calibration is given: E* and β, with the C++ AsperityParameters' units and ranges
+_GIVEN = quantities(AsperityParameters, ("composite_modulus", "summit_radius"))
 
 
 # ---- laws derived from a topography (laws.laws_from_topography, the planner's rungs) ------------

@@ -23,7 +23,7 @@ from ..joint import joint_behaviours
 from ..meshes import joint_sets_of
 from ..fem import (ConvergenceError, InSituStress, JointedRockModel, LinearSolveError, NewtonOptions,
                             ShearState, distribute)
-from . import flow as scene_flow
+from . import water as scene_water
 from . import geometry, joint_laws, pictures, statics
 
 log = logging.getLogger("rockjoint.scenes")
@@ -157,8 +157,8 @@ def _record(scene, plan, model, label, stage, solution, transmissivity=None) -> 
         row.max_closure = max(c for c, _ in row.per_set.values())
         row.max_normal_stress = max(s for _, s in row.per_set.values())
     row.smeared = tuple(smeared)
-    if scene_flow.requested(scene):
-        row.flow_rates, row.network = scene_flow.stage_flow(scene, model, solution, transmissivity)
+    if scene_water.requested(scene):
+        row.flow_rates, row.network = scene_water.stage_flow(scene, model, solution, transmissivity)
     return row
 
 
@@ -220,7 +220,7 @@ def run_scene(scene, plan, output: str, comm=None) -> SceneResult:
     comm = comm or MPI.COMM_WORLD
     t0 = time.perf_counter()
     tables = joint_laws.tables(scene, plan)
-    transmissivity = scene_flow.transmissivity_laws(scene, plan) if scene_flow.requested(scene) else None
+    transmissivity = scene_water.transmissivity_laws(scene, plan) if scene_water.requested(scene) else None
     jm = geometry.jointed_mesh(scene, plan, comm)
     meshes = {"jointed": distribute(jm, comm)}
     if plan.intact:
