@@ -81,6 +81,7 @@ class InSituStress:
         return np.resize(k0, gdim - 1)
 
     def check_dimension(self, gdim: int) -> None:
+        """Check the stress fits a `gdim`-dimensional model; ValueError naming the mismatch."""
         if self.kind == "uniform" and self.data["tensor"].shape != (gdim, gdim):
             raise ValueError(f"in-situ stress tensor is {self.data['tensor'].shape}, the model is {gdim}D")
         if self.kind == "depth":

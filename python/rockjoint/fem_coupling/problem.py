@@ -178,6 +178,7 @@ class JointedProblem(JointedSNESProblem):
             self.assemble_jacobian(self.J)
 
     def assemble_residual(self, b: PETSc.Vec) -> bool:
+        """The residual at the current u into `b`; False if it is not finite (a failed trial)."""
         finite = bool(np.isfinite(self.residual()))
         self.r.copy(b)
         return finite
@@ -201,6 +202,7 @@ class JointedProblem(JointedSNESProblem):
         return self.K.duplicate(copy=True)
 
     def vector(self) -> PETSc.Vec:
+        """A vector with the residual's layout."""
         return self.r.duplicate()
 
     # ---- Newton's increments ---------------------------------------------------------------
@@ -228,14 +230,17 @@ class JointedProblem(JointedSNESProblem):
         return self.du.x.petsc_vec.norm(), self.u.x.petsc_vec.norm()
 
     def admissible_step(self, fraction: float) -> float:
+        """Largest step length α <= 1 along du keeping every joint closure within `fraction` of its limit."""
         return self.coupling.admissible_step(self.u, self.du, fraction)
 
     def apply_increment(self, alpha: float) -> None:
+        """u ← u + α du, ghosts updated."""
         self.u.x.petsc_vec.axpy(alpha, self.du.x.petsc_vec)
         self.u.x.scatter_forward()
 
     # ---- converged and trial state ---------------------------------------------------------
     def save_state(self) -> None:
+        """Remember u and the load factor of the converged step (restore_state goes back to them)."""
         self._saved = (self.u.x.array.copy(), self.load_factor)
 
     def restore_state(self) -> None:
