@@ -32,6 +32,7 @@ Surface = _cpp.Surface
 CompositeTopography = _cpp.CompositeTopography
 SummitStatistics = _cpp.SummitStatistics
 NayakEstimates = _cpp.NayakEstimates
+SpectralMoments = _cpp.SpectralMoments  # the type of NayakEstimates.moments
 PlaneRemoval = _cpp.PlaneRemoval
 Window = _cpp.Window
 ApertureDistribution = _cpp.ApertureDistribution

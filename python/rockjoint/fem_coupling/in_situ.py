@@ -48,10 +48,10 @@ class InSituStress:
                         gravity: float = STANDARD_GRAVITY) -> "InSituStress":
         """Lithostatic stress: σ_v = ρ g (surface - z) [Pa, compression], σ_h = K0 σ_v.
 
-        surface: vertical coordinate of the ground surface [m] (the model lies below it).
-        density: ρ [kg/m³] (must equal the model's rock density: the state is then in equilibrium
+        :surface: vertical coordinate of the ground surface [m] (the model lies below it).
+        :density: ρ [kg/m³] (must equal the model's rock density: the state is then in equilibrium
             with gravity). k0: horizontal-to-vertical stress ratio, a float, or in 3D (K0_x, K0_y).
-        gravity: g [m/s²]."""
+        :gravity: g [m/s²]."""
         try:
             surface = float(surface)
         except (TypeError, ValueError):
