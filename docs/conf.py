@@ -6,9 +6,9 @@ project = "rockjoint"
 author = "the rockjoint developers"
 copyright = "the rockjoint developers (MIT licence)"
 # No napoleon: the docstrings are plain reST (no Google/NumPy sections), and napoleon read a
-# property docstring such as "Eq. (1): a = ..." as "type: description".
-extensions = ["myst_parser", "sphinx.ext.autodoc", "sphinx.ext.doctest", "sphinx.ext.mathjax",
-              "breathe"]
+# property docstring such as "Eq. (1): a = ..." as "type: description". The docstrings' >>>
+# examples run under pytest --doctest-modules (ctest doctest), not Sphinx's doctest builder.
+extensions = ["myst_parser", "sphinx.ext.autodoc", "sphinx.ext.mathjax", "breathe"]
 source_suffix = {".md": "markdown"}
 myst_enable_extensions = ["dollarmath"]
 myst_heading_anchors = 3
