@@ -230,7 +230,8 @@ class JointedProblem(JointedSNESProblem):
         return self.du.x.petsc_vec.norm(), self.u.x.petsc_vec.norm()
 
     def admissible_step(self, fraction: float) -> float:
-        """Largest step length α <= 1 along du keeping every joint closure within `fraction` of its limit."""
+        """Largest α <= 1 such that u + α du closes no joint point by more than `fraction` of its
+        remaining room to the law's maximum closure (Δ <= Δ + fraction (Δ_max - Δ))."""
         return self.coupling.admissible_step(self.u, self.du, fraction)
 
     def apply_increment(self, alpha: float) -> None:
