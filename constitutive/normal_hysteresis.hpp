@@ -71,9 +71,13 @@ public:
   /// Δ_p(Δ_m) = r Δ_m [m] (H1).
   double permanent_closure(double maximum_closure) const { return _r * maximum_closure; }
 
+  /// The virgin (first-loading) law.
   const ClosureLaw& virgin() const { return *_virgin; }
+  /// The virgin law, shared.
   const std::shared_ptr<const ClosureLaw>& virgin_law() const { return _virgin; }
+  /// r [-] in [0, 1): Δ_p = r Δ_m (H1).
   double permanent_fraction() const { return _r; }
+  /// m [-] > 0, exponent of the unloading branch (H2).
   double unloading_exponent() const { return _m; }
 
 protected:

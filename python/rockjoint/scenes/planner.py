@@ -24,6 +24,12 @@ from .rules import Choice  # noqa: F401  (re-exported: the planner's explained c
 
 @dataclasses.dataclass
 class Plan:
+    """What the planner chose for a scene, with a Choice (what, why, cost, error) for each decision.
+
+    Sizes in m, stresses in Pa; laws maps each joint set given by its walls to a ladder key, slip
+    each joint set to whether it may slip.
+    """
+
     dimension: int
     element_degree: int
     quadrature: str
@@ -42,6 +48,7 @@ class Plan:
     smeared: tuple = ()                 # joint sets smeared in the rock (equivalent continuum)
 
     def text(self) -> str:
+        """The plan's choices in words, one block per choice (topic, choice, why, cost, error)."""
         rows = [f"{c.topic}: {c.choice}\n    why: {c.why}\n    cost: {c.cost}\n    error: {c.error}"
                 for c in self.choices]
         return "\n".join(rows)

@@ -58,6 +58,10 @@ class NoEquilibrium(RuntimeError):
 
 @dataclasses.dataclass
 class SceneResult:
+    """What running a scene produced: its plan, one StageRow per model and stage, the law tables
+    used, the files written, the wall-clock time [s] and the geometric dimension solved.
+    """
+
     plan: object
     rows: list
     tables: dict
@@ -66,6 +70,7 @@ class SceneResult:
     gdim: int = 0                  # geometric dimension of the meshes solved
 
     def row(self, model: str, stage: str) -> StageRow:
+        """The StageRow of `model` at `stage` (StopIteration if there is none)."""
         return next(r for r in self.rows if r.model == model and r.stage == stage)
 
 

@@ -267,12 +267,14 @@ class SmearedBlocks:
         self._fill_elastic()
 
     def commit_state(self) -> None:
+        """Accept the trial joint-set states of every smeared block (after a converged load step)."""
         for tag, pts in self.points.items():
             pts.commit()
             if tag in self._current:
                 self._committed[tag] = self._current[tag]
 
     def revert_state(self) -> None:
+        """Drop the trial joint-set states of every smeared block (after a failed load step)."""
         for pts in self.points.values():
             pts.revert()
 

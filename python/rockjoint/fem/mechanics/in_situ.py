@@ -48,10 +48,10 @@ class InSituStress:
                         gravity: float = STANDARD_GRAVITY) -> "InSituStress":
         """Lithostatic stress: σ_v = ρ g (surface - z) [Pa, compression], σ_h = K0 σ_v.
 
-        surface: vertical coordinate of the ground surface [m] (the model lies below it).
-        density: ρ [kg/m³] (must equal the model's rock density: the state is then in equilibrium
+        :surface: vertical coordinate of the ground surface [m] (the model lies below it).
+        :density: ρ [kg/m³] (must equal the model's rock density: the state is then in equilibrium
             with gravity). k0: horizontal-to-vertical stress ratio, a float, or in 3D (K0_x, K0_y).
-        gravity: g [m/s²]."""
+        :gravity: g [m/s²]."""
         try:
             surface = float(surface)
         except (TypeError, ValueError):
@@ -81,6 +81,7 @@ class InSituStress:
         return np.resize(k0, gdim - 1)
 
     def check_dimension(self, gdim: int) -> None:
+        """Check the stress fits a `gdim`-dimensional model; ValueError naming the mismatch."""
         if self.kind == "uniform" and self.data["tensor"].shape != (gdim, gdim):
             raise ValueError(f"in-situ stress tensor is {self.data['tensor'].shape}, the model is {gdim}D")
         if self.kind == "depth":

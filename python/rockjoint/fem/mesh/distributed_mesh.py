@@ -60,10 +60,11 @@ os.environ.setdefault("SCOTCH_PTHREAD_NUMBER", "1")
 class JointPairs:
     """Joint facet pairs on this rank; each pair is held once, by the owner of its minus cell.
 
-    minus_cells, plus_cells: (n,) int32 local cell indices (both owned by this rank).
-    minus_local_facets, plus_local_facets: (n,) int32 local facet index within the cell
+    :minus_cells, plus_cells: (n,) int32 local cell indices (both owned by this rank).
+    :minus_local_facets, plus_local_facets: (n,) int32 local facet index within the cell
         (0..nv-1 as DOLFINx numbers them: facet i is opposite vertex i).
-    joint_tags: (n,) int32 joint tag (physical group of the joint).
+    :joint_tags: (n,) int32 joint tag (physical group of the joint).
+
     Minus side = the block with the lower block tag; the pair normal points from minus into plus.
     Pairs are sorted by (joint tag, minus cell).
     """
