@@ -33,13 +33,13 @@ namespace rockjoint::constitutive
 class NormalHysteresis final : public ClosureLaw
 {
 public:
-  /// `virgin`: the loading curve (a law without history); `permanent_fraction` r in [0, 1);
-  /// `unloading_exponent` m >= 1 (m = 1: straight unloading lines to Δ_p). Throws
-  /// std::invalid_argument naming the bad one.
   /// r and m, the history's own parameters (beside its virgin law's): units and ranges (H1-H2
   /// of docs/hysteresis.md), checked by the constructor.
   static const std::vector<ParameterSpec>& parameter_specs();
 
+  /// `virgin`: the loading curve (a law without history); `permanent_fraction` r in [0, 1);
+  /// `unloading_exponent` m >= 1 (m = 1: straight unloading lines to Δ_p). Throws
+  /// std::invalid_argument naming the bad one.
   NormalHysteresis(std::shared_ptr<const ClosureLaw> virgin, double permanent_fraction,
                    double unloading_exponent);
 

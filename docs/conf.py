@@ -33,7 +33,7 @@ nitpicky = True
 # topography height grids, Eigen::Array) and GSL (gsl_function, the quadrature's integrand).
 nitpick_ignore_regex = [(r"cpp:identifier", r"(Eigen|gsl_function)\b.*"),
                         (r"py:.*", r"(numpy|np|scipy|dolfinx|fem|petsc4py|ufl|basix|mpi4py|matplotlib|"
-                                   r"collections|typing|os|pathlib|argparse|logging)(\..*)?")]
+                                   r"collections|typing|os|pathlib|argparse|logging|PETSc)(\..*)?")]
 
 
 def _register_breathe_labels(app, doctree):
@@ -80,7 +80,7 @@ def _compiled_public_name(app, env, node, contnode):
     parts = target.split(".")
     name = parts[-1]
     sub = parts[2] if len(parts) > 3 else None
-    package = {"_rockjoint_fem_coupling": "fem_coupling"}.get(parts[1])
+    package = {"_rockjoint_fem_coupling": "fem"}.get(parts[1])
     candidates = [f"rockjoint.{sub}.{name}" if sub else None,
                   f"rockjoint.{package}.{name}" if package else None, f"rockjoint.{name}"]
     py = env.domains["py"]

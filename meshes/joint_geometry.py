@@ -33,7 +33,7 @@ class Joint:
         joint is kept on the side of each of them where ``point`` lies. Without it the joint crosses
         the whole block. Every joint must separate blocks completely: a joint whose edge ends inside
         a block (a dangling crack tip) is rejected by the builder.
-    joint_set: the name of the set the joint belongs to (``joint_set`` gives its own name; None: the
+    :joint_set: the name of the set the joint belongs to (``joint_set`` gives its own name; None: the
         joint is a set of its own). The mesh carries it as the group names["joint_sets"]
         ({joint tag: set name}), so that a model reads a joint's set from its mesh.
     """

@@ -45,8 +45,8 @@ class JointedMesh:
     boundary_facets: (n_bf, nvf) int64 exterior facets carrying a named boundary group.
     boundary_tags: (n_bf,) int32.
     names: {"blocks": {tag: name}, "joints": {tag: name}, "boundaries": {tag: name}} and optionally
-        "joint_sets": {joint tag: set name} (the set of each joint; without it, or for a joint it
-        leaves out, a joint is a set of its own: joint_sets()).
+    "joint_sets": {joint tag: set name} (the set of each joint; without it, or for a joint it
+    leaves out, a joint is a set of its own: joint_sets()).
     """
 
     points: np.ndarray

@@ -87,9 +87,9 @@ void declare_laws(py::module_& m)
       .def_readonly("unit", &ParameterSpec::unit, "SI unit ('-': dimensionless)")
       .def_readonly("file_unit", &ParameterSpec::file_unit, "unit of parameter files and reports")
       .def_readonly("lower", &ParameterSpec::lower, "lower bound of the range")
-      .def_readonly("lower_inclusive", &ParameterSpec::lower_inclusive)
+      .def_readonly("lower_inclusive", &ParameterSpec::lower_inclusive, "whether lower itself is admissible")
       .def_readonly("upper", &ParameterSpec::upper, "upper bound of the range (inf: none)")
-      .def_readonly("upper_inclusive", &ParameterSpec::upper_inclusive)
+      .def_readonly("upper_inclusive", &ParameterSpec::upper_inclusive, "whether upper itself is admissible")
       .def_property_readonly("range", &ParameterSpec::range,
                              "the range in words, e.g. 'finite and > 0', 'in [0, 1)'")
       .def("admits", &ParameterSpec::admits, py::arg("value"),

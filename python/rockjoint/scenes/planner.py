@@ -2,6 +2,7 @@
 """`rockjoint plan`: decide what a scene needs to model, each choice with its cost and error.
 
 Rules (docs/scenes.md §planner):
+
 - dimension: the scene's own (a 2D section is solved in 2D plane strain, never in 3D);
 - joint normal-stress bound: the largest compressive principal stress of in-situ + loads (every
   load added in full: an upper bound), times the Kirsch concentration 3 at an opening; the tables
@@ -12,6 +13,7 @@ Rules (docs/scenes.md §planner):
 - slip: only for joint sets with a strength whose mobilised friction τ/τ_max can reach
   defaults.SLIP_MARGIN under the bound (at an opening: the wall's uniaxial state, every plane);
 - mesh: refined only near joints and openings; the intact model on the same mesh (glued nodes).
+
 Any choice can be overridden in the scene's `plan:` section; the plan then says so.
 """
 from __future__ import annotations

@@ -285,7 +285,7 @@ def _run_explained(scene, plan, model, label, jm, comm, transmissivity=None) -> 
 
 
 def summary_table(result: SceneResult) -> str:
-    """Jointed beside intact, per stage: monitored displacements [mm], max |u| [mm], joints."""
+    """Jointed beside intact, per stage: monitored displacements [mm], max ``|u|`` [mm], joints."""
     stages = [r.stage for r in result.rows if r.model == "jointed"]
     has_intact = any(r.model == "intact" for r in result.rows)
     w = max([len(s) for s in stages] + [5]) + 2

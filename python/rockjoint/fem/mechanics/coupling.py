@@ -2,7 +2,7 @@
 """Joints as a building block of the user's own DOLFINx model (docs/user-model.md).
 
 The user keeps their mesh, function space, UFL forms, boundary conditions and solver; rockjoint
-adds the joints:
+adds the joints::
 
     coupling = JointCoupling(V, dmesh, {"fault": table}, shear_stiffness=1e9, bcs=bcs)
     A = coupling.create_matrix(a)                 # the form's sparsity + cross-joint couplings

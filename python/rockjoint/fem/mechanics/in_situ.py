@@ -2,8 +2,10 @@
 """In-situ (initial) stress of a rock mass: uniform, depth-dependent, or a user field.
 
 Tensors use the continuum convention (tension positive, like σ(u)): a compressive in-situ stress
-has negative diagonal entries. The depth-dependent state is the lithostatic one,
+has negative diagonal entries. The depth-dependent state is the lithostatic one,::
+
     σ_v = ρ g (z_surface - z),   σ_h = K0 σ_v          (compression magnitudes),
+
 with z the vertical coordinate (2D: y; 3D: z). Each spec gives the tensor twice: as a UFL
 expression for the bulk forms (exact for the uniform and depth-dependent states) and as numbers at
 given points (for the joints' initial normal and shear stress).

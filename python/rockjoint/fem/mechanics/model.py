@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: MIT
 """JointedRockModel: elastic rock blocks (DOLFINx) + zero-thickness joints (rockjoint C++),
-followed along a staged load path (docs/staged-analysis.md).
+followed along a staged load path (docs/staged-analysis.md)::
 
     model = JointedRockModel(dmesh, rock={"block_1": (E, nu), ...}, joints={"joint_1": law},
                              shear_stiffness=1e10, plane="strain", density=2700.0)
@@ -12,8 +12,10 @@ followed along a staged load path (docs/staged-analysis.md).
 
 Units: SI (Pa, m, N). Compression positive for joint normal stress; closure Δ = -[[u]]·n; bulk
 stress tensors tension positive. The bulk is linear elastic: its matrix K (with the supports) is
-assembled when the supports change, the load vectors when the loads change. Newton's residual is
+assembled when the supports change, the load vectors when the loads change. Newton's residual is::
+
     r = K u + K_fc u_c + ∫ε(v):σ0 dx - f(λ) + r_joint(u),   f(λ) = f_prev + λ (f_next - f_prev),
+
 zero at supported dofs, whose values u_c are the prescribed displacements of λ (K has identity
 rows and zero columns there, so K_fc u_c brings the prescribed values back in). r_joint is added
 to the ghosted local vector before the reverse ghost update; the Jacobian is K + J_joint(u) (joint

@@ -3,8 +3,10 @@
 Newton (newton.solve_load_path) and PETSc SNES (stages.snes_load_path, through the
 snes_problem.JointedSNESProblem adapter that the user's problems use too) drive.
 
-The residual at the load factor λ (model.py's docstring):
+The residual at the load factor λ (model.py's docstring)::
+
     r = K u + K_fc u_c + ∫ε(v):σ0 dx - f(λ) + r_joint(u) [+ r_smeared(u)],
+
 zero at supported dofs; the Jacobian K + J_joint(u) [+ J_smeared(u)]. The parts: the blocks'
 bulk matrix K (assembled here when the supports change), the load path (loads.py, load_path.py:
 f(λ), the prescribed displacements and their lift, the in-situ term), the joints (JointCoupling),

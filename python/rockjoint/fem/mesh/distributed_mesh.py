@@ -2,12 +2,14 @@
 """Distribute a JointedMesh over MPI as a DOLFINx mesh and pair the joint facets on every rank.
 
 Partitioning (docs/fem.md, pitfalls 1-2):
+
 1. owners from DOLFINx's default partitioner run on the *glued* cells (the split mesh has no facet
    adjacency across joints, so partitioning it directly could separate a joint's two sides);
 2. the two cells of every joint facet (and chains of them: a cell with several joint facets) are
    forced onto one rank, the owner of the lowest-numbered cell of the chain;
 3. ghost ranks from the facet adjacency of the *split* cells (never across the cut: ghosting across
    it segfaults, dolfinx#1991; returning owners only builds a wrong mesh).
+
 So both cells of every pair are owned by the same rank and each pair is assembled there, once.
 
 Pairing uses cell->facet connectivity (not exterior_facet_indices, which returns owned facets only)
