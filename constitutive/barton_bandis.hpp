@@ -17,12 +17,15 @@ namespace rockjoint::constitutive
 /// Defaults: Barton, Bandis & Bakhtar (1985), first loading cycle of fresh joints.
 struct MaximumClosureCoefficients
 {
-  double A = -0.1032;
-  double B = -0.0074;
-  double C = 1.1350;
-  double D = -0.2510;
+  double A = -0.1032; ///< constant term [mm]
+  double B = -0.0074; ///< coefficient of JRC [mm]
+  double C = 1.1350;  ///< coefficient of (JCS/a_j)^D [mm]
+  double D = -0.2510; ///< exponent of JCS/a_j [-]
 };
 
+/// The Barton-Bandis hyperbola σ = K_ni Δ / (1 - Δ/V_m) [Pa] at closure Δ [m] (file comment:
+/// the formulas, Bandis et al. 1983); K_ni > 0 [Pa/m] and V_m > 0 [m], std::invalid_argument
+/// naming the parameter otherwise.
 class BartonBandis : public ClosureLaw
 {
 public:
@@ -46,6 +49,7 @@ public:
   /// Closed form Δ = σ V_m / (K_ni V_m + σ).
   double closure_at_stress(double normal_stress) const override;
 
+  /// K_ni = dσ/dΔ at Δ = 0 [Pa/m].
   double initial_normal_stiffness() const { return _initial_normal_stiffness; }
 
 protected:

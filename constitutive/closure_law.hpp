@@ -40,7 +40,7 @@ struct ClosureResponse
   double normal_stiffness = 0.0;   ///< k = dσ/dΔ [Pa/m] (consistent, analytic)
   double contact_area_ratio = 0.0; ///< A/A0 [-] (0 for laws without an area model)
   double contact_area_rate = 0.0;  ///< d(A/A0)/dΔ [1/m]
-  Status status = Status::open;
+  Status status = Status::open; ///< where Δ lies: contact, open, past a limit (Status)
 };
 
 /// Response of a law at Δ given the largest closure Δ_m reached before: the history a joint
@@ -58,9 +58,9 @@ struct HistoryResponse
 /// A named parameter of a law, for self-describing output (tables, reports).
 struct Parameter
 {
-  std::string name;
-  double value;
-  std::string unit;
+  std::string name; ///< parameter name, e.g. "maximum_closure"
+  double value; ///< value in the SI unit `unit`
+  std::string unit; ///< SI unit, e.g. "m", "Pa", "Pa/m", "-"
 };
 
 /// Normal-closure law σ(Δ) of a rough joint.

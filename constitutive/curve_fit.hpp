@@ -31,9 +31,9 @@ using CurveModel
 /// or ‖g‖∞ <= gradient_tolerance).
 struct CurveFitOptions
 {
-  int maximum_iterations = 500;
-  double step_tolerance = 1e-12;
-  double gradient_tolerance = 1e-14;
+  int maximum_iterations = 500; ///< iteration limit, > 0
+  double step_tolerance = 1e-12; ///< relative step at which the fit stops [-]
+  double gradient_tolerance = 1e-14; ///< gradient norm at which the fit stops
 };
 
 /// Outcome of a fit.
@@ -45,8 +45,8 @@ struct CurveFitResult
   std::vector<double> residuals;       ///< m_i(p) - y_i (unweighted)
   double chi_squared = 0.0;            ///< Σ w_i (m_i - y_i)²
   int degrees_of_freedom = 0;          ///< N - P
-  int iterations = 0;
-  int function_evaluations = 0;
+  int iterations = 0; ///< Levenberg-Marquardt iterations made
+  int function_evaluations = 0; ///< model evaluations made
   bool converged = false; ///< a stopping test was met (false: iteration limit or no progress)
   std::string message;    ///< what stopped the iteration
 };

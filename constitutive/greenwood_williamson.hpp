@@ -41,6 +41,9 @@ public:
   /// Empirical list of summits (η = N/A0, β = mean radius, σ_s = std of heights; each summit
   /// keeps its own radius). Default reference: the highest summit (first contact).
   /// @param composite_modulus E* [Pa], finite and > 0
+  /// @param summits the summits' heights [m], radii [m] and the scanned area [m²]
+  /// @param reference seating reference (default: the highest summit)
+  /// @throws std::invalid_argument naming the parameter
   GreenwoodWilliamson(double composite_modulus, EmpiricalSummits summits,
                       const SeatingReference& reference = SeatingReference::automatic());
 

@@ -26,8 +26,11 @@ namespace rockjoint::constitutive::gw
 /// The four dimensionless integrals and whether every quadrature met its tolerance.
 struct Moments
 {
-  double stress = 0, stiffness = 0, area = 0, rate = 0;
-  bool converged = true;
+  double stress = 0;    ///< ∫_h^∞ g^{3/2} p ds [-] (file comment: its scale)
+  double stiffness = 0; ///< ∫_h^∞ g^{1/2} g' p ds [-]
+  double area = 0;      ///< ∫_h^∞ g p ds [-]
+  double rate = 0;      ///< ∫_h^∞ g' p ds [-]
+  bool converged = true; ///< every quadrature met its tolerance
 };
 
 /// The integrals at h for height distribution `dist` and substrate parameter `mu` (0: GW);

@@ -62,7 +62,9 @@ public:
   /// @param area_root s = a/b = √(A/A0) [-], in (0, 1) (Eq. (2))
   Cell(double composite_modulus, double radius, double contact_radius, double area_root);
 
+  /// E* [Pa].
   double composite_modulus() const { return _modulus; }
+  /// R [m] of the representative asperity.
   double radius() const { return _radius; }
   /// a [m].
   double contact_radius() const { return _a; }

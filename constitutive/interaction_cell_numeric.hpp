@@ -47,7 +47,7 @@ struct NumericSolution
   double edge_coefficient = 0.0; ///< δ' - G(a) [m] at the solution (≈ 0)
   int outer_iterations = 0;    ///< root-finder iterations on δ_loc (self-consistency)
   int inner_iterations = 0;    ///< root-finder iterations on p̄ (finite fringe), summed
-  bool converged = false;
+  bool converged = false; ///< both root finds met their tolerances
 };
 
 /// Numerical solution of one self-consistent cell.
@@ -63,6 +63,7 @@ public:
   NumericCell(double composite_modulus, double radius, double contact_radius, double area_root,
               int quadrature_order = 32);
 
+  /// The solution found at construction.
   const NumericSolution& solution() const { return _solution; }
   /// b = a/s [m].
   double territory_radius() const { return _b; }

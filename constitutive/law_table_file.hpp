@@ -65,10 +65,15 @@ struct LawTable
 /// Format identifiers of version 1.
 namespace law_table_format
 {
+/// First word of a table file.
 inline constexpr const char* magic = "rockjoint-law-table";
+/// Format version this library writes and reads.
 inline constexpr int version = 1;
+/// Interpolant between the knots (monotone_hermite.hpp).
 inline constexpr const char* interpolation = "monotone_hermite_sqrt_first_segment";
+/// Beyond the last knot: linear with the end tangent.
 inline constexpr const char* compression_extension = "linear_end_tangent";
+/// For Δ <= 0: the residual stiffness.
 inline constexpr const char* opening_extension = "residual_stiffness";
 } // namespace law_table_format
 

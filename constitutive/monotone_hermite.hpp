@@ -34,7 +34,11 @@ struct alignas(64) Segment
 {
   double x0 = 0.0;    ///< left end Δ_i [m] (0 for the first segment)
   double inv_h = 0.0; ///< 1/(Δ_{i+1} - Δ_i) [1/m]; first segment: 1/t1 [m^-½]
-  double c0 = 0.0, c1 = 0.0, c2 = 0.0, c3 = 0.0, c4 = 0.0; ///< p(τ) coefficients [Pa]
+  double c0 = 0.0; ///< coefficient of τ⁰ of p(τ) [Pa]
+  double c1 = 0.0; ///< coefficient of τ¹ [Pa]
+  double c2 = 0.0; ///< coefficient of τ² [Pa]
+  double c3 = 0.0; ///< coefficient of τ³ [Pa]
+  double c4 = 0.0; ///< coefficient of τ⁴ [Pa] (first segment only, in √Δ)
 };
 
 /// Cubic Hermite segment [x0, x1] in Δ from end values σ and slopes k = dσ/dΔ [Pa/m].

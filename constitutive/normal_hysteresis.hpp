@@ -33,13 +33,13 @@ namespace rockjoint::constitutive
 class NormalHysteresis final : public ClosureLaw
 {
 public:
-  /// `virgin`: the loading curve (a law without history); `permanent_fraction` r in [0, 1);
-  /// `unloading_exponent` m >= 1 (m = 1: straight unloading lines to Δ_p). Throws
-  /// std::invalid_argument naming the bad one.
   /// r and m, the history's own parameters (beside its virgin law's): units and ranges (H1-H2
   /// of docs/hysteresis.md), checked by the constructor.
   static const std::vector<ParameterSpec>& parameter_specs();
 
+  /// `virgin`: the loading curve (a law without history); `permanent_fraction` r in [0, 1);
+  /// `unloading_exponent` m >= 1 (m = 1: straight unloading lines to Δ_p). Throws
+  /// std::invalid_argument naming the bad one.
   NormalHysteresis(std::shared_ptr<const ClosureLaw> virgin, double permanent_fraction,
                    double unloading_exponent);
 
@@ -71,9 +71,13 @@ public:
   /// Δ_p(Δ_m) = r Δ_m [m] (H1).
   double permanent_closure(double maximum_closure) const { return _r * maximum_closure; }
 
+  /// The virgin (first-loading) law.
   const ClosureLaw& virgin() const { return *_virgin; }
+  /// The virgin law, shared.
   const std::shared_ptr<const ClosureLaw>& virgin_law() const { return _virgin; }
+  /// r [-] in [0, 1): Δ_p = r Δ_m (H1).
   double permanent_fraction() const { return _r; }
+  /// m [-] > 0, exponent of the unloading branch (H2).
   double unloading_exponent() const { return _m; }
 
 protected:

@@ -17,6 +17,8 @@
 namespace rockjoint::constitutive
 {
 
+/// One parameter of a law's constructor: keyword, symbol, units and admissible range (the law's
+/// `parameter_specs()` lists them; its constructor checks its arguments with `check`).
 struct ParameterSpec
 {
   std::string name;      ///< keyword of the SI constructor argument, e.g. "maximum_closure"
@@ -24,9 +26,9 @@ struct ParameterSpec
   std::string unit;      ///< SI unit, e.g. "m" ("-": dimensionless)
   std::string file_unit; ///< the unit of parameter files and reports, e.g. "mm"
   double lower = 0.0;    ///< lower bound of the admissible range
-  bool lower_inclusive = false;
+  bool lower_inclusive = false; ///< whether `lower` itself is admissible
   double upper = std::numeric_limits<double>::infinity(); ///< upper bound (∞: none)
-  bool upper_inclusive = false;
+  bool upper_inclusive = false; ///< whether `upper` itself is admissible
 
   /// Whether `value` lies in the admissible range (NaN never does; ∞ only up to an infinite
   /// inclusive bound, which no spec has).

@@ -26,8 +26,8 @@ namespace rockjoint::constitutive::root_finding
 /// Value r(x) of the residual and its slope r'(x) (NaN when the caller has none).
 struct Residual
 {
-  double value;
-  double slope = std::numeric_limits<double>::quiet_NaN();
+  double value; ///< r(x)
+  double slope = std::numeric_limits<double>::quiet_NaN(); ///< r'(x), NaN if unknown
 };
 
 /// Stopping rules and the step used without a slope.
@@ -40,7 +40,7 @@ struct Options
   double absolute_scale = 0.0;
   /// |r(x)| at or below this is a root (0: only an exact zero).
   double residual_tolerance = 0.0;
-  int maximum_iterations = 400;
+  int maximum_iterations = 400; ///< iteration limit
   /// Without a slope: Illinois steps through the bracket values (true) or bisection (false).
   bool secant = false;
 };
@@ -51,12 +51,12 @@ struct Options
 /// end is not finite, or a given end residual has the wrong sign (r_lo > 0 or r_hi < 0).
 struct Root
 {
-  double x;
-  double lo;
-  double hi;
-  int evaluations = 0;
-  bool converged = false;
-  bool bracketed = true;
+  double x; ///< last iterate (the root if converged)
+  double lo; ///< bracket end with r <= 0
+  double hi; ///< bracket end with r >= 0
+  int evaluations = 0; ///< residual evaluations
+  bool converged = false; ///< a stopping rule was met
+  bool bracketed = true; ///< the initial bracket was valid
 };
 
 /// Next trial end when a bracket is grown upwards from x > 0 towards `limit`: x doubled

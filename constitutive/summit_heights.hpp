@@ -87,6 +87,7 @@ public:
   /// @throws std::invalid_argument naming the offending entry
   EmpiricalSummits(std::vector<double> heights, std::vector<double> radii, double area);
 
+  /// Number of summits.
   std::size_t size() const { return _heights.size(); }
   /// Heights [m], sorted decreasing.
   std::span<const double> heights() const { return _heights; }

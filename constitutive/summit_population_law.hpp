@@ -41,15 +41,17 @@ namespace rockjoint::constitutive
 /// How the reference (seating) separation d0 of a GW-type law is chosen.
 struct SeatingReference
 {
+  /// How d0 is given.
   enum class Kind : int
   {
     automatic = 0,  ///< mean summit height + 3.5 σ_s; highest summit of an empirical list
     separation = 1, ///< d0 [m] given
     stress = 2,     ///< σ_model(d0) = σ_seat [Pa] given
   };
-  Kind kind = Kind::automatic;
+  Kind kind = Kind::automatic; ///< how d0 is chosen
   double value = 0.0; ///< d0 [m] or σ_seat [Pa]; unused for automatic
 
+  /// d0 = mean summit height + 3.5 σ_s (the default).
   static SeatingReference automatic() { return {}; }
   /// d0 [m], finite (in the height datum of the distribution: mean 0 Gaussian, etc.).
   static SeatingReference at_separation(double reference_separation)

@@ -71,6 +71,10 @@
 namespace rockjoint::constitutive
 {
 
+/// Any ClosureLaw tabulated with error control on a monotone C¹ Hermite interpolant (the
+/// file comment: knots, error bound, extensions); what the finite-element assembly evaluates.
+/// Built by up_to_stress()/over_closure_range() or read by load() (std::runtime_error naming
+/// the file, line and field of a malformed table).
 class TabulatedLaw : public ClosureLaw
 {
 public:
@@ -94,6 +98,7 @@ public:
   /// std::domain_error (law not tabulable there), std::runtime_error (knot budget).
   static TabulatedLaw over_closure_range(const ClosureLaw& law, double maximum_closure,
                                          const Options& options);
+  /// over_closure_range() with the default Options.
   static TabulatedLaw over_closure_range(const ClosureLaw& law, double maximum_closure)
   {
     return over_closure_range(law, maximum_closure, Options{});
@@ -104,6 +109,7 @@ public:
   /// it lies beyond the law's admissible range.
   static TabulatedLaw up_to_stress(const ClosureLaw& law, double maximum_stress,
                                    const Options& options);
+  /// up_to_stress() with the default Options.
   static TabulatedLaw up_to_stress(const ClosureLaw& law, double maximum_stress)
   {
     return up_to_stress(law, maximum_stress, Options{});
@@ -139,10 +145,13 @@ public:
   const LawTable& table() const { return _table; }
   /// Last knot Δ_max [m] and σ_max [Pa], and the end tangent k_max [Pa/m].
   double table_maximum_closure() const { return _closure_max; }
+  /// σ_max [Pa] at the last knot.
   double table_maximum_stress() const { return _stress_max; }
+  /// k [Pa/m] at the last knot: the slope of the linear extension.
   double table_end_stiffness() const { return _stiffness_max; }
   /// k_res [Pa/m].
   double residual_stiffness() const { return _residual_stiffness; }
+  /// Number of knots.
   std::size_t knot_count() const { return _table.closure.size(); }
   /// Bytes used by the evaluation data (segments and index) plus the knots.
   std::size_t memory_bytes() const;

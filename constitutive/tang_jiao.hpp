@@ -124,7 +124,9 @@ public:
   OverlapCurve(std::vector<double> closure, std::vector<double> area_ratio);
   /// Ratio and its derivative d(ratio)/dΔ [1/m] at Δ >= 0.
   void evaluate(double closure, double& area_ratio, double& area_rate) const;
+  /// Samples Δ_i [m].
   const std::vector<double>& closure() const { return _x; }
+  /// Samples of the overlap ratio [-].
   const std::vector<double>& area_ratio() const { return _y; }
 
 private:
@@ -158,6 +160,8 @@ public:
   /// @param composite_modulus E* [Pa], 1/E* = Σ (1-ν²)/E (not E/(1-ν²)), > 0
   /// @param radius R [m] of the representative asperity (project choice: β), > 0
   /// @param summit_height_std σ_s [m] of Eq. (1), > 0
+  /// @param options variant, optional overlap curve and validity caps (TangJiaoOptions)
+  /// @throws std::invalid_argument naming the parameter
   TangJiao(std::shared_ptr<const ClosureLaw> base, double composite_modulus, double radius,
            double summit_height_std, TangJiaoOptions options = {});
 
@@ -181,6 +185,7 @@ public:
 
   /// The base law f3.
   const ClosureLaw& base() const { return *_base; }
+  /// Reading of Eq. (7): I1 or I2.
   TangJiaoVariant variant() const { return _options.variant; }
   /// What sets maximum_closure().
   TangJiaoLimit limit() const { return _limit; }
@@ -209,6 +214,7 @@ public:
     double reported_area_rate = 0.0;  ///< its derivative [1/m]
     Status status = Status::contact;  ///< the base law's status at ξ
   };
+  /// The cell's State at internal closure ξ [m] (diagnostics).
   State state(double internal_closure) const;
 
   /// I2: internal closure ξ [m] at an observed closure 0 < Δ < maximum_closure() [m].

@@ -19,6 +19,7 @@
 namespace rockjoint::contact
 {
 
+/// The contact set of a contact solution and its gap field (file comment: why one definition).
 struct ContactSet
 {
   std::vector<unsigned char> member; ///< 1 on the contact set (0 where masked)

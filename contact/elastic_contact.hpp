@@ -33,7 +33,7 @@ struct ContactOptions
 {
   /// Σ|p - p_prev| / Σ p between iterations at which a load is converged (Polonsky-Keer).
   double tolerance = 1e-8;
-  int maximum_iterations = 2000;
+  int maximum_iterations = 2000; ///< iterations per load, > 0
 };
 
 /// The contact at one nominal stress.
@@ -63,11 +63,16 @@ struct ContactState
 std::size_t scanned_aperture(const topography::Surface& surface, const std::string& owner,
                              std::vector<double>& aperture, std::vector<unsigned char>& valid);
 
+/// Frictionless elastic contact of a composite topography against a half-space of modulus E*
+/// [Pa], solved at prescribed nominal stresses σ [Pa] (file comment: the method and the closure
+/// datum); the exact reference of the closure laws.
 class ElasticContact
 {
 public:
   /// @param aperture aperture field e [m] of the composite topography (NaN = masked)
   /// @param composite_modulus E* [Pa]
+  /// @param kernel periodic or non-periodic half-space (half_space.hpp)
+  /// @param options stopping rule of the solver
   /// Throws std::invalid_argument for a grid with fewer than 2 valid points or E* <= 0.
   ElasticContact(const topography::Surface& aperture, double composite_modulus, Kernel kernel,
                  ContactOptions options = {});
@@ -84,6 +89,7 @@ public:
   /// (0 for the periodic kernel): the patch's bulk compliance under a uniform load (a check of
   /// the kernel against Boussinesq's closed form; the closure subtracts mean(K p) instead).
   double bulk_compliance() const { return _bulk_compliance; }
+  /// Number of scanned (non-NaN) points.
   std::size_t valid_count() const { return _valid_count; }
 
 private:

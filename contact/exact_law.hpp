@@ -17,8 +17,9 @@ struct ContactSource
 {
   double composite_modulus; ///< E* [Pa]
   double spacing;           ///< grid step h [m] (max of the two directions)
-  double rows, cols;        ///< grid size
-  Kernel kernel;
+  double rows; ///< grid rows
+  double cols; ///< grid columns
+  Kernel kernel; ///< periodic or non-periodic half-space
   double tolerance; ///< solver tolerance of the curve
 };
 

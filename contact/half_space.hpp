@@ -29,12 +29,15 @@ enum class Kernel : int
   non_periodic = 1, ///< the grid is an isolated patch of an infinite half-space
 };
 
+/// The influence operator u = K p [m] of an elastic half-space of modulus E* [Pa] under a
+/// pressure p [Pa] on a regular grid, periodic or not (file comment: the kernels).
 class HalfSpace
 {
 public:
   /// @param rows, cols grid size (row-major like numpy; x along a row)
   /// @param spacing_x, spacing_y lattice steps [m], > 0
   /// @param composite_modulus E* [Pa], > 0
+  /// @param kernel periodic or non-periodic half-space
   /// Throws std::invalid_argument naming a bad argument.
   HalfSpace(std::size_t rows, std::size_t cols, double spacing_x, double spacing_y,
             double composite_modulus, Kernel kernel);
@@ -65,9 +68,13 @@ public:
   /// Points of the transform grid (rows·cols periodic, 4·rows·cols zero-padded).
   std::size_t transform_size() const;
 
+  /// Grid rows.
   std::size_t rows() const { return _rows; }
+  /// Grid columns.
   std::size_t cols() const { return _cols; }
+  /// Periodic or non-periodic.
   Kernel kernel() const { return _kernel; }
+  /// E* [Pa].
   double composite_modulus() const { return _modulus; }
 
 private:

@@ -38,13 +38,18 @@ struct PlasticContactState
   double mean_flattening = 0.0;    ///< mean(w) so far [m]
   int evaluations = 0;             ///< fixed-d solves of this load
   int iterations = 0;              ///< conjugate-gradient iterations of this load
-  bool converged = false;
+  bool converged = false; ///< the load met the solver's tolerance
 };
 
+/// Contact of elastic-perfectly-plastic walls, the pressure capped at the indentation hardness
+/// H [Pa], along a load path of nominal stresses [Pa] (file comment: the method); the walls
+/// keep their flattening, so unloading leaves a permanent closure.
 class PlasticContact
 {
 public:
   /// @param aperture e [m] (NaN masked); @param hardness H [Pa] > 0 (+inf: elastic walls).
+  /// @param composite_modulus E* [Pa], > 0; @param kernel periodic or non-periodic half-space;
+  /// @param options stopping rule of the solver.
   /// Throws std::invalid_argument naming a bad E*, H or grid.
   PlasticContact(const topography::Surface& aperture, double composite_modulus, Kernel kernel,
                  double hardness, ContactOptions options = {});

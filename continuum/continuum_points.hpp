@@ -15,19 +15,26 @@
 namespace rockjoint::continuum
 {
 
+/// An EquivalentContinuum material at n points, with converged and trial joint-set states per
+/// point (MGIS style: evaluate(), commit(), revert()).
 class ContinuumPoints
 {
 public:
+  /// `num_points` points of `material`, every set state at rest (zero jump and slip).
   ContinuumPoints(EquivalentContinuum material, std::size_t num_points);
 
+  /// The material every point shares.
   const EquivalentContinuum& material() const { return _material; }
+  /// Number of points n.
   std::size_t num_points() const { return _num_points; }
 
   /// Stress (n × strain_size()) and tangent (n × strain_size()²) at the total strains `strain`
   /// (n × strain_size()); returns the number of points whose local solve failed (NaN stress).
   std::size_t evaluate(std::span<const double> strain, std::span<double> stress,
                        std::span<double> tangent);
+  /// Accept the trial states (after a converged load step).
   void commit() { _converged = _trial; }
+  /// Drop the trial states (after a failed load step).
   void revert() { _trial = _converged; }
 
   /// Start from the stresses `stress` (n × strain_size()): the set states carrying them become

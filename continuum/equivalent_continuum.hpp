@@ -42,7 +42,8 @@ struct JointSet
 /// it carries (the jump is the start of the next local Newton solve, not history).
 struct SetState
 {
-  joint::JointPointState joint{};
+  rockjoint::joint::JointPointState joint{}; ///< the joint's path-dependent state (qualified: the
+                                            ///< member's own name would hide namespace joint)
   std::array<double, 3> jump{}; ///< (j_n, j_t1[, j_t2]) [m], opening positive
 };
 
@@ -55,6 +56,8 @@ struct PointResponse
   bool converged = false;           ///< false: a failed trial (the global step must be cut)
 };
 
+/// Jointed rock as an equivalent continuum: isotropic rock elasticity (E [Pa], ν [-]) plus
+/// smeared joint sets (file comment: the strain split and the local Newton solve).
 class EquivalentContinuum
 {
 public:
@@ -64,12 +67,17 @@ public:
   /// joint behaviour.
   EquivalentContinuum(int gdim, double young, double poisson, std::vector<JointSet> sets);
 
+  /// Geometric dimension, 2 or 3.
   int gdim() const { return _gdim; }
   /// Number of Voigt components: 3 (2D) or 6 (3D).
   int strain_size() const { return _gdim == 2 ? 3 : 6; }
+  /// Number of joint sets.
   std::size_t num_sets() const { return _sets.size(); }
+  /// The joint sets.
   const std::vector<JointSet>& sets() const { return _sets; }
+  /// Young's modulus E of the rock [Pa].
   double young() const { return _young; }
+  /// Poisson's ratio ν of the rock [-].
   double poisson() const { return _poisson; }
 
   /// Response at total strain `strain` (strain_size() entries) from the `converged` states

@@ -26,6 +26,7 @@ struct OpenRegions
   std::vector<std::size_t> first_cell; ///< per region: its first cell (row-major)
   std::vector<unsigned char> spans_x;  ///< per region: carries a mean flow along x (see file)
   std::vector<unsigned char> spans_y;  ///< per region: along y
+  /// Number of regions.
   std::size_t count() const { return first_cell.size(); }
 };
 

@@ -68,9 +68,10 @@ enum class LinearSolver
   conjugate_gradient   ///< CG preconditioned by incomplete Cholesky (Eigen, AMD ordering)
 };
 
+/// Options of a ReynoldsFlow solve: the linear solver and its tolerances.
 struct FlowOptions
 {
-  LinearSolver solver = LinearSolver::cholesky;
+  LinearSolver solver = LinearSolver::cholesky; ///< solver of the pressure system
   /// CG: stop at |r| <= tolerance |b| (relative residual of the pressure system)
   double tolerance = 1e-10;
   int maximum_iterations = 10000; ///< CG
@@ -117,7 +118,9 @@ public:
   ReynoldsFlow(std::size_t rows, std::size_t cols, double spacing_x, double spacing_y,
                Boundary boundary, const FlowOptions& options = {});
   ~ReynoldsFlow();
+  /// Movable (the factorisation moves with it), not copyable.
   ReynoldsFlow(ReynoldsFlow&&) noexcept;
+  /// Move assignment.
   ReynoldsFlow& operator=(ReynoldsFlow&&) noexcept;
 
   /// Transmissivity of the aperture field `aperture` [m] (rows x cols, row-major like numpy:
@@ -127,7 +130,9 @@ public:
   /// std::runtime_error for a T that is not finite or has a negative diagonal term.
   FlowResult transmissivity(std::span<const double> aperture);
 
+  /// Grid rows.
   std::size_t rows() const { return _rows; }
+  /// Grid columns.
   std::size_t cols() const { return _cols; }
 
 private:

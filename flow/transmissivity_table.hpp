@@ -24,6 +24,8 @@
 namespace rockjoint::flow
 {
 
+/// A joint's transmissivity T(Δ) [m³] as a function of its normal closure Δ [m], tabulated
+/// from contact and flow solutions (file comment: the interpolant and its extensions).
 class TransmissivityTable
 {
 public:
@@ -37,7 +39,9 @@ public:
   /// Batch: out[i] = T(closure[i]); sizes equal.
   void transmissivity(std::span<const double> closure, std::span<double> out) const;
 
+  /// Knots Δ_i [m].
   const std::vector<double>& closures() const { return _closure; }
+  /// T_i [m³] at the knots.
   const std::vector<double>& transmissivities() const { return _transmissivity; }
 
 private:

@@ -62,7 +62,7 @@ struct JointBehaviour
   /// kept per point (JointPointState::maximum_closure); its in-situ pre-closure follows the
   /// virgin curve.
   std::shared_ptr<const constitutive::ClosureLaw> law;
-  ShearModel shear_model = ShearModel::constant;
+  ShearModel shear_model = ShearModel::constant; ///< how k_s is set
   double shear_stiffness = 0.0;       ///< k_s [Pa/m] (ShearModel::constant), >= 0
   double shear_stiffness_ratio = 0.0; ///< α [-] (ShearModel::proportional), >= 0
   double residual_stiffness = 0.0;    ///< k_r [Pa/m], >= 0
@@ -102,8 +102,8 @@ struct LocalResponse
   double closure = 0.0;                            ///< Δ [m]
   double normal_stress = 0.0;                      ///< σ(Δ_e) + k_r Δ_e [Pa], compression +
   double normal_stiffness = 0.0;                   ///< k(Δ_e) + k_r [Pa/m]
-  constitutive::Status status = constitutive::Status::open;
-  ShearState shear_state = ShearState::open;
+  constitutive::Status status = constitutive::Status::open; ///< status of the closure law at Δ_e
+  ShearState shear_state = ShearState::open; ///< stick, slip or open
 };
 
 /// Normal part of the response at elastic closure Δ_e.
@@ -111,7 +111,7 @@ struct NormalResponse
 {
   double stress = 0.0;                 ///< σ(Δ_e) + k_r Δ_e [Pa], compression +
   double stiffness = 0.0;              ///< dσ/dΔ_e [Pa/m]
-  constitutive::Status status = constitutive::Status::open;
+  constitutive::Status status = constitutive::Status::open; ///< status of the closure law at Δ_e
   bool in_contact = false;             ///< Δ_e >= 0, or bonded in tension: carries shear
   bool bond_fails = false;             ///< the tension exceeded the tensile strength here
   double permanent_closure = 0.0;      ///< Δ_p of the hysteretic branch in force (0: virgin) [m]
@@ -131,9 +131,10 @@ NormalResponse normal_response(const JointBehaviour& behaviour, double elastic_c
 /// which is continuous at Δ_m where the branch's k jumps).
 struct ShearStiffness
 {
-  double value = 0.0;
-  double closure_derivative = 0.0;
+  double value = 0.0; ///< k_s [Pa/m]
+  double closure_derivative = 0.0; ///< dk_s/dΔ_e [Pa/m²]
 };
+/// k_s and dk_s/dΔ_e of `behaviour` at elastic closure Δ_e [m] with normal response `normal`.
 ShearStiffness shear_stiffness(const JointBehaviour& behaviour, const NormalResponse& normal,
                                double elastic_closure);
 

@@ -10,6 +10,7 @@
 namespace rockjoint::joint
 {
 
+/// Path-dependent state of one joint quadrature point (converged or trial copy).
 struct JointPointState
 {
   std::array<double, 2> slip{};  ///< irreversible shear displacement along t1, t2 [m]

@@ -32,7 +32,7 @@ enum class StrengthModel : int
 /// Parameters of the shear strength (angles in radians, stresses in Pa, lengths in m).
 struct JointStrength
 {
-  StrengthModel model = StrengthModel::none;
+  StrengthModel model = StrengthModel::none; ///< none, Coulomb or Barton
   double friction_angle = 0.0;   ///< φ (Coulomb) or the residual angle φ_r (Barton) [rad], [0, π/2)
   double cohesion = 0.0;         ///< c [Pa], >= 0
   double tensile_strength = 0.0; ///< T [Pa], >= 0, at most the cone apex c / tan φ_max
@@ -53,18 +53,20 @@ void validate(const JointStrength& strength, const std::string& owner);
 /// reachable in tension, where the validated T keeps a bonded joint inside the cone).
 struct ShearStrength
 {
-  double strength = std::numeric_limits<double>::infinity();
-  double slope = 0.0;
+  double strength = std::numeric_limits<double>::infinity(); ///< τ_y [Pa] (∞: no strength)
+  double slope = 0.0; ///< dτ_y/dσ_n [-]
 };
+/// τ_y and dτ_y/dσ_n at normal stress σ_n [Pa] (compression +).
 ShearStrength shear_strength(const JointStrength& strength, double normal_stress, bool bonded);
 
 /// Dilation produced by increasing the accumulated slip from κ0 to κ0 + dλ [m], and its rate
 /// d(dilation)/d(dλ) at that end (tan ψ before the dilation limit, 0 after it).
 struct DilationIncrement
 {
-  double opening = 0.0;
-  double rate = 0.0;
+  double opening = 0.0; ///< dilation over the increment [m]
+  double rate = 0.0; ///< d(dilation)/d(dλ) at its end [-]
 };
+/// Dilation from accumulated slip κ0 [m] over a slip increment dλ [m].
 DilationIncrement dilation_increment(const JointStrength& strength, double accumulated_slip,
                                      double slip_increment);
 

@@ -73,14 +73,14 @@ def jointed_block(size: Sequence[float], joints: Iterable, dim: int | None = Non
                   algorithm_3d: str = "delaunay") -> JointedMesh | None:
     """A rectangle/box [0, size] cut by planar joints, meshed, split by block, joint facets paired.
 
-    joints: Joint objects (see joint_geometry.Joint), tuples (point, dip[, dip_direction]) or lists of
+    :joints: Joint objects (see joint_geometry.Joint), tuples (point, dip[, dip_direction]) or lists of
         them (e.g. from joint_set).
-    mesh_size: target element size [m] away from the joints.
-    joint_mesh_size: element size [m] on the joints (gmsh Distance + Threshold fields); None = uniform.
-    refine_distance: distance [m] over which the size grows from joint_mesh_size to mesh_size
+    :mesh_size: target element size [m] away from the joints.
+    :joint_mesh_size: element size [m] on the joints (gmsh Distance + Threshold fields); None = uniform.
+    :refine_distance: distance [m] over which the size grows from joint_mesh_size to mesh_size
         (default 2 mesh_size).
-    comm: an mpi4py communicator; ranks != 0 return None.
-    algorithm_3d: "delaunay" (gmsh's default 3D algorithm; the same mesh on every run) or "hxt"
+    :comm: an mpi4py communicator; ranks != 0 return None.
+    :algorithm_3d: "delaunay" (gmsh's default 3D algorithm; the same mesh on every run) or "hxt"
         (about 5x faster on large boxes, but gmsh 4.8's HXT gives slightly different meshes run to run).
     """
     if comm is not None and comm.rank != 0:

@@ -39,12 +39,13 @@ def from_gmsh_model(joints: Sequence[str], blocks: Sequence[str] | None = None,
                     boundaries: Sequence[str] | None = None, *, comm=None) -> JointedMesh | None:
     """Read the current gmsh model (already meshed) into a JointedMesh split along the joints.
 
-    joints: names of the joint groups (dimension d-1); [] for an intact model.
-    blocks: names of the block groups (dimension d); default: every dimension-d group.
-    boundaries: names of the boundary groups (dimension d-1); default: every dimension-(d-1)
+    :joints: names of the joint groups (dimension d-1); [] for an intact model.
+    :blocks: names of the block groups (dimension d); default: every dimension-d group.
+    :boundaries: names of the boundary groups (dimension d-1); default: every dimension-(d-1)
         group that is not a joint.
-    comm: an mpi4py communicator; ranks other than 0 return None without touching gmsh (build the
+    :comm: an mpi4py communicator; ranks other than 0 return None without touching gmsh (build the
         model on rank 0 only, as with dolfinx.io.gmsh.model_to_mesh).
+
     Raises ValueError naming the offending group or entity (see the module docstring).
     """
     if comm is not None and comm.rank != 0:

@@ -24,16 +24,16 @@ import numpy as np
 class Joint:
     """One planar joint.
 
-    point: a point of the joint plane [m], inside the block (for a bounded joint: on the kept side of
+    :point: a point of the joint plane [m], inside the block (for a bounded joint: on the kept side of
         every bounding joint).
-    dip: degrees below horizontal, in [0, 90].
-    dip_direction: degrees clockwise from +y (north); 2D accepts 90 (toward +x) or 270 (toward -x).
-    name: physical-group name of the joint (default ``joint_<i>``, 1-based).
-    bounded_by: names or 0-based indices of other joints on which this joint ends (T-junctions): the
+    :dip: degrees below horizontal, in [0, 90].
+    :dip_direction: degrees clockwise from +y (north); 2D accepts 90 (toward +x) or 270 (toward -x).
+    :name: physical-group name of the joint (default ``joint_<i>``, 1-based).
+    :bounded_by: names or 0-based indices of other joints on which this joint ends (T-junctions): the
         joint is kept on the side of each of them where ``point`` lies. Without it the joint crosses
         the whole block. Every joint must separate blocks completely: a joint whose edge ends inside
         a block (a dangling crack tip) is rejected by the builder.
-    joint_set: the name of the set the joint belongs to (``joint_set`` gives its own name; None: the
+    :joint_set: the name of the set the joint belongs to (``joint_set`` gives its own name; None: the
         joint is a set of its own). The mesh carries it as the group names["joint_sets"]
         ({joint tag: set name}), so that a model reads a joint's set from its mesh.
     """

@@ -45,8 +45,8 @@ class JointedMesh:
     boundary_facets: (n_bf, nvf) int64 exterior facets carrying a named boundary group.
     boundary_tags: (n_bf,) int32.
     names: {"blocks": {tag: name}, "joints": {tag: name}, "boundaries": {tag: name}} and optionally
-        "joint_sets": {joint tag: set name} (the set of each joint; without it, or for a joint it
-        leaves out, a joint is a set of its own: joint_sets()).
+    "joint_sets": {joint tag: set name} (the set of each joint; without it, or for a joint it
+    leaves out, a joint is a set of its own: joint_sets()).
     """
 
     points: np.ndarray
@@ -68,14 +68,17 @@ class JointedMesh:
     # ---- derived quantities --------------------------------------------------------------
     @property
     def gdim(self) -> int:
+        """Geometric dimension of the points (2 or 3)."""
         return int(self.points.shape[1])
 
     @property
     def tdim(self) -> int:
+        """Topological dimension of the cells."""
         return _CELL_TYPES[self.cell_type][0]
 
     @property
     def num_original_nodes(self) -> int:
+        """Number of original (glued) nodes, before the joints were split."""
         return int(np.count_nonzero(self.glue == np.arange(self.glue.size)))
 
     def tag(self, kind: str, name: str) -> int:

@@ -61,10 +61,12 @@ class CircularOpening:
 
     @property
     def area(self) -> float:
+        """Area of the opening [m²]."""
         return math.pi * self.radius ** 2
 
     @property
     def perimeter(self) -> float:
+        """Length of the outline [m]."""
         return 2.0 * math.pi * self.radius
 
     def bounds(self) -> tuple:
@@ -83,6 +85,7 @@ class CircularOpening:
         return [OutlinePiece(ends[k], ends[(k + 1) % 4], self.centre) for k in range(4)]
 
     def add_to(self, occ) -> int:
+        """Add the disk to the gmsh OpenCASCADE kernel `occ`; returns its surface tag."""
         (x, y), a = self.centre, self.radius
         return occ.addDisk(x, y, 0.0, a, a)
 
@@ -120,6 +123,7 @@ class HorseshoeOpening:
 
     @property
     def area(self) -> float:
+        """Area of the opening [m²] (half disk, walls and the invert's circular segment)."""
         a = self.radius
         area = 0.5 * math.pi * a * a + 2.0 * a * self.wall_height
         if self.invert_depth > 0.0:
@@ -129,6 +133,7 @@ class HorseshoeOpening:
 
     @property
     def perimeter(self) -> float:
+        """Length of the outline [m]."""
         a = self.radius
         invert = 2.0 * a
         if self.invert_depth > 0.0:
@@ -137,6 +142,7 @@ class HorseshoeOpening:
         return math.pi * a + 2.0 * self.wall_height + invert
 
     def bounds(self) -> tuple:
+        """(x_min, y_min, x_max, y_max) [m]."""
         (x, y), a = self.centre, self.radius
         return (x - a, y - self.wall_height - self.invert_depth, x + a, y + a)
 
@@ -190,6 +196,7 @@ class HorseshoeOpening:
         return out + [OutlinePiece(right_foot, right)]
 
     def add_to(self, occ) -> int:
+        """Add the outline as a surface to the gmsh OpenCASCADE kernel `occ`; returns its tag."""
         return _add_outline(occ, self.pieces())
 
 

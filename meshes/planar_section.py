@@ -34,6 +34,7 @@ class OutlinePiece:
 
     @property
     def radius(self) -> float:
+        """Radius of the arc [m] (centre to start)."""
         return math.dist(self.start, self.centre)
 
     def span(self) -> float:
@@ -43,6 +44,7 @@ class OutlinePiece:
 
     @property
     def length(self) -> float:
+        """Length of the piece [m]: the chord of a segment, radius × angle of an arc."""
         return math.dist(self.start, self.end) if self.centre is None else self.radius * self.span()
 
     def position(self, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -55,26 +55,26 @@ def tunnel_section(width: float, height: float, opening, joints: Iterable = (), 
                    comm=None) -> JointedMesh | None:
     """The section [0, width] x [0, height] minus ``opening``, cut by ``joints``, meshed and split.
 
-    opening: CircularOpening or HorseshoeOpening, strictly inside the section (at least one element
+    :opening: CircularOpening or HorseshoeOpening, strictly inside the section (at least one element
         size from its sides).
-    joints: Joint objects, lists of them (meshes.joint_set) or (point, dip[, dip_direction]) tuples;
+    :joints: Joint objects, lists of them (meshes.joint_set) or (point, dip[, dip_direction]) tuples;
         2D dips toward +x (dip_direction 90) or -x (270).
-    mesh_size: element size [m] far from the opening and the joints.
-    opening_mesh_size: element size [m] on the opening (default mesh_size / 4);
+    :mesh_size: element size [m] far from the opening and the joints.
+    :opening_mesh_size: element size [m] on the opening (default mesh_size / 4);
         opening_refine_distance: distance [m] over which it grows to mesh_size (default 2 x the
         opening's largest half-dimension).
-    joint_mesh_size: element size [m] on the joints (default: no joint refinement);
+    :joint_mesh_size: element size [m] on the joints (default: no joint refinement);
         joint_refine_distance: growth distance [m] (default 2 mesh_size).
-    intact: the same mesh as one block without joints (see the module docstring).
-    quarter: mesh a quarter of a section symmetric about the opening's vertical and horizontal axes:
+    :intact: the same mesh as one block without joints (see the module docstring).
+    :quarter: mesh a quarter of a section symmetric about the opening's vertical and horizontal axes:
         a CircularOpening centred at the origin (0, 0), the rock [0, width] x [0, height] around it;
         "left" (x = 0) and "bottom" (y = 0) are then the symmetry planes (rollers there are exact for
         a symmetric load such as Kirsch's far field).
-    length: if given, the 3D extrusion of the section along the tunnel axis, ``length`` [m] long: the
+    :length: if given, the 3D extrusion of the section along the tunnel axis, ``length`` [m] long: the
         section's x stays x, its y becomes z (up) and the axis is y, from y = 0 ("front") to
         y = length ("back"); joints become planes, the opening a prism (tetrahedra, the same size
         fields on the opening's and the joints' faces).
-    comm: an mpi4py communicator; ranks != 0 return None (gmsh runs on rank 0).
+    :comm: an mpi4py communicator; ranks != 0 return None (gmsh runs on rank 0).
     """
     if comm is not None and comm.rank != 0:
         return None

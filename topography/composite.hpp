@@ -33,7 +33,7 @@ struct ContactState
   /// mated pair). Only the overlap of the two grids is kept.
   int offset_x = 0; ///< [grid steps]
   int offset_y = 0; ///< [grid steps]
-  PlaneRemoval plane_removal = PlaneRemoval::common;
+  PlaneRemoval plane_removal = PlaneRemoval::common; ///< how the mean planes are removed
 };
 
 /// The registered walls and the fields derived from them, on the overlap lattice.
@@ -47,7 +47,7 @@ struct CompositeTopography
   double interpenetration; ///< -min(z_u - z_l) before the shift [m] (> 0: walls overlap as given)
   Plane upper_plane;       ///< plane removed from the upper wall
   Plane lower_plane;       ///< plane removed from the lower wall (in the overlap frame)
-  ContactState state;
+  ContactState state; ///< the relative position used
 };
 
 /// Register `upper` and `lower` in `state` and build the composite topography. Throws

@@ -11,6 +11,7 @@
 namespace rockjoint::topography
 {
 
+/// A row-major grid of complex values (the DFT of a HeightGrid).
 using ComplexGrid
     = Eigen::Array<std::complex<double>, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 

@@ -16,6 +16,7 @@ struct Plane
   double offset = 0.0;  ///< [m]
   double slope_x = 0.0; ///< [-]
   double slope_y = 0.0; ///< [-]
+  /// z [m] at (x, y) [m].
   double at(double x, double y) const { return offset + slope_x * x + slope_y * y; }
 };
 

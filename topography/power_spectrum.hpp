@@ -30,7 +30,8 @@ struct PowerSpectrum2D
   HeightGrid psd;              ///< C(q_y(i), q_x(j)) [m⁴]
   std::vector<double> qx;      ///< [rad/m], DFT order
   std::vector<double> qy;      ///< [rad/m], DFT order
-  double dqx = 0.0, dqy = 0.0; ///< lattice steps in q [rad/m]
+  double dqx = 0.0; ///< lattice step in q_x [rad/m]
+  double dqy = 0.0; ///< lattice step in q_y [rad/m]
 };
 
 /// Periodogram of the mean-removed heights. Throws std::invalid_argument if the surface has
@@ -46,6 +47,7 @@ struct RadialSpectrum
   std::vector<std::int64_t> count;///< modes in each bin
 };
 
+/// The radial average of `spectrum`.
 RadialSpectrum radial_average(const PowerSpectrum2D& spectrum);
 
 /// Power-law fit C = C0 (q/q_ref)^{-2(1+H)} over q_min <= q <= q_max.
@@ -55,7 +57,8 @@ struct HurstFit
   double slope;           ///< d ln C / d ln q
   double slope_std_error; ///< from the weighted residuals
   double log_prefactor;   ///< ln C at q = 1 rad/m
-  double q_min, q_max;    ///< band used [rad/m]
+  double q_min; ///< lower end of the band used [rad/m]
+  double q_max; ///< upper end of the band used [rad/m]
   std::size_t bins;       ///< bins used
 };
 

@@ -17,10 +17,13 @@ namespace rockjoint::topography
 /// Profile spectral moments m0 [m²], m2 [-], m4 [1/m²].
 struct SpectralMoments
 {
-  double m0 = 0.0;
+  double m0 = 0.0; ///< m0 = σ² [m²]
   double m2 = 0.0;   ///< (m2x + m2y)/2
   double m4 = 0.0;   ///< (m4x + m4y)/2
-  double m2x = 0.0, m2y = 0.0, m4x = 0.0, m4y = 0.0;
+  double m2x = 0.0; ///< m2 of profiles along x [-]
+  double m2y = 0.0; ///< m2 of profiles along y [-]
+  double m4x = 0.0; ///< m4 of profiles along x [1/m²]
+  double m4y = 0.0; ///< m4 of profiles along y [1/m²]
   double bandwidth() const { return m0 * m4 / (m2 * m2); } ///< α [-]
 };
 
@@ -32,7 +35,7 @@ struct NayakEstimates
   double summit_radius = 0.0;     ///< β = 0.375 √(π/m4) [m]
   double summit_height_std = 0.0; ///< σ_s = √(1 - 0.8968/α) σ [m] (NaN if α < 0.8968)
   double bandwidth = 0.0;         ///< α [-]
-  SpectralMoments moments;
+  SpectralMoments moments; ///< the moments the estimates come from
 };
 
 /// Moments from finite differences of the samples: forward differences for slopes and the

@@ -25,6 +25,7 @@ struct SummitList
   std::vector<std::int32_t> cols;    ///< lattice column j (x)
   std::vector<double> heights;       ///< above the mean plane of the surface [m]
   std::vector<double> curvatures;    ///< κ = -½∇²s > 0 [1/m]
+  /// Number of summits.
   std::size_t size() const { return heights.size(); }
   /// Radii 1/κ [m].
   std::vector<double> radii() const;
@@ -36,7 +37,7 @@ struct SummitStatistics
 {
   double sampling_interval_x = 0.0;  ///< h_x [m]
   double sampling_interval_y = 0.0;  ///< h_y [m]
-  std::int64_t summit_count = 0;
+  std::int64_t summit_count = 0; ///< summits found
   std::int64_t eligible_points = 0;  ///< points whose 8 neighbours are all valid
   double scanned_area = 0.0;         ///< eligible_points · h_x h_y [m²]
   double summit_density = 0.0;       ///< η = summit_count / scanned_area [1/m²]
@@ -52,8 +53,8 @@ struct SummitStatistics
 /// Summits and their statistics.
 struct SummitAnalysis
 {
-  SummitList summits;
-  SummitStatistics statistics;
+  SummitList summits; ///< the summits
+  SummitStatistics statistics; ///< their statistics
 };
 
 /// Find the 8-neighbour summits of `surface` (heights taken relative to the mean of its

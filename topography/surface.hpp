@@ -28,10 +28,15 @@ public:
   /// Square lattice, spacing h [m].
   Surface(HeightGrid heights, double spacing) : Surface(std::move(heights), spacing, spacing) {}
 
+  /// Heights [m], NaN where missing.
   const HeightGrid& heights() const { return _heights; }
+  /// h_x [m].
   double spacing_x() const { return _spacing_x; }
+  /// h_y [m].
   double spacing_y() const { return _spacing_y; }
+  /// Rows (y).
   Eigen::Index rows() const { return _heights.rows(); }
+  /// Columns (x).
   Eigen::Index cols() const { return _heights.cols(); }
 
   /// Number of valid (non-NaN) points.

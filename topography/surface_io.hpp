@@ -40,9 +40,9 @@ struct ReadOptions
 /// A surface read from a file (SI inside) and the units the file used.
 struct SurfaceFile
 {
-  Surface surface;
-  std::string lateral_unit;
-  std::string height_unit;
+  Surface surface; ///< heights and spacings [m]
+  std::string lateral_unit; ///< unit of the file's lateral coordinates
+  std::string height_unit; ///< unit of the file's heights
 };
 
 /// Read a plain-text height grid. Options override the header. Throws std::invalid_argument

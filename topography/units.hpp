@@ -15,8 +15,8 @@ namespace rockjoint::topography
 /// A length unit and its size in metres.
 struct LengthUnit
 {
-  std::string_view name;
-  double metres;
+  std::string_view name; ///< e.g. "um"
+  double metres; ///< its size [m]
 };
 
 /// Every length unit rockjoint reads: m, cm, mm, um (also µm, micron), nm, km.

@@ -19,6 +19,7 @@ from ._rockjoint.constitutive import (  # noqa: F401
     LogarithmicLaw,
     NormalHysteresis,
     Parameter,
+    ParameterSpec,
     Status,
     composite_modulus,
 )

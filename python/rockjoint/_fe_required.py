@@ -9,5 +9,7 @@ import os
 
 
 def fe_required() -> bool:
+    """True if the FE layer must be there: under CI (CI set, not 0/false/no) or with
+    ROCKJOINT_REQUIRE_FE=1; then a missing FE extension is an error, never a skip (issue 30)."""
     ci = os.environ.get("CI", "").strip().lower()
     return ci not in ("", "0", "false", "no") or os.environ.get("ROCKJOINT_REQUIRE_FE", "") == "1"

@@ -20,7 +20,7 @@ def quiet_compiler_logging() -> None:
 
 
 def say(*args, comm=None) -> None:
-    """print(*args) on rank 0 of `comm` (default MPI.COMM_WORLD), flushed."""
+    """``print(*args)`` on rank 0 of `comm` (default MPI.COMM_WORLD), flushed."""
     if comm is None:
         from mpi4py import MPI  # optional (the FE stack): only when no communicator is given
         comm = MPI.COMM_WORLD

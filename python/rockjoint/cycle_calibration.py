@@ -173,12 +173,14 @@ class CycleCalibration:
         return np.asarray(self.law.closure_path(self.cycles.normal_stress), dtype=float) - self.closure_offset
 
     def parameter(self, name: str) -> FittedParameter:
+        """The fitted parameter `name` (KeyError if the law has none of that name)."""
         for p in self.parameters:
             if p.name == name:
                 return p
         raise KeyError(name)
 
     def report(self) -> str:
+        """The calibration in words: the data, the given and fitted parameters with their uncertainties."""
         c = self.cycles
         top = float(np.max(c.closure))
         lines = [f"cycle calibration of '{self.law_name}' with unloading branches to {c.source}",

@@ -206,7 +206,7 @@ class TransmissivityLaw:
 @dataclasses.dataclass(frozen=True)
 class TransmissivityRecord:
     """One transmissivity law: its key, words, its SI parameters (name -> what it is, with its
-    unit) and its builder build(**parameters) -> TransmissivityLaw."""
+    unit) and its builder ``build(**parameters) -> TransmissivityLaw``."""
 
     key: str
     label: str
@@ -215,6 +215,7 @@ class TransmissivityRecord:
     build: Callable[..., TransmissivityLaw]
 
 
+#: {key: TransmissivityRecord} of the transmissivity laws (filled by the registrations below).
 TRANSMISSIVITY_LAWS: Dict[str, TransmissivityRecord] = {}
 #: one micrometre [m]: the unit of Barton's conversion (rockjoint.units, the one unit table)
 MICROMETRE = DIMENSIONS["length"]["µm"]

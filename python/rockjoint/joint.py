@@ -3,7 +3,7 @@
 stiffness + shear strength of a joint, its traction and consistent tangent at a local jump, and
 its path-dependent state (C++ `joint/`, bound as `rockjoint._rockjoint.joint`; needs neither
 PETSc nor DOLFINx). The FE joints (`rockjoint.fem`) evaluate every quadrature point through it,
-and so can a point driver: direct-shear curves, a calibration, an equivalent-continuum material.
+and so can a point driver: direct-shear curves, a calibration, an equivalent-continuum material::
 
     from math import radians
     from rockjoint import BartonBandis
@@ -16,7 +16,7 @@ Strength (docs/joint-strength.md): Coulomb or Barton slip, dilation, tension cut
 mapping is C++ (joint/joint_slip.hpp). `make_strength` turns the user's description of a strength
 into a validated `JointStrength`; `joint_behaviours` builds every joint of a mesh from the user's
 law, shear stiffness, residual stiffness and strength per joint name (the one place where these
-inputs are checked and combined, for JointedRockModel(joints=...), JointCoupling and smeared sets):
+inputs are checked and combined, for JointedRockModel(joints=...), JointCoupling and smeared sets)::
 
     behaviours = joint_behaviours({"fault": 3}, {"fault": law}, shear_stiffness=1e9,
                                   strength={"friction_angle": 0.5})

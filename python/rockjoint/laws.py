@@ -55,6 +55,17 @@ def make_law(model: str, parameters: Optional[AsperityParameters] = None, **opti
     ready base law, default Tang's substrate law from the same options). Laws with their own
     parameters take them as SI keywords (e.g. make_law("barton_bandis",
     initial_normal_stiffness=2e10, maximum_closure=3e-4)).
+
+    The Barton-Bandis hyperbola σ = K_ni Δ / (1 - Δ/V_m): at Δ = V_m/3 the stress is
+    1.5 K_ni Δ, 3 MPa here, and the stiffness K_ni / (1 - Δ/V_m)² = 2.25 K_ni:
+
+    >>> law = make_law("barton_bandis", initial_normal_stiffness=2e10, maximum_closure=3e-4)
+    >>> round(float(law.normal_stress(1e-4)) / 1e6, 9)   # [MPa]
+    3.0
+    >>> round(float(law.normal_stiffness(1e-4)) / 2e10, 9)   # [K_ni]
+    2.25
+    >>> round(float(law.closure_at_stress(3e6)) * 1e3, 9)   # the inverse [mm]
+    0.1
     """
     return get(model).build(parameters, **options)
 

@@ -32,6 +32,7 @@ Surface = _cpp.Surface
 CompositeTopography = _cpp.CompositeTopography
 SummitStatistics = _cpp.SummitStatistics
 NayakEstimates = _cpp.NayakEstimates
+SpectralMoments = _cpp.SpectralMoments  # the type of NayakEstimates.moments
 PlaneRemoval = _cpp.PlaneRemoval
 Window = _cpp.Window
 ApertureDistribution = _cpp.ApertureDistribution
@@ -163,7 +164,16 @@ def composite_topography(upper: Surface, lower: Surface, offset: Tuple[int, int]
 
 
 def overlap_ratio(aperture: Surface, closure) -> Union[float, np.ndarray]:
-    """Geometric overlap ratio fraction{e <= Δ} [-] at closure(s) Δ [m] (theory §3)."""
+    """Geometric overlap ratio fraction{e <= Δ} [-] at closure(s) Δ [m] (theory §3).
+
+    Four points with apertures 0, 0.1, 0.2 and 0.3 mm: a closure of 0.15 mm brings half of them
+    into overlap, one of 0.3 mm all of them.
+
+    >>> import numpy as np
+    >>> aperture = Surface(np.array([[0.0, 1e-4], [2e-4, 3e-4]]), 1e-3)
+    >>> [float(r) for r in overlap_ratio(aperture, [0.0, 1.5e-4, 3e-4])]
+    [0.25, 0.5, 1.0]
+    """
     return ApertureDistribution(aperture).overlap_ratio(np.asarray(closure, dtype=float))
 
 
@@ -240,6 +250,13 @@ def resampling_table(rows) -> str:
 
 @dataclasses.dataclass
 class HurstEstimate:
+    """A power-law fit C = C0 (q/q_ref)^(-2(1+H)) to the radially averaged spectrum of a surface.
+
+    Fields: hurst_exponent H [-], slope d ln C / d ln q [-] and its standard error,
+    log_prefactor (ln C [m⁴] at q = 1 rad/m), the band [q_min, q_max] [rad/m] fitted, and the
+    radial spectrum itself: q [rad/m], psd [m⁴] and the number of modes in each bin.
+    """
+
     hurst_exponent: float
     slope: float
     slope_std_error: float

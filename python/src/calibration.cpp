@@ -75,12 +75,12 @@ void declare_calibration(py::module_& m)
       .def_property_readonly("residuals",
                              [](const CurveFitResult& r) { return to_numpy(r.residuals); },
                              "m_i(p) - y_i (unweighted)")
-      .def_readonly("chi_squared", &CurveFitResult::chi_squared)
-      .def_readonly("degrees_of_freedom", &CurveFitResult::degrees_of_freedom)
-      .def_readonly("iterations", &CurveFitResult::iterations)
-      .def_readonly("function_evaluations", &CurveFitResult::function_evaluations)
-      .def_readonly("converged", &CurveFitResult::converged)
-      .def_readonly("message", &CurveFitResult::message);
+      .def_readonly("chi_squared", &CurveFitResult::chi_squared, "Σ w_i (m_i - y_i)²")
+      .def_readonly("degrees_of_freedom", &CurveFitResult::degrees_of_freedom, "N - P")
+      .def_readonly("iterations", &CurveFitResult::iterations, "Levenberg-Marquardt iterations made")
+      .def_readonly("function_evaluations", &CurveFitResult::function_evaluations, "model evaluations made")
+      .def_readonly("converged", &CurveFitResult::converged, "a stopping test was met (false: iteration limit or no progress)")
+      .def_readonly("message", &CurveFitResult::message, "what stopped the iteration");
 
   m.def("fit_curve", &fit, py::arg("model"), py::arg("observed"), py::arg("initial"),
         py::arg("weights") = py::none(), py::arg("maximum_iterations") = 500,

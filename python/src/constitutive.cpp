@@ -69,10 +69,12 @@ void declare_laws(py::module_& m)
       .value("quadrature_not_converged", Status::quadrature_not_converged,
              "5: an integral of the law missed its tolerance: best estimate returned");
 
-  py::class_<Parameter>(m, "Parameter")
-      .def_readonly("name", &Parameter::name)
-      .def_readonly("value", &Parameter::value)
-      .def_readonly("unit", &Parameter::unit)
+  py::class_<Parameter>(m, "Parameter",
+                        "One named parameter of a closure law, as the law reports it "
+                        "(ClosureLaw.parameters): name, value in SI, unit")
+      .def_readonly("name", &Parameter::name, "The parameter's name, e.g. 'maximum_closure'")
+      .def_readonly("value", &Parameter::value, "Its value, in the SI unit `unit`")
+      .def_readonly("unit", &Parameter::unit, "Its SI unit, e.g. 'm', 'Pa', 'Pa/m', '-'")
       .def("__repr__", [](const Parameter& p)
            { return p.name + "=" + std::to_string(p.value) + " " + p.unit; });
 
@@ -85,9 +87,9 @@ void declare_laws(py::module_& m)
       .def_readonly("unit", &ParameterSpec::unit, "SI unit ('-': dimensionless)")
       .def_readonly("file_unit", &ParameterSpec::file_unit, "unit of parameter files and reports")
       .def_readonly("lower", &ParameterSpec::lower, "lower bound of the range")
-      .def_readonly("lower_inclusive", &ParameterSpec::lower_inclusive)
+      .def_readonly("lower_inclusive", &ParameterSpec::lower_inclusive, "whether lower itself is admissible")
       .def_readonly("upper", &ParameterSpec::upper, "upper bound of the range (inf: none)")
-      .def_readonly("upper_inclusive", &ParameterSpec::upper_inclusive)
+      .def_readonly("upper_inclusive", &ParameterSpec::upper_inclusive, "whether upper itself is admissible")
       .def_property_readonly("range", &ParameterSpec::range,
                              "the range in words, e.g. 'finite and > 0', 'in [0, 1)'")
       .def("admits", &ParameterSpec::admits, py::arg("value"),
@@ -97,9 +99,13 @@ void declare_laws(py::module_& m)
 
   py::class_<ClosureLaw, std::shared_ptr<ClosureLaw>>(
       m, "ClosureLaw", "Normal-closure law σ(Δ) of a rough joint (SI: Pa, m)")
-      .def_property_readonly("name", &ClosureLaw::name)
-      .def_property_readonly("parameters", &ClosureLaw::parameters)
-      .def_property_readonly("provides_contact_area", &ClosureLaw::provides_contact_area)
+      .def_property_readonly("name", &ClosureLaw::name,
+                             "The law's model name, e.g. 'barton_bandis' (written into tables)")
+      .def_property_readonly("parameters", &ClosureLaw::parameters,
+                             "The law's parameters: a list of Parameter (name, SI value, unit)")
+      .def_property_readonly("provides_contact_area", &ClosureLaw::provides_contact_area,
+                             "True if the law models the contact-area ratio A/A0 (asperity "
+                             "laws); False if contact_area_ratio is 0 (empirical laws, tables)")
       .def_property_readonly("maximum_closure", &ClosureLaw::maximum_closure,
                              "Supremum of admissible closures [m] (inf if none)")
       .def_property_readonly("seating_stress", &ClosureLaw::seating_stress,
@@ -142,7 +148,8 @@ void declare_laws(py::module_& m)
           { return std::make_shared<BartonBandis>(BartonBandis::from_joint_properties(jrc, jcs, aj)); },
           py::arg("jrc"), py::arg("jcs"), py::arg("initial_aperture"),
           "Bandis et al. (1983) estimates from JRC [-], JCS [Pa], initial aperture [m]")
-      .def_property_readonly("initial_normal_stiffness", &BartonBandis::initial_normal_stiffness);
+      .def_property_readonly("initial_normal_stiffness", &BartonBandis::initial_normal_stiffness,
+                             "K_ni = dσ/dΔ at Δ = 0 [Pa/m]");
 
   py::class_<LogarithmicLaw, ClosureLaw, std::shared_ptr<LogarithmicLaw>>(
       m, "LogarithmicLaw", "Δ = B ln(σ_t/σ0); returns σ = σ_t - σ0")
@@ -165,9 +172,14 @@ void declare_laws(py::module_& m)
       .def_static("parameter_specs", &NormalHysteresis::parameter_specs,
                   "The history's own parameters r and m (beside the virgin law's): ParameterSpec")
       .def_property_readonly("virgin", [](const NormalHysteresis& h)
-                             { return std::const_pointer_cast<ClosureLaw>(h.virgin_law()); })
-      .def_property_readonly("permanent_fraction", &NormalHysteresis::permanent_fraction)
-      .def_property_readonly("unloading_exponent", &NormalHysteresis::unloading_exponent)
+                             { return std::const_pointer_cast<ClosureLaw>(h.virgin_law()); },
+                             "The virgin (first-loading) closure law")
+      .def_property_readonly("permanent_fraction", &NormalHysteresis::permanent_fraction,
+                             "r [-], in [0, 1): the permanent closure Δ_p = r Δ_m left after "
+                             "unloading from the largest closure Δ_m (docs/hysteresis.md, H2)")
+      .def_property_readonly("unloading_exponent", &NormalHysteresis::unloading_exponent,
+                             "n [-], > 0: shape exponent of the unloading/reloading branch "
+                             "(docs/hysteresis.md, H3)")
       .def("permanent_closure", &NormalHysteresis::permanent_closure, py::arg("maximum_closure"),
            "Δ_p = r Δ_m [m]")
       .def(
@@ -408,8 +420,11 @@ void declare_asperity_models(py::module_& m)
       .def_property_readonly("reference_separation", &SummitPopulationLaw::reference_separation,
                              "Reference (seating) separation d0 [m]")
       .def_property_readonly("distribution", [](const SummitPopulationLaw& l)
-                             { return std::string(to_string(l.distribution())); })
-      .def_property_readonly("quadrature_tolerance", &SummitPopulationLaw::quadrature_tolerance)
+                             { return std::string(to_string(l.distribution())); },
+                             "The summit-height distribution: 'gaussian', 'exponential' or "
+                             "'empirical' (a list of summits)")
+      .def_property_readonly("quadrature_tolerance", &SummitPopulationLaw::quadrature_tolerance,
+                             "Relative tolerance [-] of the height integrals")
       .def("quadrature_converged", &SummitPopulationLaw::quadrature_converged, py::arg("closure"),
            "Diagnostic: True if every height integral at closure Δ [m] met the tolerance")
       .def("response_at_separation", &separation_response, py::arg("separation"),
@@ -449,9 +464,13 @@ void declare_asperity_models(py::module_& m)
       .def_property_readonly("deflection_coefficient", &TangSubstrate::deflection_coefficient,
                              "κ_s [-]")
       .def_property_readonly("base_radius", &TangSubstrate::base_radius, "r0 [m]")
-      .def_readonly_static("CENTRE_DEFLECTION", &substrate::centre_deflection)
-      .def_readonly_static("MEAN_DEFLECTION", &substrate::mean_deflection)
-      .def_readonly_static("RIGID_BASE", &substrate::rigid_base);
+      .def_readonly_static("CENTRE_DEFLECTION", &substrate::centre_deflection,
+                           "κ_s = 8/(3π) [-]: the deflection at the centre of the loaded base "
+                           "(the default)")
+      .def_readonly_static("MEAN_DEFLECTION", &substrate::mean_deflection,
+                           "κ_s = 64/(9π²) [-]: the mean deflection over the loaded base")
+      .def_readonly_static("RIGID_BASE", &substrate::rigid_base,
+                           "κ_s = 2/3 [-]: a rigid circular base");
 }
 
 // ---- tang jiao ---------------------------------------------------------------------------------
@@ -554,9 +573,13 @@ void declare_tang_jiao(py::module_& m)
            "(GreenwoodWilliamson, TangSubstrate). overlap_closure [m] / overlap_area_ratio [-]: "
            "optional geometric fraction{e <= Δ} samples for Eq. (2) (Δ_0 = 0, monotone).")
       .def_property_readonly("variant", [](const TangJiao& l)
-                             { return l.variant() == TangJiaoVariant::kinematic ? "I2" : "I1"; })
-      .def_property_readonly("limit", &TangJiao::limit)
-      .def_property_readonly("limit_description", &TangJiao::limit_description)
+                             { return l.variant() == TangJiaoVariant::kinematic ? "I2" : "I1"; },
+                             "The reading of Eq. (7): 'I1' (stress interaction) or 'I2' "
+                             "(kinematic closure shift)")
+      .def_property_readonly("limit", &TangJiao::limit,
+                             "What sets maximum_closure (a TangJiaoLimit)")
+      .def_property_readonly("limit_description", &TangJiao::limit_description,
+                             "The limit in words, for messages and reports")
       .def_property_readonly("maximum_internal_closure", &TangJiao::maximum_internal_closure,
                              "Internal closure ξ at the validity limit [m]")
       .def_property_readonly("contact_radius", &TangJiao::contact_radius,
@@ -583,13 +606,20 @@ void declare_tang_jiao(py::module_& m)
                                      "Closed-form self-consistent cell (theory §5), SI units")
       .def(py::init<double, double, double, double>(), py::arg("composite_modulus"),
            py::arg("radius"), py::arg("contact_radius"), py::arg("area_root"))
-      .def_property_readonly("territory_radius", &interaction_cell::Cell::territory_radius)
-      .def_property_readonly("mean_pressure", &interaction_cell::Cell::mean_pressure)
-      .def_property_readonly("local_approach", &interaction_cell::Cell::local_approach)
-      .def_property_readonly("hertz_load", &interaction_cell::Cell::hertz_load)
-      .def_property_readonly("interaction_load", &interaction_cell::Cell::interaction_load)
-      .def_property_readonly("load", &interaction_cell::Cell::load)
-      .def_property_readonly("closure_shift", &interaction_cell::Cell::closure_shift)
+      .def_property_readonly("territory_radius", &interaction_cell::Cell::territory_radius,
+                             "b = a/s [m], the radius of the cell (Eq. (2))")
+      .def_property_readonly("mean_pressure", &interaction_cell::Cell::mean_pressure,
+                             "Self-consistent mean pressure p̄ = p_m s²/Q(s) [Pa] (Eq. (3))")
+      .def_property_readonly("local_approach", &interaction_cell::Cell::local_approach,
+                             "Finite-fringe local approach δ_loc = a²/R - (2p̄/E*) √(b²-a²) [m]")
+      .def_property_readonly("hertz_load", &interaction_cell::Cell::hertz_load,
+                             "Hertz part of the load P_H = (4/3) E* a³/R [N]")
+      .def_property_readonly("interaction_load", &interaction_cell::Cell::interaction_load,
+                             "Interaction part P_int = 2p̄ [b² arcsin(a/b) - a √(b²-a²)] [N]")
+      .def_property_readonly("load", &interaction_cell::Cell::load,
+                             "P = P_H + P_int [N], equal to p̄ π b² (self-consistency)")
+      .def_property_readonly("closure_shift", &interaction_cell::Cell::closure_shift,
+                             "Variant I2 closure shift ε = (2p̄/E*) √(b²-a²) [m]")
       .def(
           "pressure",
           [](const interaction_cell::Cell& c, const DoubleArray& r)
@@ -604,20 +634,25 @@ void declare_tang_jiao(py::module_& m)
            py::arg("quadrature_order") = 32)
       .def_property_readonly("mean_pressure",
                              [](const interaction_cell::NumericCell& c)
-                             { return c.solution().mean_pressure; })
+                             { return c.solution().mean_pressure; },
+                             "Mean pressure p̄ [Pa] at the solution")
       .def_property_readonly("local_approach",
                              [](const interaction_cell::NumericCell& c)
-                             { return c.solution().local_approach; })
+                             { return c.solution().local_approach; },
+                             "Local approach δ_loc [m] at the solution")
       .def_property_readonly("load", [](const interaction_cell::NumericCell& c)
-                             { return c.solution().load; })
+                             { return c.solution().load; }, "Load P [N] of the cell")
       .def_property_readonly("iterations",
                              [](const interaction_cell::NumericCell& c)
                              {
                                return py::make_tuple(c.solution().outer_iterations,
                                                      c.solution().inner_iterations);
-                             })
+                             },
+                             "(outer, inner): root-finder iterations on δ_loc "
+                             "(self-consistency) and on p̄ (finite fringe, summed)")
       .def_property_readonly("converged", [](const interaction_cell::NumericCell& c)
-                             { return c.solution().converged; })
+                             { return c.solution().converged; },
+                             "True if both root finds met their tolerances")
       .def(
           "pressure",
           [](const interaction_cell::NumericCell& c, const DoubleArray& r)
@@ -670,9 +705,11 @@ void declare_tabulation(py::module_& m)
       "or load().")
       // The tabulation defaults, spelled once (TabulatedLaw::Options): Python reads them here.
       .def_property_readonly_static("default_tolerance", [](py::object)
-                                    { return TabulatedLaw::Options{}.tolerance; })
+                                    { return TabulatedLaw::Options{}.tolerance; },
+                                    "Default relative error bound [-] of σ and k")
       .def_property_readonly_static("default_maximum_knots", [](py::object)
-                                    { return TabulatedLaw::Options{}.maximum_knots; })
+                                    { return TabulatedLaw::Options{}.maximum_knots; },
+                                    "Default cap on the number of knots")
       .def_static(
           "from_stress",
           [](const ClosureLaw& law, double maximum_stress, double tolerance,
@@ -731,7 +768,8 @@ void declare_tabulation(py::module_& m)
       .def_property_readonly("knot_stiffness",
                              [](const TabulatedLaw& t) { return to_numpy(t.table().stiffness); },
                              "k_i = dσ/dΔ at the knots [Pa/m] (monotone-limited; k_0 = k(0+))")
-      .def_property_readonly("tolerance", [](const TabulatedLaw& t) { return t.table().tolerance; })
+      .def_property_readonly("tolerance", [](const TabulatedLaw& t) { return t.table().tolerance; },
+                             "Relative error bound [-] of σ and k the table was built to")
       .def_property_readonly("checked_error_stress",
                              [](const TabulatedLaw& t) { return t.table().checked_error_stress; },
                              "Largest relative σ error the builder found at its check points")
@@ -749,16 +787,20 @@ void declare_tabulation(py::module_& m)
                              "σ_max [Pa] (last knot)")
       .def_property_readonly("table_end_stiffness", &TabulatedLaw::table_end_stiffness,
                              "k at Δ_max [Pa/m], the slope of the linear extension")
-      .def_property_readonly("knot_count", &TabulatedLaw::knot_count)
-      .def_property_readonly("memory_bytes", &TabulatedLaw::memory_bytes)
+      .def_property_readonly("knot_count", &TabulatedLaw::knot_count, "Number of knots")
+      .def_property_readonly("memory_bytes", &TabulatedLaw::memory_bytes,
+                             "Bytes the law takes in memory: the object, its Hermite segments, cell index and knots")
       .def_property_readonly("law_evaluations", &TabulatedLaw::law_evaluations,
                              "Source-law calls of the build (0 if loaded)")
       .def_property_readonly("source_model",
-                             [](const TabulatedLaw& t) { return t.table().source_model; })
+                             [](const TabulatedLaw& t) { return t.table().source_model; },
+                             "Model name of the tabulated law (ClosureLaw.name)")
       .def_property_readonly("source_parameters",
-                             [](const TabulatedLaw& t) { return t.table().source_parameters; })
+                             [](const TabulatedLaw& t) { return t.table().source_parameters; },
+                             "Parameters of the tabulated law (a list of Parameter)")
       .def_property_readonly("source_seating_stress",
-                             [](const TabulatedLaw& t) { return t.table().source_seating_stress; })
+                             [](const TabulatedLaw& t) { return t.table().source_seating_stress; },
+                             "Seating stress [Pa] of the tabulated law")
       .def("__repr__",
            [](const TabulatedLaw& t)
            {

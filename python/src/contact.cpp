@@ -42,10 +42,10 @@ void declare_contact(py::module_& m)
       .def_readonly("approach", &ContactState::approach, "d [m], raw rigid approach")
       .def_readonly("closure", &ContactState::closure, "Δ [m], net of bulk deformation")
       .def_readonly("contact_area_ratio", &ContactState::contact_area_ratio, "A/A0 [-]")
-      .def_readonly("contact_patches", &ContactState::contact_patches)
-      .def_readonly("iterations", &ContactState::iterations)
-      .def_readonly("converged", &ContactState::converged)
-      .def_readonly("relative_change", &ContactState::relative_change)
+      .def_readonly("contact_patches", &ContactState::contact_patches, "4-connected spots of the contact set (periodic wrap for that kernel)")
+      .def_readonly("iterations", &ContactState::iterations, "conjugate-gradient iterations of this load")
+      .def_readonly("converged", &ContactState::converged, "the tolerance was met within maximum_iterations")
+      .def_readonly("relative_change", &ContactState::relative_change, "last Σ|Δp| / Σ p")
       .def_readonly("complementarity", &ContactState::complementarity, "max p g [Pa m]")
       .def_readonly("minimum_gap", &ContactState::minimum_gap, "min g off contact [m]");
 
@@ -66,8 +66,8 @@ void declare_contact(py::module_& m)
             return py::make_tuple(st, field(st.pressure, rows, cols), field(st.gap, rows, cols));
           },
           py::arg("mean_pressure"), py::arg("keep_fields"), py::arg("rows"), py::arg("cols"))
-      .def_property_readonly("bulk_compliance", &ElasticContact::bulk_compliance)
-      .def_property_readonly("valid_count", &ElasticContact::valid_count);
+      .def_property_readonly("bulk_compliance", &ElasticContact::bulk_compliance, "c = mean over the scanned points of the displacement under unit uniform pressure [m/Pa] (0 for the periodic kernel): the patch's bulk compliance under a uniform load (a check of the kernel against Boussinesq's closed form; the closure subtracts mean(K p) instead).")
+      .def_property_readonly("valid_count", &ElasticContact::valid_count, "Number of scanned (non-NaN) points.");
 
   py::class_<PlasticContactState>(m, "PlasticContactState", "One load of the elastic-plastic contact (SI)")
       .def_readonly("mean_pressure", &PlasticContactState::mean_pressure, "σ [Pa]")
@@ -76,9 +76,9 @@ void declare_contact(py::module_& m)
       .def_readonly("contact_area_ratio", &PlasticContactState::contact_area_ratio, "A/A0 [-]")
       .def_readonly("plastic_area_ratio", &PlasticContactState::plastic_area_ratio, "at H [-]")
       .def_readonly("mean_flattening", &PlasticContactState::mean_flattening, "mean(w) [m]")
-      .def_readonly("evaluations", &PlasticContactState::evaluations)
-      .def_readonly("iterations", &PlasticContactState::iterations)
-      .def_readonly("converged", &PlasticContactState::converged);
+      .def_readonly("evaluations", &PlasticContactState::evaluations, "fixed-d solves of this load")
+      .def_readonly("iterations", &PlasticContactState::iterations, "conjugate-gradient iterations of this load")
+      .def_readonly("converged", &PlasticContactState::converged, "the load met the solver's tolerance");
 
   py::class_<PlasticContact>(m, "PlasticContact",
                              "Contact of elastic-perfectly-plastic walls (pressure capped at H)")

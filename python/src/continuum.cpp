@@ -47,22 +47,25 @@ void declare_continuum(py::module_& m)
                }),
            py::arg("normal"), py::arg("spacing"), py::arg("behaviour"), py::arg("label") = "set",
            "normal: unit normal [-]; spacing s [m] (> 0); behaviour: joint.JointBehaviour")
-      .def_property_readonly("normal", [](const JointSet& s) { return std::vector<double>(s.normal.begin(), s.normal.end()); })
-      .def_readonly("spacing", &JointSet::spacing)
-      .def_readonly("behaviour", &JointSet::behaviour)
-      .def_readonly("label", &JointSet::label);
+      .def_property_readonly("normal", [](const JointSet& s) { return std::vector<double>(s.normal.begin(), s.normal.end()); },
+                             "Unit normal of the joints [-] (three components; z = 0 in 2D)")
+      .def_readonly("spacing", &JointSet::spacing, "Spacing s [m] between the joints of the set")
+      .def_readonly("behaviour", &JointSet::behaviour,
+                    "The joints' behaviour (a joint.JointBehaviour: closure law, shear, strength)")
+      .def_readonly("label", &JointSet::label, "The set's name, in messages and outputs");
 
   py::class_<EquivalentContinuum>(m, "EquivalentContinuum",
                                   "Rock elasticity + smeared joint sets (docs/equivalent-continuum.md); "
                                   "Voigt 2D (xx, yy, xy), 3D (xx, yy, zz, yz, xz, xy), engineering shear")
       .def(py::init<int, double, double, std::vector<JointSet>>(), py::arg("gdim"), py::arg("young"),
            py::arg("poisson"), py::arg("sets"))
-      .def_property_readonly("gdim", &EquivalentContinuum::gdim)
-      .def_property_readonly("strain_size", &EquivalentContinuum::strain_size)
-      .def_property_readonly("num_sets", &EquivalentContinuum::num_sets)
-      .def_property_readonly("young", &EquivalentContinuum::young)
-      .def_property_readonly("poisson", &EquivalentContinuum::poisson)
-      .def_property_readonly("sets", &EquivalentContinuum::sets)
+      .def_property_readonly("gdim", &EquivalentContinuum::gdim, "Geometric dimension, 2 or 3")
+      .def_property_readonly("strain_size", &EquivalentContinuum::strain_size,
+                             "Voigt size nv of strain and stress: 3 in 2D, 6 in 3D")
+      .def_property_readonly("num_sets", &EquivalentContinuum::num_sets, "Number of joint sets")
+      .def_property_readonly("young", &EquivalentContinuum::young, "Young's modulus E of the rock [Pa]")
+      .def_property_readonly("poisson", &EquivalentContinuum::poisson, "Poisson's ratio ν of the rock [-]")
+      .def_property_readonly("sets", &EquivalentContinuum::sets, "The joint sets (a list of JointSet)")
       .def("rock_stiffness",
            [](const EquivalentContinuum& mat)
            {
@@ -71,13 +74,16 @@ void declare_continuum(py::module_& m)
              DoubleArray out({nv, nv});
              std::copy(d.begin(), d.end(), out.mutable_data());
              return out;
-           });
+           },
+           "Isotropic elastic stiffness of the intact rock, (nv, nv) [Pa], Voigt with "
+           "engineering shear");
 
   py::class_<ContinuumPoints>(m, "ContinuumPoints",
                               "The material at n points: converged and trial set states (MGIS style)")
       .def(py::init<EquivalentContinuum, std::size_t>(), py::arg("material"), py::arg("num_points"))
-      .def_property_readonly("num_points", &ContinuumPoints::num_points)
-      .def_property_readonly("material", &ContinuumPoints::material)
+      .def_property_readonly("num_points", &ContinuumPoints::num_points, "Number of points n")
+      .def_property_readonly("material", &ContinuumPoints::material,
+                             "The EquivalentContinuum every point shares")
       .def(
           "evaluate",
           [](ContinuumPoints& p, const DoubleArray& strain)
@@ -99,8 +105,10 @@ void declare_continuum(py::module_& m)
           py::arg("strain"),
           "(stress (n, nv) [Pa], tangent (n, nv²) [Pa], number of failed points) at the total "
           "strains (n, nv); the trial state is recomputed from the converged one")
-      .def("commit", &ContinuumPoints::commit)
-      .def("revert", &ContinuumPoints::revert)
+      .def("commit", &ContinuumPoints::commit,
+           "Accept the trial states of the last evaluate as the converged ones (end of a step)")
+      .def("revert", &ContinuumPoints::revert,
+           "Discard the trial states: back to the converged ones (a step that failed)")
       .def(
           "initialise_from_stress",
           [](ContinuumPoints& p, const DoubleArray& stress)

@@ -40,11 +40,11 @@ void declare_flow(py::module_& m)
       .def_readonly("open_fraction", &FlowResult::open_fraction, "scanned points with e > 0 [-]")
       .def_readonly("percolates", &FlowResult::percolates, "an open path along (x, y)")
       .def_readonly("iterations", &FlowResult::iterations, "CG iterations per gradient")
-      .def_readonly("relative_residual", &FlowResult::relative_residual)
-      .def_readonly("converged", &FlowResult::converged)
+      .def_readonly("relative_residual", &FlowResult::relative_residual, "largest |A p - b| / |b| of the pressure systems solved (0 if none was solved)")
+      .def_readonly("converged", &FlowResult::converged, "every system met the tolerance (a direct solve: its factorisation)")
       .def_readonly("direct_fallback", &FlowResult::direct_fallback,
                     "CG did not converge and the supernodal factorisation solved the system")
-      .def_readonly("unknowns", &FlowResult::unknowns);
+      .def_readonly("unknowns", &FlowResult::unknowns, "pressure unknowns of the (largest) system");
 
   py::class_<ReynoldsFlow>(m, "ReynoldsFlow",
                            "The flow problem of one grid: transmissivity of its aperture fields")
@@ -92,8 +92,8 @@ void declare_flow(py::module_& m)
             return out;
           },
           py::arg("closure"), "T [m³] at closure(s) Δ [m]")
-      .def_property_readonly("closures", &TransmissivityTable::closures)
-      .def_property_readonly("transmissivities", &TransmissivityTable::transmissivities);
+      .def_property_readonly("closures", &TransmissivityTable::closures, "Knots Δ_i [m].")
+      .def_property_readonly("transmissivities", &TransmissivityTable::transmissivities, "T_i [m³] at the knots.");
 }
 
 } // namespace rockjoint::python

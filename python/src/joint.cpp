@@ -65,15 +65,15 @@ void declare_joint(py::module_& m)
            "tensile_strength T [Pa] (bonded joint, <= c / tan φ); dilation_angle ψ [rad] "
            "(<= φ); dilation_limit: slip after which dilation stops [m]; jrc [-], jcs [Pa] "
            "(Barton); maximum_friction_angle: cap of Barton's angle [rad]")
-      .def_readonly("model", &JointStrength::model)
-      .def_readonly("friction_angle", &JointStrength::friction_angle)
-      .def_readonly("cohesion", &JointStrength::cohesion)
-      .def_readonly("tensile_strength", &JointStrength::tensile_strength)
-      .def_readonly("dilation_angle", &JointStrength::dilation_angle)
-      .def_readonly("dilation_limit", &JointStrength::dilation_limit)
-      .def_readonly("jrc", &JointStrength::jrc)
-      .def_readonly("jcs", &JointStrength::jcs)
-      .def_readonly("maximum_friction_angle", &JointStrength::maximum_friction_angle)
+      .def_readonly("model", &JointStrength::model, "none, Coulomb or Barton")
+      .def_readonly("friction_angle", &JointStrength::friction_angle, "φ (Coulomb) or the residual angle φ_r (Barton) [rad], [0, π/2)")
+      .def_readonly("cohesion", &JointStrength::cohesion, "c [Pa], >= 0")
+      .def_readonly("tensile_strength", &JointStrength::tensile_strength, "T [Pa], >= 0, at most the cone apex c / tan φ_max")
+      .def_readonly("dilation_angle", &JointStrength::dilation_angle, "ψ [rad], 0 <= ψ <= φ (Barton: <= the angle cap)")
+      .def_readonly("dilation_limit", &JointStrength::dilation_limit, "Accumulated slip after which dilation stops [m], > 0 (∞: never).")
+      .def_readonly("jrc", &JointStrength::jrc, "joint roughness coefficient [-], [0, 20] (Barton)")
+      .def_readonly("jcs", &JointStrength::jcs, "joint wall compressive strength [Pa], > 0 (Barton)")
+      .def_readonly("maximum_friction_angle", &JointStrength::maximum_friction_angle, "Cap of Barton's mobilised friction angle [rad] (70°: Barton & Choubey 1977).")
       .def("shear_strength",
            [](const JointStrength& s, double normal_stress)
            { return shear_strength(s, normal_stress, true).strength; },
@@ -99,11 +99,12 @@ void declare_joint(py::module_& m)
            py::arg("accumulated_slip") = 0.0, py::arg("bond_broken") = false,
            py::arg("maximum_closure") = 0.0)
       .def_property_readonly("slip", [](const JointPointState& s)
-                             { return std::vector<double>(s.slip.begin(), s.slip.end()); })
-      .def_readonly("dilation", &JointPointState::dilation)
-      .def_readonly("accumulated_slip", &JointPointState::accumulated_slip)
-      .def_readonly("bond_broken", &JointPointState::bond_broken)
-      .def_readonly("maximum_closure", &JointPointState::maximum_closure);
+                             { return std::vector<double>(s.slip.begin(), s.slip.end()); },
+                             "irreversible shear displacement along t1, t2 [m]")
+      .def_readonly("dilation", &JointPointState::dilation, "normal opening produced by slip (dilatancy) [m]")
+      .def_readonly("accumulated_slip", &JointPointState::accumulated_slip, "path length of the slip, ∫|d slip| [m]")
+      .def_readonly("bond_broken", &JointPointState::bond_broken, "tensile strength exceeded once: bond (c, T) lost for good")
+      .def_readonly("maximum_closure", &JointPointState::maximum_closure, "largest elastic closure reached, Δ_m [m] (hysteretic normal law)");
 
   py::class_<JointBehaviour>(m, "JointBehaviour",
                              "Closure law + shear stiffness + residual stiffness + strength of "
@@ -122,15 +123,17 @@ void declare_joint(py::module_& m)
            py::arg("shear_stiffness") = 0.0, py::arg("shear_stiffness_ratio") = 0.0,
            py::arg("residual_stiffness") = 0.0, py::arg("strength") = py::none(),
            py::arg("effective_stress_coefficient") = 1.0)
-      .def_readonly("shear_model", &JointBehaviour::shear_model)
-      .def_readonly("shear_stiffness", &JointBehaviour::shear_stiffness)
-      .def_readonly("shear_stiffness_ratio", &JointBehaviour::shear_stiffness_ratio)
-      .def_readonly("residual_stiffness", &JointBehaviour::residual_stiffness)
-      .def_readonly("strength", &JointBehaviour::strength)
+      .def_readonly("shear_model", &JointBehaviour::shear_model, "how k_s is set")
+      .def_readonly("shear_stiffness", &JointBehaviour::shear_stiffness, "k_s [Pa/m] (ShearModel::constant), >= 0")
+      .def_readonly("shear_stiffness_ratio", &JointBehaviour::shear_stiffness_ratio, "α [-] (ShearModel::proportional), >= 0")
+      .def_readonly("residual_stiffness", &JointBehaviour::residual_stiffness, "k_r [Pa/m], >= 0")
+      .def_readonly("strength", &JointBehaviour::strength, "shear strength (default none: elastic joint)")
       .def_readonly("effective_stress_coefficient", &JointBehaviour::effective_stress_coefficient,
                     "α [-] of σ'_n = σ_n - α p (water in the joint)")
       .def_property_readonly("law", [](const JointBehaviour& b)
-                             { return std::const_pointer_cast<rockjoint::constitutive::ClosureLaw>(b.law); });
+                             { return std::const_pointer_cast<rockjoint::constitutive::ClosureLaw>(b.law); },
+                             "the normal-closure law σ(Δ) (a law with history unloads on its "
+                             "branches, per point)");
 
   m.def(
       "closure_at_normal_stress",

@@ -83,8 +83,9 @@ void declare_topography(py::module_& m)
       .def_property_readonly("spacing_x", &Surface::spacing_x, "[m]")
       .def_property_readonly("spacing_y", &Surface::spacing_y, "[m]")
       .def_property_readonly("shape", [](const Surface& s)
-                             { return py::make_tuple(s.rows(), s.cols()); })
-      .def_property_readonly("valid_count", &Surface::valid_count)
+                             { return py::make_tuple(s.rows(), s.cols()); },
+                             "(rows, columns) of the lattice, like numpy's")
+      .def_property_readonly("valid_count", &Surface::valid_count, "Number of valid (non-NaN) points.")
       .def_property_readonly("mean_height", &Surface::mean_height, "[m]")
       .def_property_readonly("rms_height", &Surface::rms_height, "[m]")
       .def("__repr__", [](const Surface& s)
@@ -95,7 +96,9 @@ void declare_topography(py::module_& m)
            });
   m.def("decimate", &decimate, py::arg("surface"), py::arg("factor"),
         "Every factor-th point: the same surface sampled factor times more coarsely");
-  m.def("metres_per_unit", &metres_per_unit, py::arg("unit"));
+  m.def("metres_per_unit", &metres_per_unit, py::arg("unit"),
+        "Metres per length unit `unit` (a name of length_units()); ValueError naming the unit "
+        "and the valid ones otherwise");
   m.def(
       "length_units",
       []()
@@ -145,25 +148,29 @@ void declare_topography(py::module_& m)
         py::arg("exact_rms") = true, py::call_guard<py::gil_scoped_release>());
 
   // ---- composite topography --------------------------------------------------------------
-  py::enum_<PlaneRemoval>(m, "PlaneRemoval")
-      .value("common", PlaneRemoval::common)
-      .value("separate", PlaneRemoval::separate)
-      .value("none", PlaneRemoval::none);
-  py::class_<Plane>(m, "Plane")
-      .def_readonly("offset", &Plane::offset)
-      .def_readonly("slope_x", &Plane::slope_x)
-      .def_readonly("slope_y", &Plane::slope_y);
-  py::class_<CompositeTopography>(m, "CompositeTopography")
-      .def_readonly("upper", &CompositeTopography::upper)
-      .def_readonly("lower", &CompositeTopography::lower)
-      .def_readonly("aperture", &CompositeTopography::aperture)
-      .def_readonly("composite", &CompositeTopography::composite)
-      .def_readonly("mean_aperture", &CompositeTopography::mean_aperture)
-      .def_readonly("interpenetration", &CompositeTopography::interpenetration)
-      .def_readonly("upper_plane", &CompositeTopography::upper_plane)
-      .def_readonly("lower_plane", &CompositeTopography::lower_plane)
+  py::enum_<PlaneRemoval>(m, "PlaneRemoval", "How the mean planes of two walls are removed")
+      .value("common", PlaneRemoval::common,
+             "one plane fitted to both walls, subtracted from both (the default)")
+      .value("separate", PlaneRemoval::separate, "each wall its own plane (walls scanned apart)")
+      .value("none", PlaneRemoval::none, "heights used as given");
+  py::class_<Plane>(m, "Plane", "z = offset + slope_x x + slope_y y [m]")
+      .def_readonly("offset", &Plane::offset, "z at x = y = 0 [m]")
+      .def_readonly("slope_x", &Plane::slope_x, "dz/dx [-]")
+      .def_readonly("slope_y", &Plane::slope_y, "dz/dy [-]");
+  py::class_<CompositeTopography>(m, "CompositeTopography",
+                                  "Two walls registered on their overlap lattice and the fields "
+                                  "derived from them: aperture e and composite surface [m]")
+      .def_readonly("upper", &CompositeTopography::upper, "upper wall after registration and plane removal [m]")
+      .def_readonly("lower", &CompositeTopography::lower, "lower wall, registered, plane removed [m]")
+      .def_readonly("aperture", &CompositeTopography::aperture, "e = z_u - z_l - min(z_u - z_l) >= 0, NaN where either is missing [m]")
+      .def_readonly("composite", &CompositeTopography::composite, "s = mean(e) - e [m]; max s = mean(e) at the first contact")
+      .def_readonly("mean_aperture", &CompositeTopography::mean_aperture, "mean(e) [m] = the largest closure the walls admit")
+      .def_readonly("interpenetration", &CompositeTopography::interpenetration, "-min(z_u - z_l) before the shift [m] (> 0: walls overlap as given)")
+      .def_readonly("upper_plane", &CompositeTopography::upper_plane, "plane removed from the upper wall")
+      .def_readonly("lower_plane", &CompositeTopography::lower_plane, "plane removed from the lower wall (in the overlap frame)")
       .def_property_readonly("offset", [](const CompositeTopography& c)
-                             { return py::make_tuple(c.state.offset_x, c.state.offset_y); });
+                             { return py::make_tuple(c.state.offset_x, c.state.offset_y); },
+                             "(offset_x, offset_y) [grid steps] of the lower wall against the upper");
   m.def("composite_topography",
         [](const Surface& u, const Surface& l, int ox, int oy, PlaneRemoval p)
         { return composite_topography(u, l, {ox, oy, p}); },
@@ -171,20 +178,22 @@ void declare_topography(py::module_& m)
         py::arg("plane_removal") = PlaneRemoval::common);
 
   // ---- summits ---------------------------------------------------------------------------
-  py::class_<SummitStatistics>(m, "SummitStatistics")
-      .def_readonly("sampling_interval_x", &SummitStatistics::sampling_interval_x)
-      .def_readonly("sampling_interval_y", &SummitStatistics::sampling_interval_y)
-      .def_readonly("summit_count", &SummitStatistics::summit_count)
-      .def_readonly("eligible_points", &SummitStatistics::eligible_points)
-      .def_readonly("scanned_area", &SummitStatistics::scanned_area)
-      .def_readonly("summit_density", &SummitStatistics::summit_density)
-      .def_readonly("summit_radius", &SummitStatistics::summit_radius)
-      .def_readonly("mean_summit_radius", &SummitStatistics::mean_summit_radius)
-      .def_readonly("mean_curvature", &SummitStatistics::mean_curvature)
-      .def_readonly("summit_height_std", &SummitStatistics::summit_height_std)
-      .def_readonly("mean_summit_height", &SummitStatistics::mean_summit_height)
-      .def_readonly("highest_summit", &SummitStatistics::highest_summit)
-      .def_readonly("surface_rms", &SummitStatistics::surface_rms);
+  py::class_<SummitStatistics>(m, "SummitStatistics",
+                               "GW statistics of a surface's summits, counted on its lattice, "
+                               "with the sampling interval they belong to")
+      .def_readonly("sampling_interval_x", &SummitStatistics::sampling_interval_x, "h_x [m]")
+      .def_readonly("sampling_interval_y", &SummitStatistics::sampling_interval_y, "h_y [m]")
+      .def_readonly("summit_count", &SummitStatistics::summit_count, "summits found")
+      .def_readonly("eligible_points", &SummitStatistics::eligible_points, "points whose 8 neighbours are all valid")
+      .def_readonly("scanned_area", &SummitStatistics::scanned_area, "eligible_points · h_x h_y [m²]")
+      .def_readonly("summit_density", &SummitStatistics::summit_density, "η = summit_count / scanned_area [1/m²]")
+      .def_readonly("summit_radius", &SummitStatistics::summit_radius, "β = 1/mean(κ) [m] (NaN without summits)")
+      .def_readonly("mean_summit_radius", &SummitStatistics::mean_summit_radius, "mean(1/κ) [m], the per-summit alternative")
+      .def_readonly("mean_curvature", &SummitStatistics::mean_curvature, "mean(κ) [1/m]")
+      .def_readonly("summit_height_std", &SummitStatistics::summit_height_std, "σ_s, sample std (n-1) of summit heights [m]")
+      .def_readonly("mean_summit_height", &SummitStatistics::mean_summit_height, "mean summit height above the mean plane [m]")
+      .def_readonly("highest_summit", &SummitStatistics::highest_summit, "max summit height above the mean plane [m]")
+      .def_readonly("surface_rms", &SummitStatistics::surface_rms, "σ, rms of the surface heights [m]");
   m.def("analyse_summits",
         [](const Surface& s)
         {
@@ -203,29 +212,41 @@ void declare_topography(py::module_& m)
         py::arg("surface"), "(SummitStatistics, dict of arrays rows, cols, heights [m], "
                             "curvatures [1/m])");
   m.def("curvature_field", [](const Surface& s) { return to_array(curvature_field(s)); },
-        py::arg("surface"));
+        py::arg("surface"),
+        "κ = -½∇²s [1/m] at every point with a complete 5-point stencil, NaN elsewhere");
 
   // ---- spectra ---------------------------------------------------------------------------
-  py::enum_<Window>(m, "Window").value("none", Window::none).value("hann", Window::hann);
-  py::class_<SpectralMoments>(m, "SpectralMoments")
-      .def_readonly("m0", &SpectralMoments::m0)
-      .def_readonly("m2", &SpectralMoments::m2)
-      .def_readonly("m4", &SpectralMoments::m4)
-      .def_readonly("m2x", &SpectralMoments::m2x)
-      .def_readonly("m2y", &SpectralMoments::m2y)
-      .def_readonly("m4x", &SpectralMoments::m4x)
-      .def_readonly("m4y", &SpectralMoments::m4y)
-      .def_property_readonly("bandwidth", &SpectralMoments::bandwidth);
-  py::class_<NayakEstimates>(m, "NayakEstimates")
-      .def_readonly("sampling_interval", &NayakEstimates::sampling_interval)
-      .def_readonly("summit_density", &NayakEstimates::summit_density)
-      .def_readonly("summit_radius", &NayakEstimates::summit_radius)
-      .def_readonly("summit_height_std", &NayakEstimates::summit_height_std)
-      .def_readonly("bandwidth", &NayakEstimates::bandwidth)
-      .def_readonly("moments", &NayakEstimates::moments);
-  m.def("finite_difference_moments", &finite_difference_moments, py::arg("surface"));
-  m.def("psd_moments", &psd_moments, py::arg("surface"), py::arg("window") = Window::hann);
-  m.def("nayak_estimates", &nayak_estimates, py::arg("moments"), py::arg("sampling_interval"));
+  py::enum_<Window>(m, "Window", "Window applied to the heights before a periodogram")
+      .value("none", Window::none, "no window")
+      .value("hann", Window::hann, "Hann window (the default)");
+  py::class_<SpectralMoments>(m, "SpectralMoments",
+                              "Profile spectral moments m0 [m²], m2 [-], m4 [1/m²]")
+      .def_readonly("m0", &SpectralMoments::m0, "m0 = σ² [m²]")
+      .def_readonly("m2", &SpectralMoments::m2, "(m2x + m2y)/2")
+      .def_readonly("m4", &SpectralMoments::m4, "(m4x + m4y)/2")
+      .def_readonly("m2x", &SpectralMoments::m2x, "m2 of profiles along x [-]")
+      .def_readonly("m2y", &SpectralMoments::m2y, "m2 of profiles along y [-]")
+      .def_readonly("m4x", &SpectralMoments::m4x, "m4 of profiles along x [1/m²]")
+      .def_readonly("m4y", &SpectralMoments::m4y, "m4 of profiles along y [1/m²]")
+      .def_property_readonly("bandwidth", &SpectralMoments::bandwidth, "α [-]");
+  py::class_<NayakEstimates>(m, "NayakEstimates",
+                             "Nayak/McCool summit statistics (η, β, σ_s) of an isotropic "
+                             "Gaussian surface from its spectral moments")
+      .def_readonly("sampling_interval", &NayakEstimates::sampling_interval, "h the moments were computed at [m] (max of h_x, h_y)")
+      .def_readonly("summit_density", &NayakEstimates::summit_density, "η = m4/(6π√3 m2) [1/m²]")
+      .def_readonly("summit_radius", &NayakEstimates::summit_radius, "β = 0.375 √(π/m4) [m]")
+      .def_readonly("summit_height_std", &NayakEstimates::summit_height_std, "σ_s = √(1 - 0.8968/α) σ [m] (NaN if α < 0.8968)")
+      .def_readonly("bandwidth", &NayakEstimates::bandwidth, "α [-]")
+      .def_readonly("moments", &NayakEstimates::moments, "the moments the estimates come from");
+  m.def("finite_difference_moments", &finite_difference_moments, py::arg("surface"),
+        "SpectralMoments from finite differences of the samples (masks respected): the moments "
+        "the sampled surface has at its spacing");
+  m.def("psd_moments", &psd_moments, py::arg("surface"), py::arg("window") = Window::hann,
+        "SpectralMoments from the 2D periodogram (complete grids only: ValueError for missing "
+        "points)");
+  m.def("nayak_estimates", &nayak_estimates, py::arg("moments"), py::arg("sampling_interval"),
+        "NayakEstimates (η [1/m²], β [m], σ_s [m]) from SpectralMoments; sampling_interval [m] is "
+        "recorded with them");
   m.def("power_spectrum_2d",
         [](const Surface& s, Window w)
         {
@@ -243,13 +264,13 @@ void declare_topography(py::module_& m)
         py::arg("surface"), py::arg("window") = Window::hann,
         "(q [rad/m], C [m^4], mode count) radially averaged");
   py::class_<HurstFit>(m, "HurstFit")
-      .def_readonly("hurst_exponent", &HurstFit::hurst_exponent)
-      .def_readonly("slope", &HurstFit::slope)
-      .def_readonly("slope_std_error", &HurstFit::slope_std_error)
-      .def_readonly("log_prefactor", &HurstFit::log_prefactor)
-      .def_readonly("q_min", &HurstFit::q_min)
-      .def_readonly("q_max", &HurstFit::q_max)
-      .def_readonly("bins", &HurstFit::bins);
+      .def_readonly("hurst_exponent", &HurstFit::hurst_exponent, "H = -slope/2 - 1")
+      .def_readonly("slope", &HurstFit::slope, "d ln C / d ln q")
+      .def_readonly("slope_std_error", &HurstFit::slope_std_error, "from the weighted residuals")
+      .def_readonly("log_prefactor", &HurstFit::log_prefactor, "ln C at q = 1 rad/m")
+      .def_readonly("q_min", &HurstFit::q_min, "lower end of the band used [rad/m]")
+      .def_readonly("q_max", &HurstFit::q_max, "upper end of the band used [rad/m]")
+      .def_readonly("bins", &HurstFit::bins, "bins used");
   m.def("fit_hurst_exponent",
         [](const DoubleArray& q, const DoubleArray& c, const py::array_t<std::int64_t>& n,
            double q_min, double q_max)
@@ -287,10 +308,10 @@ void declare_topography(py::module_& m)
         py::arg("estimates"), py::arg("composite_modulus"),
         "AsperityParameters from the spectral (Nayak/McCool) estimates and E* [Pa]");
   py::class_<ResamplingRow>(m, "ResamplingRow")
-      .def_readonly("factor", &ResamplingRow::factor)
-      .def_readonly("sampling_interval", &ResamplingRow::sampling_interval)
-      .def_readonly("summits", &ResamplingRow::summits)
-      .def_readonly("spectral", &ResamplingRow::spectral);
+      .def_readonly("factor", &ResamplingRow::factor, "the surface sampled every `factor`-th point")
+      .def_readonly("sampling_interval", &ResamplingRow::sampling_interval, "h·factor [m] (max of the two directions)")
+      .def_readonly("summits", &ResamplingRow::summits, "counted statistics at this h")
+      .def_readonly("spectral", &ResamplingRow::spectral, "finite-difference Nayak/McCool estimates at this h");
   m.def("resampling_study", &resampling_study, py::arg("surface"), py::arg("factors"));
 }
 

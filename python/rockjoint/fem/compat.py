@@ -4,31 +4,31 @@
 rockjoint is written against DOLFINx 0.11 (what the FEniCSx documentation and demos describe);
 0.9 (Debian 13) is adapted to 0.11's names and ways here, never the reverse. Everything else in
 the package uses 0.11's API directly where 0.9 has the same call, and these names where it does
-not:
+not::
 
-=========================  ====================================  ==================================
-name here                  DOLFINx 0.11 (0.10+)                  DOLFINx 0.9
-=========================  ====================================  ==================================
-``io_gmsh``                ``dolfinx.io.gmsh``                   ``dolfinx.io.gmshio``, its
-                                                                 ``model_to_mesh`` returning
-                                                                 0.11's ``MeshData``
-``create_cell_partitioner``  ``(ghost_mode, max_facet_to_cell_links)``  ``(ghost_mode)``
-``create_vector(V)``       ``fem.petsc.create_vector(V)``        ``la.create_petsc_vector`` of V's
-                                                                 index map (0.9 wants a form)
-``la_petsc.create_vector``  ``dolfinx.la.petsc.create_vector``      ``la.create_petsc_vector(map, bs)``
-                           ``([(index_map, bs)])``                (one map)
-``Geometry.dofmaps``,      ``mesh.geometry.dofmaps[0]``,         added to 0.9's Geometry here
-``Geometry.cmaps``         ``cmaps[0]`` (``dofmap``, ``cmap``    (= its ``dofmap``, ``cmap``)
-                           deprecated)
-``element.interpolation_   a property                            a method: 0.9's FiniteElement
-points``                                                         gets the property here
-``cpp_adjacency_list``     the C++ list inside 0.10's Python     ``graph.adjacencylist`` (already
-                           ``graph.AdjacencyList`` (what a       the C++ object)
-                           cell partitioner must return)
-``create_serial_mesh``     ``create_mesh`` keeping the cells'       ``dolfinx.mesh.create_mesh``
-                           order (our _rockjoint_dolfinx, C++     (no hook for the order: GPS
-                           ``create_mesh(..., reorder_fn)``)      reordering, see below)
-=========================  ====================================  ==================================
+    =========================  ====================================  ==================================
+    name here                  DOLFINx 0.11 (0.10+)                  DOLFINx 0.9
+    =========================  ====================================  ==================================
+    ``io_gmsh``                ``dolfinx.io.gmsh``                   ``dolfinx.io.gmshio``, its
+                                                                     ``model_to_mesh`` returning
+                                                                     0.11's ``MeshData``
+    ``create_cell_partitioner``  ``(ghost_mode, max_facet_to_cell_links)``  ``(ghost_mode)``
+    ``create_vector(V)``       ``fem.petsc.create_vector(V)``        ``la.create_petsc_vector`` of V's
+                                                                     index map (0.9 wants a form)
+    ``la_petsc.create_vector``  ``dolfinx.la.petsc.create_vector``      ``la.create_petsc_vector(map, bs)``
+                               ``([(index_map, bs)])``                (one map)
+    ``Geometry.dofmaps``,      ``mesh.geometry.dofmaps[0]``,         added to 0.9's Geometry here
+    ``Geometry.cmaps``         ``cmaps[0]`` (``dofmap``, ``cmap``    (= its ``dofmap``, ``cmap``)
+                               deprecated)
+    ``element.interpolation_   a property                            a method: 0.9's FiniteElement
+    points``                                                         gets the property here
+    ``cpp_adjacency_list``     the C++ list inside 0.10's Python     ``graph.adjacencylist`` (already
+                               ``graph.AdjacencyList`` (what a       the C++ object)
+                               cell partitioner must return)
+    ``create_serial_mesh``     ``create_mesh`` keeping the cells'       ``dolfinx.mesh.create_mesh``
+                               order (our _rockjoint_dolfinx, C++     (no hook for the order: GPS
+                               ``create_mesh(..., reorder_fn)``)      reordering, see below)
+    =========================  ====================================  ==================================
 
 Release notes read for this: python/doc/source/release_notes.md of DOLFINx v0.11.0 (sections
 v0.10.0 and v0.11.0).

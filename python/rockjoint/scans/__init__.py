@@ -20,7 +20,7 @@ from typing import Optional
 from .errors import (MalformedScanError, MaskedNodesError, NoOverlapError, NonFiniteScanError,
                      NonManifoldScanError, ScanError, ScanUnitError, TruncatedScanError)
 from .esri import is_esri_ascii, read_esri_ascii, write_esri_ascii
-from .frame import flip, level
+from .frame import Levelling, flip, level
 from .joint import RegisteredJoint, joint_from_scans
 from .lattice import FILL_POLICIES, ScanGrid, apply_fill, resample
 from .points import ScanPoints
@@ -68,4 +68,4 @@ __all__ = ["ScanError", "MalformedScanError", "TruncatedScanError", "NonFiniteSc
            "ScanPoints", "ScanGrid", "Registration", "RegisteredJoint", "FILL_POLICIES",
            "read_scan", "scan_format", "read_stl", "write_stl", "read_xyz_points",
            "write_xyz_points", "read_esri_ascii", "write_esri_ascii", "is_esri_ascii",
-           "resample", "apply_fill", "flip", "level", "register", "joint_from_scans"]
+           "resample", "apply_fill", "flip", "level", "Levelling", "register", "joint_from_scans"]

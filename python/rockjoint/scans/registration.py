@@ -70,7 +70,7 @@ def register(lower: ScanGrid, upper: ScanGrid, *, angle_step: float = np.radians
              min_correlation: float = 0.5, max_misfit: float = 0.5, path=None
              ) -> Registration:
     """Rigid in-plane registration of the (levelled, resampled) upper wall onto the lower one.
-    ``max_rotation`` [rad] bounds |θ| of the search (π: any orientation); ``min_overlap`` is
+    ``max_rotation`` [rad] bounds ``|θ|`` of the search (π: any orientation); ``min_overlap`` is
     the smallest acceptable fraction of the smaller wall that the other covers, and
     ``min_correlation`` the smallest normalised cross-correlation of the walls' heights there
     (mated walls correlate at 0.9 and more, unrelated ones by chance at 0.2-0.4), below which

@@ -24,16 +24,24 @@ class Checker:
     lines: dict
 
     def line(self, path: tuple) -> int:
+        """The line of `path` in the scene file, or of its nearest ancestor that has one (1 if none)."""
         while path not in self.lines and path:
             path = path[:-1]
         return self.lines.get(path, 1)
 
     def fail(self, path: tuple, message: str):
+        """Raise SceneError naming the file, the line and the key path of `path`, with `message`."""
         key = ".".join(str(p) if not isinstance(p, int) else f"[{p}]" for p in path).replace(".[", "[")
         raise SceneError(f"{self.source}, line {self.line(path)}: {key or 'scene'}: {message}")
 
 
 class Field(abc.ABC):
+    """One entry of the scene schema: `check` turns a value into SI or fails.
+
+    Class attributes: `required` (a missing key fails), `default` (used when it is not required
+    and absent) and `doc` (words for the scene reference).
+    """
+
     required = True
     default: Any = MISSING
     doc = ""
@@ -55,6 +63,7 @@ class Quantity(Field):
     open_low: bool = False
 
     def check(self, value, path, c):
+        """The value in SI units; fails on a bad unit or a value out of [low, high]."""
         try:
             x = parse_quantity(value, self.dimension)
         except ValueError as err:
@@ -70,12 +79,15 @@ class Quantity(Field):
 
 @dataclasses.dataclass
 class Integer(Field):
+    """A whole number in [low, high] (high None: no upper bound)."""
+
     low: int = 0
     high: Optional[int] = None
     required: bool = True
     default: Any = MISSING
 
     def check(self, value, path, c):
+        """The integer; fails on a non-integer (booleans included) or one out of range."""
         if isinstance(value, bool) or not isinstance(value, int):
             c.fail(path, f"expected a whole number, got {value!r}")
         if value < self.low or (self.high is not None and value > self.high):
@@ -85,11 +97,14 @@ class Integer(Field):
 
 @dataclasses.dataclass
 class Text(Field):
+    """A non-empty word, one of `choices` when they are given."""
+
     choices: Optional[tuple] = None
     required: bool = True
     default: Any = MISSING
 
     def check(self, value, path, c):
+        """The word; fails on a non-string, an empty one or one outside `choices`."""
         if not isinstance(value, str) or not value:
             c.fail(path, f"expected a word, got {value!r}")
         if self.choices is not None and value not in self.choices:
@@ -99,10 +114,13 @@ class Text(Field):
 
 @dataclasses.dataclass
 class Flag(Field):
+    """true or false (optional by default)."""
+
     required: bool = False
     default: Any = MISSING
 
     def check(self, value, path, c):
+        """The boolean; fails on anything else."""
         if not isinstance(value, bool):
             c.fail(path, f"expected true or false, got {value!r}")
         return value
@@ -110,6 +128,8 @@ class Flag(Field):
 
 @dataclasses.dataclass
 class ListOf(Field):
+    """A list whose entries are each an `item`, with an allowed set of lengths or a minimum length."""
+
     item: Field
     length: Optional[tuple] = None     # allowed lengths
     required: bool = True
@@ -117,6 +137,7 @@ class ListOf(Field):
     min_length: int = 0
 
     def check(self, value, path, c):
+        """The list of checked entries; fails on a non-list or a wrong length."""
         if not isinstance(value, list):
             c.fail(path, f"expected a list, got {value!r}")
         if self.length is not None and len(value) not in self.length:
@@ -136,6 +157,7 @@ class Mapping(Field):
     rule: Optional[Callable] = None
 
     def check(self, value, path, c):
+        """The checked mapping, defaults filled in; fails on unknown, missing or empty keys, then applies `rule`."""
         if value is None:
             value = {}
         if not isinstance(value, dict):
@@ -167,6 +189,7 @@ class NamedMapping(Field):
     default: Any = MISSING
 
     def check(self, value, path, c):
+        """{name: checked item}; fails on an empty mapping or a non-mapping."""
         if not isinstance(value, dict) or not value:
             c.fail(path, f"expected a mapping of names, got {value!r}")
         return {k: self.item.check(v, path + (k,), c) for k, v in value.items()}
@@ -180,4 +203,5 @@ class Anything(Field):
     default: Any = MISSING
 
     def check(self, value, path, c):
+        """The value as given (checked later by its owner)."""
         return value

@@ -95,6 +95,14 @@ def _interpolate_log(table: dict, x: float) -> float:
 
 @dataclasses.dataclass(frozen=True)
 class Rung:
+    """One law of the bench's ladder of closure laws: its errors against the walls and its costs.
+
+    Fields: key (laws_from_topography key, or EXACT_CONTACT), label (the bench's words), errors
+    (joint family -> relative error [-] against the exact contact at half the scan's spacing),
+    evaluation (one σ + k evaluation [s]), tabulation (tolerance -> seconds to tabulate, None if it
+    cannot be), work (scan side -> seconds of the law's work before its table).
+    """
+
     key: str                 # laws_from_topography key, or EXACT_CONTACT
     label: str               # the bench's words
     errors: dict             # joint family -> error [-] against the walls at half the scan's spacing
@@ -151,6 +159,7 @@ def rungs() -> tuple:
 
 
 def by_key() -> dict:
+    """{key: Rung} of the ladder's rungs."""
     return {r.key: r for r in rungs()}
 
 

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: MIT
-"""PNG pictures drawn on the mesh: |u| on filled triangles, the deformed outline of every block,
+"""PNG pictures drawn on the mesh: ``|u|`` on filled triangles, the deformed outline of every block,
 joints coloured by their state (stick, slip, open) with a legend, jointed beside intact.
 
 The overview shows the whole scene (displacements magnified so that the largest is 5 % of it).
@@ -159,7 +159,7 @@ def _view_box(plt, opening):
 
 
 def _field(ax, tri, u, scale, top, joints, limits=None):
-    """|u| on the deformed triangles, block outlines, joints by state (legend of those drawn)."""
+    """``|u|`` on the deformed triangles, block outlines, joints by state (legend of those drawn)."""
     from matplotlib.collections import LineCollection, PolyCollection  # slow: only when drawing
     mag = np.linalg.norm(u, axis=2).mean(axis=1) * 1e3
     # edges in the face colour: no white seams between filled triangles

@@ -2,6 +2,7 @@
 """`rockjoint plan`: decide what a scene needs to model, each choice with its cost and error.
 
 Rules (docs/scenes.md §planner):
+
 - dimension: the scene's own (a 2D section is solved in 2D plane strain, never in 3D);
 - joint normal-stress bound: the largest compressive principal stress of in-situ + loads (every
   load added in full: an upper bound), times the Kirsch concentration 3 at an opening; the tables
@@ -12,6 +13,7 @@ Rules (docs/scenes.md §planner):
 - slip: only for joint sets with a strength whose mobilised friction τ/τ_max can reach
   defaults.SLIP_MARGIN under the bound (at an opening: the wall's uniaxial state, every plane);
 - mesh: refined only near joints and openings; the intact model on the same mesh (glued nodes).
+
 Any choice can be overridden in the scene's `plan:` section; the plan then says so.
 """
 from __future__ import annotations
@@ -24,6 +26,12 @@ from .rules import Choice  # noqa: F401  (re-exported: the planner's explained c
 
 @dataclasses.dataclass
 class Plan:
+    """What the planner chose for a scene, with a Choice (what, why, cost, error) for each decision.
+
+    Sizes in m, stresses in Pa; laws maps each joint set given by its walls to a ladder key, slip
+    each joint set to whether it may slip.
+    """
+
     dimension: int
     element_degree: int
     quadrature: str
@@ -42,6 +50,7 @@ class Plan:
     smeared: tuple = ()                 # joint sets smeared in the rock (equivalent continuum)
 
     def text(self) -> str:
+        """The plan's choices in words, one block per choice (topic, choice, why, cost, error)."""
         rows = [f"{c.topic}: {c.choice}\n    why: {c.why}\n    cost: {c.cost}\n    error: {c.error}"
                 for c in self.choices]
         return "\n".join(rows)

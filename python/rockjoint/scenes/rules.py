@@ -20,6 +20,8 @@ from .stresses import (bending, concentration, largest_stress, mobilised_frictio
 
 @dataclasses.dataclass
 class Choice:
+    """One decision of the planner: its topic, the choice, its cost, its error and why it was made."""
+
     topic: str
     choice: str
     cost: str
@@ -40,12 +42,14 @@ class Context:
 
     @classmethod
     def of(cls, scene) -> "Context":
+        """The Context of `scene`: its error budget, its joint sets and the FE settings that meet the budget."""
         budget = scene.data["error_budget"]
         fe, met = defaults.fe_settings(budget)
         return cls(scene, budget, geometry.joint_sets(scene), fe, met)
 
     @property
     def geometry(self) -> dict:
+        """The scene's checked `geometry:` section."""
         return self.scene.data["geometry"]
 
     def setting(self, key: str, auto):
@@ -63,6 +67,7 @@ class Context:
 
 
 def friction_words(r: float) -> str:
+    """The mobilised friction `r` [-] in words for a plan: two decimals, or "more than 10" (no cohesion)."""
     return f"{r:.2f}" if r < 10 else "more than 10 (no cohesion: planes nearly along the wall)"
 
 

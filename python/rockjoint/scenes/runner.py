@@ -58,6 +58,10 @@ class NoEquilibrium(RuntimeError):
 
 @dataclasses.dataclass
 class SceneResult:
+    """What running a scene produced: its plan, one StageRow per model and stage, the law tables
+    used, the files written, the wall-clock time [s] and the geometric dimension solved.
+    """
+
     plan: object
     rows: list
     tables: dict
@@ -66,6 +70,7 @@ class SceneResult:
     gdim: int = 0                  # geometric dimension of the meshes solved
 
     def row(self, model: str, stage: str) -> StageRow:
+        """The StageRow of `model` at `stage` (StopIteration if there is none)."""
         return next(r for r in self.rows if r.model == model and r.stage == stage)
 
 
@@ -280,7 +285,7 @@ def _run_explained(scene, plan, model, label, jm, comm, transmissivity=None) -> 
 
 
 def summary_table(result: SceneResult) -> str:
-    """Jointed beside intact, per stage: monitored displacements [mm], max |u| [mm], joints."""
+    """Jointed beside intact, per stage: monitored displacements [mm], max ``|u|`` [mm], joints."""
     stages = [r.stage for r in result.rows if r.model == "jointed"]
     has_intact = any(r.model == "intact" for r in result.rows)
     w = max([len(s) for s in stages] + [5]) + 2

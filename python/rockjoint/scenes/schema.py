@@ -278,6 +278,7 @@ class Scene:
     strengths: dict = dataclasses.field(default_factory=dict)
 
     def fail(self, path: tuple, message: str):
+        """Raise SceneError naming the scene file, the line of `path` and the key path, with `message`."""
         _checker(self.source, self.lines).fail(path, message)
 
     def __getitem__(self, key):
@@ -359,6 +360,10 @@ def _cross_checks(d: dict, c: Checker) -> None:
 
 
 def check_scene(data, lines: dict, source: str) -> Scene:
+    """The checked Scene of the parsed YAML `data` ({key path: line} in `lines`, file name `source`).
+
+    Raises SceneError naming the file, line and key of the first mistake.
+    """
     c = _checker(source, lines)
     d = SCENE.check(data, (), c)
     _cross_checks(d, c)

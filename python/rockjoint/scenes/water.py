@@ -23,6 +23,7 @@ log = logging.getLogger("rockjoint.scenes")
 
 
 def requested(scene) -> bool:
+    """True if the scene asks for the joints' flow (a `flow` entry in `outputs:`)."""
     return "flow" in scene.data["outputs"]
 
 

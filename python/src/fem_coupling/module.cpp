@@ -157,7 +157,8 @@ PYBIND11_MODULE(_rockjoint_fem_coupling, m)
             a.pair_matrix(p, span_of(u), {K.mutable_data(), static_cast<std::size_t>(n * n)});
             return K;
           },
-          py::arg("pair"), py::arg("u"))
+          py::arg("pair"), py::arg("u"),
+          "dense consistent Jacobian of pair `pair` at u, (pair_size, pair_size) [N/m]")
       .def("maximum_closure_ratio",
            [](const InterfaceAssembler& a, const Array<double>& u)
            { return a.maximum_closure_ratio(span_of(u)); },
@@ -175,7 +176,8 @@ PYBIND11_MODULE(_rockjoint_fem_coupling, m)
            py::arg("u"), py::arg("du"), py::arg("fraction"),
            "largest α <= 1 keeping Δ <= Δ + fraction (Δ_max - Δ) at every point")
       .def("update_state", [](InterfaceAssembler& a, const Array<double>& u)
-           { a.update_state(span_of(u)); }, py::arg("u"))
+           { a.update_state(span_of(u)); }, py::arg("u"),
+           "refresh the trial point state at u [m] without assembling")
       .def(
           "normal_moments",
           [](const InterfaceAssembler& a)

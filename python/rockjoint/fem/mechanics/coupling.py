@@ -2,7 +2,7 @@
 """Joints as a building block of the user's own DOLFINx model (docs/user-model.md).
 
 The user keeps their mesh, function space, UFL forms, boundary conditions and solver; rockjoint
-adds the joints:
+adds the joints::
 
     coupling = JointCoupling(V, dmesh, {"fault": table}, shear_stiffness=1e9, bcs=bcs)
     A = coupling.create_matrix(a)                 # the form's sparsity + cross-joint couplings
@@ -73,18 +73,18 @@ def same_space(W, V) -> bool:
 class JointCoupling:
     """The joints of a mesh bound to the user's displacement space V.
 
-    V: vector Lagrange space of degree 1 or 2 on the split mesh (block size = gdim).
-    joints: the DistributedJointMesh (pairs and joint names from it), or its JointPairs with
+    :V: vector Lagrange space of degree 1 or 2 on the split mesh (block size = gdim).
+    :joints: the DistributedJointMesh (pairs and joint names from it), or its JointPairs with
         `joint_tags` = {joint name: tag}.
-    laws: {joint name: law} for every joint (see rockjoint.joint.joint_behaviours); shear_stiffness,
+    :laws: {joint name: law} for every joint (see rockjoint.joint.joint_behaviours); shear_stiffness,
         shear_stiffness_ratio, residual_stiffness, strength: as in joint_behaviours.
-    quadrature: "nodal" (default; smooth tractions for stiff joints) or "gauss" (P1 only).
-    bcs: the Dirichlet conditions of the problem; their dofs' rows and columns are left out of the
+    :quadrature: "nodal" (default; smooth tractions for stiff joints) or "gauss" (P1 only).
+    :bcs: the Dirichlet conditions of the problem; their dofs' rows and columns are left out of the
         joint Jacobian and rows out of the joint residual (see set_supports).
-    beyond_range: "warn" (default) or "raise": what check_range does when a joint law answered
+    :beyond_range: "warn" (default) or "raise": what check_range does when a joint law answered
         past its range (a table beyond its last knot): a RangeWarning on rank 0, or
         BeyondRangeError on every rank (law_range.py).
-    Arrays: "local" means this rank's unrolled dofs of V, ghosts included (u.x.array layout).
+    :Arrays: "local" means this rank's unrolled dofs of V, ghosts included (u.x.array layout).
     """
 
     def __init__(self, V: fem.FunctionSpace, joints: DistributedJointMesh | JointPairs,
@@ -255,8 +255,8 @@ class JointCoupling:
 
     def summary(self, u=None) -> dict:
         """{joint name: law_range.JointSummary} at u (None: the last residual's state) over all
-        ranks, the same on every rank: points, min/max closure [m] and normal stress [Pa], max
-        |shear traction| [Pa], points per status. Collective."""
+        ranks, the same on every rank: points, min/max closure [m] and normal stress [Pa], the
+        largest shear traction magnitude [Pa], points per status. Collective."""
         return summarize(self.V.mesh.comm, self.state(u), self.joint_tags)
 
     def check_range(self, u=None, where: str = "") -> list:

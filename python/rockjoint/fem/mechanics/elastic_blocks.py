@@ -80,6 +80,7 @@ class ElasticBlocks:
 
     @staticmethod
     def eps(w):
+        """Small-strain tensor ε(w) = sym(∇w) [-] of a displacement w (UFL)."""
         return ufl.sym(ufl.grad(w))
 
     def sigma(self, w):

@@ -8,14 +8,18 @@ consistent tangent. The other blocks stay linear elastic and may hold discrete j
 mixes smeared and discrete joints.
 
 The bulk of JointedRockModel is the linear elastic K for every cell; a smeared block adds the
-correction to it (one bulk, no parallel framework):
+correction to it (one bulk, no parallel framework)::
+
     F_c = ∫_c (σ(ε0 + ε(u)) - σ0 - D ε(u)) · ε_v(v) dx,   J_c = ∫_c ε_v(v) · (C - D) ε_v(du) dx,
+
 with Voigt vectors ε_v (engineering shear), σ0 the in-situ stress (∫ε(v):σ0 is already in the
 model's residual) and ε0 the strain that carries it (the sets pre-closed by σ0). Both forms use
 the quadrature degree of the stress/tangent quadrature spaces.
 
-Viscous sets (`relaxation` = r, set by pseudo_transient.py): Duvaut-Lions at the material point,
+Viscous sets (`relaxation` = r, set by pseudo_transient.py): Duvaut-Lions at the material point,::
+
     σ = (σ_n + D (ε - ε_n) + r σ_ri(ε)) / (1 + r),   C = (D + r C_ri) / (1 + r),
+
 with σ_n, ε_n the last committed stress and strain and σ_ri, C_ri the rate-independent response:
 the joints' deformation lags behind the rock's by the relaxation time. The D part keeps the
 tangent positive definite where the rate-independent one is not (sets sliding with a
@@ -209,7 +213,7 @@ class SmearedBlocks:
         converged state on this rank, shaped as JointInterface.state for law_range.summarize:
         per quadrature point and set, closure -j_n [m] of the converged jump, σ_n = -n·σ·n [Pa]
         of the converged stress (traction continuity: the set's own normal stress), shear
-        traction |σ·n + σ_n n| [Pa] and the status of the set's law at that closure (no shear
+        traction ``|σ·n + σ_n n|`` [Pa] and the status of the set's law at that closure (no shear
         state). Set labels and tags are the same on every rank."""
         pairs = [(0, 0), (1, 1), (0, 1)] if self.gdim == 2 else [(0, 0), (1, 1), (2, 2), (1, 2), (0, 2), (0, 1)]
         labels, behaviours, parts = {}, {}, []
@@ -267,12 +271,14 @@ class SmearedBlocks:
         self._fill_elastic()
 
     def commit_state(self) -> None:
+        """Accept the trial joint-set states of every smeared block (after a converged load step)."""
         for tag, pts in self.points.items():
             pts.commit()
             if tag in self._current:
                 self._committed[tag] = self._current[tag]
 
     def revert_state(self) -> None:
+        """Drop the trial joint-set states of every smeared block (after a failed load step)."""
         for pts in self.points.values():
             pts.revert()
 

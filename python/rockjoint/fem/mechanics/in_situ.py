@@ -2,8 +2,10 @@
 """In-situ (initial) stress of a rock mass: uniform, depth-dependent, or a user field.
 
 Tensors use the continuum convention (tension positive, like σ(u)): a compressive in-situ stress
-has negative diagonal entries. The depth-dependent state is the lithostatic one,
+has negative diagonal entries. The depth-dependent state is the lithostatic one,::
+
     σ_v = ρ g (z_surface - z),   σ_h = K0 σ_v          (compression magnitudes),
+
 with z the vertical coordinate (2D: y; 3D: z). Each spec gives the tensor twice: as a UFL
 expression for the bulk forms (exact for the uniform and depth-dependent states) and as numbers at
 given points (for the joints' initial normal and shear stress).
@@ -48,10 +50,10 @@ class InSituStress:
                         gravity: float = STANDARD_GRAVITY) -> "InSituStress":
         """Lithostatic stress: σ_v = ρ g (surface - z) [Pa, compression], σ_h = K0 σ_v.
 
-        surface: vertical coordinate of the ground surface [m] (the model lies below it).
-        density: ρ [kg/m³] (must equal the model's rock density: the state is then in equilibrium
+        :surface: vertical coordinate of the ground surface [m] (the model lies below it).
+        :density: ρ [kg/m³] (must equal the model's rock density: the state is then in equilibrium
             with gravity). k0: horizontal-to-vertical stress ratio, a float, or in 3D (K0_x, K0_y).
-        gravity: g [m/s²]."""
+        :gravity: g [m/s²]."""
         try:
             surface = float(surface)
         except (TypeError, ValueError):
@@ -81,6 +83,7 @@ class InSituStress:
         return np.resize(k0, gdim - 1)
 
     def check_dimension(self, gdim: int) -> None:
+        """Check the stress fits a `gdim`-dimensional model; ValueError naming the mismatch."""
         if self.kind == "uniform" and self.data["tensor"].shape != (gdim, gdim):
             raise ValueError(f"in-situ stress tensor is {self.data['tensor'].shape}, the model is {gdim}D")
         if self.kind == "depth":

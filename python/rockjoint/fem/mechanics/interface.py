@@ -131,10 +131,12 @@ class JointInterface:
     # ---- assembly ------------------------------------------------------------------------
     @property
     def num_pairs(self) -> int:
+        """Number of node pairs across the joints on this rank."""
         return self._cpp.num_pairs
 
     @property
     def num_points(self) -> int:
+        """Number of joint quadrature points on this rank."""
         return self._cpp.num_pairs * self._cpp.num_points_per_pair
 
     def insert_sparsity(self, pattern) -> None:
@@ -179,6 +181,7 @@ class JointInterface:
         return self._cpp.maximum_closure_ratio(u_local)
 
     def pair_matrix(self, pair: int, u_local: np.ndarray) -> np.ndarray:
+        """Dense consistent Jacobian [N/m] of pair `pair` at the local displacement `u_local` [m]."""
         return self._cpp.pair_matrix(pair, u_local)
 
     def pair_dofs(self) -> np.ndarray:
@@ -206,6 +209,7 @@ class JointInterface:
         self._cpp.set_initial_jump(np.ascontiguousarray(j0).ravel())
 
     def initial_jump(self) -> np.ndarray:
+        """(num_points, gdim) initial local jump j0 [m] of this rank's joint points."""
         return self._cpp.initial_jump
 
     def set_pore_pressure(self, pressure) -> None:
@@ -237,6 +241,7 @@ class JointInterface:
         self._cpp.reset_state()
 
     def update_state(self, u_local: np.ndarray) -> None:
+        """Refresh the trial point state at the local displacement `u_local` [m] without assembling."""
         self._cpp.update_state(u_local)
 
     def state(self) -> dict:

@@ -4,13 +4,15 @@
 At a joint point with local frame F (rows n, t1[, t2]; n from the minus to the plus side), the
 in-situ traction in local components is t = F σ0 n. The joint element's local traction is
 (-σ_n(Δ), k_s j_s) with Δ = -j_n (joint/joint_behaviour.cpp), so the joint carries t at
-u = 0 when its initial jump j0 (CONTRACTS A.3) is
+u = 0 when its initial jump j0 (CONTRACTS A.3) is::
+
     j0_n = -Δ0,  σ_n(Δ0) = σ_n0 = -t_n  (compression positive; σ_n = law + k_r Δ, solved by
                                          closure_at_normal_stress, joint/joint_behaviour.hpp),
     j0_s = t_s / k_s,  k_s constant or ratio × (k_n(Δ0) + k_r).
+
 With the nodal (vertex) rule on P1 facets, the joint's force at vertex a of a facet is
-w_a t_a = |f|/gdim · t_a, while the bulk's in-situ stress pulls on that vertex with the consistent
-∫_f σ0 n N_a = |f| (t_a + Σ_b t_b) / (gdim (gdim + 1)) (t linear on the facet, e.g. a depth gradient
+w_a t_a = ``|f|``/gdim · t_a, while the bulk's in-situ stress pulls on that vertex with the consistent
+∫_f σ0 n N_a = ``|f|`` (t_a + Σ_b t_b) / (gdim (gdim + 1)) (t linear on the facet, e.g. a depth gradient
 along an inclined joint): the point traction is taken as t'_a = (t_a + Σ_b t_b) / (gdim + 1), the
 same for a uniform σ0 and exact equilibrium for a linear one. Gauss points (P1) and the P2 nodal
 rule in 2D integrate t N_a exactly with t'_a = t(x_a); the P2 nodal rule in 3D does not (a residual

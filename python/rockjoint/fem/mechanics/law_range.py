@@ -69,7 +69,7 @@ class JointSummary:
     max_closure: float         #: [m]
     min_normal_stress: float   #: [Pa], compression positive
     max_normal_stress: float   #: [Pa]
-    max_shear_traction: float  #: largest |τ| [Pa]
+    max_shear_traction: float  #: largest shear traction magnitude ‖τ‖ [Pa]
     #: {status name: points} (rockjoint.Status names), every status listed
     status: dict = field(default_factory=dict)
     #: {shear state name: points} (ShearState: stick, slip, open; empty for smeared sets)

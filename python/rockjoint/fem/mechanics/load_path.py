@@ -94,12 +94,14 @@ class LoadPath:
 
     # ---- checks ------------------------------------------------------------------------------
     def vector(self, value, what: str) -> np.ndarray:
+        """`value` as a float array of gdim finite components; ValueError naming `what` otherwise."""
         v = np.asarray(value, dtype=float)
         if v.shape != (self.gdim,) or not np.all(np.isfinite(v)):
             raise ValueError(f"{what} must be {self.gdim} finite components, got {value!r}")
         return v
 
     def gravity_vector(self, gravity) -> np.ndarray:
+        """Gravity as a gdim vector [m/s²]: g >= 0 acts along -y (2D) or -z (3D); a vector is checked."""
         if np.ndim(gravity) == 0:
             g = float(gravity)
             if not (np.isfinite(g) and g >= 0):
@@ -110,6 +112,10 @@ class LoadPath:
         return self.vector(gravity, "gravity")
 
     def component_indices(self, components) -> list:
+        """Indices of `components` ("all", None, "x", "y", "z", an index or a list of them).
+
+        ValueError naming a component the model does not have.
+        """
         if components in ("all", None):
             return list(range(self.gdim))
         if isinstance(components, (str, int)):
@@ -171,6 +177,10 @@ class LoadPath:
         return support
 
     def add_load(self, kind: str, boundary: str | None, value) -> Load:
+        """Add a load of `kind` on `boundary` (None: a body load) with `value` in SI; returns it.
+
+        ValueError naming an unknown boundary or a bad value.
+        """
         if boundary is not None:
             lookup(self.dmesh, "boundaries", boundary)
         load = Load(self, kind, boundary, value)
@@ -293,6 +303,7 @@ class LoadPath:
 
     @staticmethod
     def assemble(form) -> PETSc.Vec:
+        """The assembled vector of the linear `form`, ghost contributions added to their owners."""
         b = fem_petsc.assemble_vector(form)
         b.ghostUpdate(addv=PETSc.InsertMode.ADD, mode=PETSc.ScatterMode.REVERSE)
         return b

@@ -37,6 +37,7 @@ class Load:
 
     @property
     def value(self):
+        """The load's value in SI (settable while the load is active; RuntimeError once removed)."""
         return self._value
 
     @value.setter
@@ -75,6 +76,7 @@ class Support:
 
     @property
     def value(self) -> np.ndarray:
+        """The prescribed displacement [m] (settable while the support is active)."""
         return self._value
 
     @value.setter

@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: MIT
 """JointedRockModel: elastic rock blocks (DOLFINx) + zero-thickness joints (rockjoint C++),
-followed along a staged load path (docs/staged-analysis.md).
+followed along a staged load path (docs/staged-analysis.md)::
 
     model = JointedRockModel(dmesh, rock={"block_1": (E, nu), ...}, joints={"joint_1": law},
                              shear_stiffness=1e10, plane="strain", density=2700.0)
@@ -12,8 +12,10 @@ followed along a staged load path (docs/staged-analysis.md).
 
 Units: SI (Pa, m, N). Compression positive for joint normal stress; closure Δ = -[[u]]·n; bulk
 stress tensors tension positive. The bulk is linear elastic: its matrix K (with the supports) is
-assembled when the supports change, the load vectors when the loads change. Newton's residual is
+assembled when the supports change, the load vectors when the loads change. Newton's residual is::
+
     r = K u + K_fc u_c + ∫ε(v):σ0 dx - f(λ) + r_joint(u),   f(λ) = f_prev + λ (f_next - f_prev),
+
 zero at supported dofs, whose values u_c are the prescribed displacements of λ (K has identity
 rows and zero columns there, so K_fc u_c brings the prescribed values back in). r_joint is added
 to the ghosted local vector before the reverse ghost update; the Jacobian is K + J_joint(u) (joint
@@ -52,42 +54,42 @@ log = logging.getLogger(__name__)
 class JointedRockModel:
     """A jointed rock mass: elastic blocks + joints with closure laws, loads, supports.
 
-    dmesh: rockjoint.fem.mesh.distributed_mesh.DistributedJointMesh (mesh, cell_blocks, boundaries,
+    :dmesh: rockjoint.fem.mesh.distributed_mesh.DistributedJointMesh (mesh, cell_blocks, boundaries,
         names, pairs).
-    element_degree: 1 or 2 (P2 uses the nodal joint rule).
-    rock: {block name: (E [Pa], ν)} for every block, or one (E, ν) for all blocks.
-    joints: {joint name: ClosureLaw} for every joint (any rockjoint law or table).
-    shear_stiffness: joint shear stiffness k_s [Pa/m], constant (float, or {joint name: float}).
-    shear_stiffness_ratio: if given, k_s = ratio × current normal stiffness instead (per-joint dict
+    :element_degree: 1 or 2 (P2 uses the nodal joint rule).
+    :rock: {block name: (E [Pa], ν)} for every block, or one (E, ν) for all blocks.
+    :joints: {joint name: ClosureLaw} for every joint (any rockjoint law or table).
+    :shear_stiffness: joint shear stiffness k_s [Pa/m], constant (float, or {joint name: float}).
+    :shear_stiffness_ratio: if given, k_s = ratio × current normal stiffness instead (per-joint dict
         allowed); the Jacobian is then non-symmetric (GMRES with the iterative solver).
-    residual_stiffness: k_r [Pa/m] spring in parallel with every law, in tension and compression
+    :residual_stiffness: k_r [Pa/m] spring in parallel with every law, in tension and compression
         (float or dict; default 0: a block held only by an open joint is then a singular system and
         solve() raises LinearSolveError instead of returning garbage).
-    strength: joint shear strength (docs/joint-strength.md): None (elastic joints), one description
+    :strength: joint shear strength (docs/joint-strength.md): None (elastic joints), one description
         for every joint, or {joint name: description}; a description is a JointStrength or a dict
         {"model": "coulomb" | "barton", "friction_angle": rad, "cohesion": Pa, ...} (see
         rockjoint.fem.make_strength). With a strength the Jacobian is non-symmetric (LU / GMRES)
         and the slip is committed only when a load step converges.
-    plane: "strain" (default) or "stress" in 2D; None (or "3D") in 3D.
-    quadrature: "nodal" (default; smooth tractions for stiff joints) or "gauss".
-    linear_solver: "auto" (MUMPS up to 60k dofs in 2D and 5k in 3D, 250k in 2D for a
+    :plane: "strain" (default) or "stress" in 2D; None (or "3D") in 3D.
+    :quadrature: "nodal" (default; smooth tractions for stiff joints) or "gauss".
+    :linear_solver: "auto" (MUMPS up to 60k dofs in 2D and 5k in 3D, 250k in 2D for a
         non-symmetric Jacobian, else CG/GMRES + GAMG; see linear_solver.DIRECT_DOF_LIMIT),
         "direct", "lagged" (a factorisation reused as FGMRES's preconditioner) or "iterative".
-    newton: NewtonOptions (tolerances, closure limit, load-step control, verbosity).
-    petsc_options: {option: value} for the linear solver's KSP/PC, without the leading dash
+    :newton: NewtonOptions (tolerances, closure limit, load-step control, verbosity).
+    :petsc_options: {option: value} for the linear solver's KSP/PC, without the leading dash
         (DOLFINx convention, e.g. {"ksp_type": "gmres", "pc_type": "hypre"}); applied after the
         defaults of `linear_solver`, so they override them.
-    options_prefix: the linear solver's PETSc options prefix (default: a unique one), so that
+    :options_prefix: the linear solver's PETSc options prefix (default: a unique one), so that
         command-line options such as -<prefix>ksp_monitor reach it (SNES options too, with
         solve(solver="snes")).
-    density: rock density ρ [kg/m³], one value or {block name: ρ}; gives gravity ρ g on the blocks
+    :density: rock density ρ [kg/m³], one value or {block name: ρ}; gives gravity ρ g on the blocks
         (the load handle `model.gravity`). None: no gravity.
-    gravity: g [m/s²] acting along -y (2D) / -z (3D), or a gravity vector.
-    continuum: {block name: rockjoint.continuum.EquivalentContinuum} (its E, ν those of
+    :gravity: g [m/s²] acting along -y (2D) / -z (3D), or a gravity vector.
+    :continuum: {block name: rockjoint.continuum.EquivalentContinuum} (its E, ν those of
         the block): joint sets smeared in these blocks (docs/equivalent-continuum.md); the other
         blocks stay elastic and may hold discrete joints. Plane strain in 2D.
-    beyond_range: "warn" (a RangeWarning) or "raise" (BeyondRangeError): a law past its range (law_range.py).
-    effective_stress_coefficient: α of σ'_n = σ_n - α p for water in the joints (fem.water.joint_pressure).
+    :beyond_range: "warn" (a RangeWarning) or "raise" (BeyondRangeError): a law past its range (law_range.py).
+    :effective_stress_coefficient: α of σ'_n = σ_n - α p for water in the joints (fem.water.joint_pressure).
 
     Composed of: blocks (ElasticBlocks), load_path (LoadPath), smeared (SmearedBlocks or None)
     and the problem (problem.JointedProblem: F, J, joints, linear solver) that the project's

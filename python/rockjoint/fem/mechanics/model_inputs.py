@@ -52,6 +52,7 @@ def check_density(dmesh, density) -> dict:
 
 
 def check_element(element_degree: int, quadrature: str) -> int:
+    """The element degree (1 or 2); ValueError for another or for degree 2 without the nodal quadrature."""
     if element_degree not in (1, 2):
         raise ValueError(f"element_degree must be 1 or 2, got {element_degree!r}")
     if element_degree == 2 and quadrature != "nodal":

@@ -50,7 +50,8 @@ class JointedNonlinearProblem(JointedSNESProblem):
     the joint-aware Jacobian matrix, joint forces in the residual, a non-finite joint traction
     reported to SNES as a function-domain error, and the closure limiter as a line-search
     pre-check (snes_problem.JointedSNESProblem), and the range check after every solve. The same
-    on DOLFINx 0.9. Not a subclass of DOLFINx's class (the module docstring says why).
+    on DOLFINx 0.9. Not a subclass of DOLFINx's class (the module docstring says why). For
+    example::
 
         problem = JointedNonlinearProblem(F, u, coupling, bcs=bcs, petsc_options_prefix="slope_",
                                           petsc_options={"snes_rtol": 1e-10, "ksp_type": "preonly",

@@ -3,8 +3,10 @@
 Newton (newton.solve_load_path) and PETSc SNES (stages.snes_load_path, through the
 snes_problem.JointedSNESProblem adapter that the user's problems use too) drive.
 
-The residual at the load factor λ (model.py's docstring):
+The residual at the load factor λ (model.py's docstring)::
+
     r = K u + K_fc u_c + ∫ε(v):σ0 dx - f(λ) + r_joint(u) [+ r_smeared(u)],
+
 zero at supported dofs; the Jacobian K + J_joint(u) [+ J_smeared(u)]. The parts: the blocks'
 bulk matrix K (assembled here when the supports change), the load path (loads.py, load_path.py:
 f(λ), the prescribed displacements and their lift, the in-situ term), the joints (JointCoupling),
@@ -194,6 +196,7 @@ class JointedProblem(JointedSNESProblem, NewtonProblem):
         self.assemble_jacobian(self.J)
 
     def assemble_residual(self, b: PETSc.Vec) -> bool:
+        """The residual at the current u into `b`; False if it is not finite (a failed trial)."""
         finite = bool(np.isfinite(self.residual_norm()))
         self.r.copy(b)
         return finite
@@ -217,6 +220,7 @@ class JointedProblem(JointedSNESProblem, NewtonProblem):
         return self.K.duplicate(copy=True)
 
     def vector(self) -> PETSc.Vec:
+        """A vector with the residual's layout."""
         return self.r.duplicate()
 
     # ---- Newton's increments ---------------------------------------------------------------
@@ -244,14 +248,18 @@ class JointedProblem(JointedSNESProblem, NewtonProblem):
         return self.du.x.petsc_vec.norm(), self.u.x.petsc_vec.norm()
 
     def admissible_step(self, fraction: float) -> float:
+        """Largest α <= 1 such that u + α du closes no joint point by more than `fraction` of its
+        remaining room to the law's maximum closure (Δ <= Δ + fraction (Δ_max - Δ))."""
         return self.coupling.admissible_step(self.u, self.du, fraction)
 
     def apply_increment(self, alpha: float) -> None:
+        """u ← u + α du, ghosts updated."""
         self.u.x.petsc_vec.axpy(alpha, self.du.x.petsc_vec)
         self.u.x.scatter_forward()
 
     # ---- converged and trial state ---------------------------------------------------------
     def save_state(self) -> None:
+        """Remember u and the load factor of the converged step (restore_state goes back to them)."""
         self._saved = (self.u.x.array.copy(), self.load_factor)
 
     def restore_state(self) -> None:

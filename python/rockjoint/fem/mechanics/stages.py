@@ -46,6 +46,7 @@ class StageResult:
 
     @property
     def newton_iterations(self) -> int:
+        """Newton iterations of the stage, summed over its steps."""
         return sum(r.iterations for r in self.reports)
 
     def summary(self) -> dict:
@@ -149,10 +150,12 @@ class StageClock:
         self.start = time.perf_counter()
 
     def step(self, load_factor: float, iterations: int) -> None:
+        """Log (rank 0) a converged step: load factor, Newton iterations and elapsed time."""
         if self.comm.rank == 0:
             log.info("stage %s: λ = %.4g converged in %d Newton iteration(s), %.2f s elapsed",
                      self.label, load_factor, iterations, time.perf_counter() - self.start)
 
     @property
     def elapsed(self) -> float:
+        """Seconds since the stage started."""
         return time.perf_counter() - self.start

@@ -2,12 +2,14 @@
 """Distribute a JointedMesh over MPI as a DOLFINx mesh and pair the joint facets on every rank.
 
 Partitioning (docs/fem.md, pitfalls 1-2):
+
 1. owners from DOLFINx's default partitioner run on the *glued* cells (the split mesh has no facet
    adjacency across joints, so partitioning it directly could separate a joint's two sides);
 2. the two cells of every joint facet (and chains of them: a cell with several joint facets) are
    forced onto one rank, the owner of the lowest-numbered cell of the chain;
 3. ghost ranks from the facet adjacency of the *split* cells (never across the cut: ghosting across
    it segfaults, dolfinx#1991; returning owners only builds a wrong mesh).
+
 So both cells of every pair are owned by the same rank and each pair is assembled there, once.
 
 Pairing uses cell->facet connectivity (not exterior_facet_indices, which returns owned facets only)
@@ -60,10 +62,11 @@ os.environ.setdefault("SCOTCH_PTHREAD_NUMBER", "1")
 class JointPairs:
     """Joint facet pairs on this rank; each pair is held once, by the owner of its minus cell.
 
-    minus_cells, plus_cells: (n,) int32 local cell indices (both owned by this rank).
-    minus_local_facets, plus_local_facets: (n,) int32 local facet index within the cell
+    :minus_cells, plus_cells: (n,) int32 local cell indices (both owned by this rank).
+    :minus_local_facets, plus_local_facets: (n,) int32 local facet index within the cell
         (0..nv-1 as DOLFINx numbers them: facet i is opposite vertex i).
-    joint_tags: (n,) int32 joint tag (physical group of the joint).
+    :joint_tags: (n,) int32 joint tag (physical group of the joint).
+
     Minus side = the block with the lower block tag; the pair normal points from minus into plus.
     Pairs are sorted by (joint tag, minus cell).
     """

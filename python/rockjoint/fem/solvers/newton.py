@@ -116,6 +116,8 @@ def _check_problem(problem) -> None:
 
 @dataclass
 class NewtonOptions:
+    """Options of the project's Newton load stepping (solve_load_path)."""
+
     rtol: float = 1e-10              #: ||r|| <= rtol · ||λ f_ext|| (+ atol) → converged
     atol: float = 0.0                #: absolute residual tolerance [N]
     max_iterations: int = 30
@@ -199,6 +201,7 @@ class StepReport:
 
     @property
     def iterations(self) -> int:
+        """Newton iterations of the step."""
         return len(self.step_lengths)
 
 

@@ -73,11 +73,13 @@ class JointedSNESProblem:
 
     # ---- SNES callbacks ------------------------------------------------------------------
     def snes_F(self, snes, x: PETSc.Vec, b: PETSc.Vec) -> None:
+        """SNES residual callback: F(x) into b; a non-finite residual is a domain error to SNES."""
         self.residual(x, b)
         if self.nonfinite:
             _rockjoint_fem_coupling.snes_set_function_domain_error(snes.handle)
 
     def snes_J(self, snes, x: PETSc.Vec, A: PETSc.Mat, P: PETSc.Mat) -> None:
+        """SNES Jacobian callback: A (and P if different) at x."""
         self.jacobian(x, A)
         if P.handle != A.handle:
             self.assemble_jacobian(P)
