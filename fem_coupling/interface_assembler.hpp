@@ -116,7 +116,7 @@ public:
   /// (joint/joint_behaviour.hpp). Throws std::invalid_argument for a wrong size or a
   /// non-finite entry. Invalidates the cached responses.
   void set_pore_pressure(std::span<const double> pressure);
-  const std::vector<double>& pore_pressure() const { return _pore_pressure; }
+  const std::vector<double>& pore_pressure() const { return _pore_pressure; } ///< p [Pa] per point
 
   // ---- path-dependent point state ---------------------------------------------------------
   /// Accept the trial state (after a converged load step): converged ← trial.

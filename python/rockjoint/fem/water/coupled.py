@@ -7,11 +7,11 @@ transmissivity T(Δ), and the network its heads. Two ways: the water's pressure 
 point, p = ρ g (h - z), acts back on the joints (joint_pressure: σ'_n = σ_n - α p, the walls
 pushed apart), which changes the closures, hence T, hence the heads. Solved here by a staggered
 fixed point on p (block Gauss-Seidel: mechanics at the current p, then the network at the new
-closures) with Aitken's dynamic relaxation (Küttler & Wall 2008, Eq. 44):
+closures) with Aitken's dynamic relaxation (Küttler & Wall 2008, Eq. 44)::
 
     r_k = p̃_k - p_k,   ω_k = -ω_{k-1} r_{k-1}·(r_k - r_{k-1}) / |r_k - r_{k-1}|²,   p_{k+1} = p_k + ω_k r_k,
 
-until |p_{k+1} - p_k| <= tolerance (|p| + ρ g Δh_max). Each mechanical solve is a stage of the
+until ``|p_{k+1} - p_k| <= tolerance (|p| + ρ g Δh_max)``. Each mechanical solve is a stage of the
 model (the pressure ramps over it from the last value, see joint_pressure), so the model's
 stages record the iterations. The network is gathered (the same on every rank) and so are the
 iterates: every rank takes the same ω and the answer does not depend on the partition.
@@ -38,7 +38,7 @@ class CoupledWater:
     network: NetworkFlow
     pressure: np.ndarray
     iterations: int
-    increments: list = field(default_factory=list)   #: |p_{k+1} - p_k| / scale per iteration
+    increments: list = field(default_factory=list)   #: ``|p_{k+1} - p_k|`` / scale per iteration
     relaxation: list = field(default_factory=list)   #: Aitken's ω per iteration
 
 
@@ -62,7 +62,7 @@ def coupled_steady(model, transmissivity: Mapping[str, Callable], heads: Mapping
     """The steady two-way coupled state of `model` (its loads as set now) with heads {boundary:
     h [m]} and transmissivity {joint name: T(closure) [m³]}: each iteration solves a stage of the
     model at the current joint pressure (`load_steps` steps, named '<name> k') and the network at
-    its closures. Returns CoupledWater; CouplingError if |Δp| has not fallen below `tolerance`
+    its closures. Returns CoupledWater; CouplingError if ``|Δp|`` has not fallen below `tolerance`
     (relative) in `max_iterations`. Needs P1 with the nodal joint rule (network_flow). Collective."""
     if not (0.0 < tolerance < 1.0):
         raise ValueError(f"coupled_steady: tolerance = {tolerance!r} must be in (0, 1)")
