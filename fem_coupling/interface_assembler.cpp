@@ -94,6 +94,7 @@ InterfaceAssembler::InterfaceAssembler(int gdim, int degree, QuadratureRule rule
   _status.assign(np * nq, static_cast<std::int32_t>(constitutive::Status::open));
   _shear_state.assign(np * nq, static_cast<std::int32_t>(joint::ShearState::stick));
   _initial_jump.assign(np * nq * gdim, 0.0);
+  _pore_pressure.assign(np * nq, 0.0);
   _converged.assign(np * nq, joint::JointPointState{});
   _trial = _converged;
   _cached_response.assign(np * nq, joint::LocalResponse{});
@@ -161,7 +162,8 @@ bool InterfaceAssembler::assemble_residual(std::span<const double> u, std::span<
       const std::size_t point = point_index(p, q);
       const std::array<double, 3> jump = local_jump(p, q, u);
       const joint::LocalResponse& r = _cached_response[point]
-          = joint::joint_response(behaviour(p), _gdim, jump, _converged[point], _trial[point]);
+          = joint::joint_response(behaviour(p), _gdim, jump, _converged[point], _trial[point],
+                                  _pore_pressure[point]);
       _cached_jump[point] = jump;
       ++_num_law_evaluations;
       _closure[point] = r.closure;
@@ -227,7 +229,8 @@ void InterfaceAssembler::pair_matrix(std::int32_t p, std::span<const double> u,
     if (!cached)
     {
       joint::JointPointState trial;
-      evaluated = joint::joint_response(behaviour(p), g, jump, _converged[point], trial);
+      evaluated = joint::joint_response(behaviour(p), g, jump, _converged[point], trial,
+                                        _pore_pressure[point]);
       ++_num_law_evaluations;
     }
     const joint::LocalResponse& r = cached ? _cached_response[point] : evaluated;
@@ -315,6 +318,20 @@ void InterfaceAssembler::set_reference_directions(
   for (std::size_t p = 0; p < _frames.size(); ++p)
     if (auto it = directions.find(_tags[p]); it != directions.end())
       set_tangents(_frames[p], _gdim, it->second);
+  _cache_valid = false;
+}
+
+void InterfaceAssembler::set_pore_pressure(std::span<const double> pressure)
+{
+  if (pressure.size() != _pore_pressure.size())
+    throw std::invalid_argument("InterfaceAssembler::set_pore_pressure: 'pressure' has "
+                                + std::to_string(pressure.size()) + " entries; expected "
+                                + std::to_string(_pore_pressure.size()) + " (one per joint point)");
+  for (std::size_t i = 0; i < pressure.size(); ++i)
+    if (!std::isfinite(pressure[i]))
+      throw std::invalid_argument("InterfaceAssembler::set_pore_pressure: entry " + std::to_string(i)
+                                  + " is " + std::to_string(pressure[i]) + "; it must be finite [Pa]");
+  std::copy(pressure.begin(), pressure.end(), _pore_pressure.begin());
   _cache_valid = false;
 }
 

@@ -111,6 +111,12 @@ public:
   /// for a wrong size or a non-finite entry.
   void set_initial_jump(std::span<const double> initial_jump);
   const std::vector<double>& initial_jump() const { return _initial_jump; }
+  /// Fluid pressure p [Pa] in the joint at every point (num_points; 0: dry, the default): the
+  /// law and the strength see σ'_n = σ_n - α p and the water pushes the walls apart with α p
+  /// (joint/joint_behaviour.hpp). Throws std::invalid_argument for a wrong size or a
+  /// non-finite entry. Invalidates the cached responses.
+  void set_pore_pressure(std::span<const double> pressure);
+  const std::vector<double>& pore_pressure() const { return _pore_pressure; } ///< p [Pa] per point
 
   // ---- path-dependent point state ---------------------------------------------------------
   /// Accept the trial state (after a converged load step): converged ← trial.
@@ -180,6 +186,7 @@ private:
   std::vector<double> _closure, _normal_stress, _shear_traction, _point_coordinates;
   std::vector<std::int32_t> _status, _shear_state;
   std::vector<double> _initial_jump;                ///< (points, gdim) j0 [m]
+  std::vector<double> _pore_pressure;               ///< (points) p [Pa]
   std::vector<joint::JointPointState> _converged, _trial;  ///< per point
   // Responses and jumps of the last residual (one law evaluation per point per iteration).
   std::vector<joint::LocalResponse> _cached_response;

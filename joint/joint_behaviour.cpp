@@ -21,6 +21,8 @@ void validate(const JointBehaviour& behaviour, const std::string& label)
   v::non_negative(owner, "shear_stiffness", behaviour.shear_stiffness, "Pa/m");
   v::non_negative(owner, "shear_stiffness_ratio", behaviour.shear_stiffness_ratio, "-");
   v::non_negative(owner, "residual_stiffness", behaviour.residual_stiffness, "Pa/m");
+  v::in_range(owner, "effective_stress_coefficient", behaviour.effective_stress_coefficient, "-",
+              0.0, 1.0, true);
   validate(behaviour.strength, owner);
 }
 

@@ -26,6 +26,15 @@
 /// residual spring is a regularisation, not a strength: the tension cut-off does not act on
 /// it. A law's own opening branch (TabulatedLaw: σ = k_res Δ for Δ <= 0, via
 /// ClosureLaw::evaluate_open) acts on top of k_r.
+///
+/// Water in the joint (docs/flow.md, "Water that pushes back"): with a fluid pressure p at the
+/// point, the law and the strength see the effective normal stress σ'_n = σ_n - α p (α the
+/// effective-stress coefficient, 1 by default), and the water pushes both walls apart with α p,
+/// as the contact does with σ' (the total normal stress is σ_n = σ' + α p):
+///   t_n = -(σ(Δ_e) + k_r Δ_e + α p),
+/// the tangent unchanged (p is given). The closure, the strength c + σ' tan φ, the tension
+/// cut-off and a law's history all follow σ'; a joint whose p reaches the total normal stress
+/// opens (hydraulic jacking), held by k_r only.
 
 #include "joint_strength.hpp"
 
@@ -58,6 +67,8 @@ struct JointBehaviour
   double shear_stiffness_ratio = 0.0; ///< α [-] (ShearModel::proportional), >= 0
   double residual_stiffness = 0.0;    ///< k_r [Pa/m], >= 0
   JointStrength strength{};           ///< shear strength (default none: elastic joint)
+  /// α [-] of σ'_n = σ_n - α p, in [0, 1] (1: Terzaghi's effective stress, the default)
+  double effective_stress_coefficient = 1.0;
 };
 
 /// Throw std::invalid_argument (naming the joint `label`, the parameter, value and range)

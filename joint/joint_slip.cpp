@@ -45,8 +45,28 @@ void set_normal(LocalResponse& r, const NormalResponse& n)
 }
 } // namespace
 
+namespace
+{
+LocalResponse effective_response(const JointBehaviour& b, int gdim, const std::array<double, 3>& jump,
+                                 const JointPointState& converged, JointPointState& trial);
+} // namespace
+
 LocalResponse joint_response(const JointBehaviour& b, int gdim, const std::array<double, 3>& jump,
-                             const JointPointState& converged, JointPointState& trial)
+                             const JointPointState& converged, JointPointState& trial,
+                             double pore_pressure)
+{
+  // The law, the strength and the history see σ'_n; the water pushes the walls apart with α p as
+  // the contact does with σ': the total normal stress is σ' + α p (t_n = -σ_n, tension
+  // positive), a given load: the tangent is the effective one.
+  LocalResponse r = effective_response(b, gdim, jump, converged, trial);
+  r.traction[0] -= b.effective_stress_coefficient * pore_pressure;
+  return r;
+}
+
+namespace
+{
+LocalResponse effective_response(const JointBehaviour& b, int gdim, const std::array<double, 3>& jump,
+                                 const JointPointState& converged, JointPointState& trial)
 {
   trial = converged;
   LocalResponse r;
@@ -183,6 +203,7 @@ LocalResponse joint_response(const JointBehaviour& b, int gdim, const std::array
   }
   return r;
 }
+} // namespace
 
 LocalResponse local_response(const JointBehaviour& behaviour, int gdim,
                              const std::array<double, 3>& jump)

@@ -27,9 +27,14 @@ namespace rockjoint::joint
 /// dilate), which makes the shear traction continuous at opening. Never throws: a non-finite traction (a
 /// closure past the law's maximum) marks a failed trial; status/shear_state report the
 /// point's state.
+///
+/// `pore_pressure` p [Pa] of the water in the joint (default 0: dry): everything above sees
+/// the effective stress (the law's σ is σ'_n), and the normal traction carries the water's push
+/// α p on top (joint_behaviour.hpp); LocalResponse::normal_stress stays the law's σ'_n.
 LocalResponse joint_response(const JointBehaviour& behaviour, int gdim,
                              const std::array<double, 3>& jump,
-                             const JointPointState& converged, JointPointState& trial);
+                             const JointPointState& converged, JointPointState& trial,
+                             double pore_pressure = 0.0);
 
 /// Response at local jump `jump` (gdim components) from the virgin state (no slip, no
 /// dilation): joint_response() with a default JointPointState. Never throws; past the law's

@@ -129,8 +129,8 @@ def per_joint(value, joint_names, what: str) -> dict:
 
 def joint_behaviours(joint_tags: Mapping[str, int], laws: Mapping[str, object], *,
                      shear_stiffness=0.0, shear_stiffness_ratio=None,
-                     residual_stiffness=0.0, strength=None, argument: str = "laws",
-                     closure_laws_only: bool = False) -> dict:
+                     residual_stiffness=0.0, strength=None, effective_stress_coefficient=1.0,
+                     argument: str = "laws", closure_laws_only: bool = False) -> dict:
     """{joint tag: JointBehaviour} from a law per joint name.
 
     joint_tags: {joint name: tag} of every joint of the mesh. laws: {joint name: law} for every
@@ -139,6 +139,8 @@ def joint_behaviours(joint_tags: Mapping[str, int], laws: Mapping[str, object], 
     (then used as it is). shear_stiffness k_s [Pa/m], shear_stiffness_ratio (k_s = ratio × k_n(Δ)
     instead) and residual_stiffness k_r [Pa/m]: a float or {joint name: float}. strength: joint
     shear strength, None, one description or {joint name: description} (docs/joint-strength.md).
+    effective_stress_coefficient α [-] (a float or {joint name: float}, in [0, 1]): the law and
+    the strength see σ'_n = σ_n - α p with water at pressure p in the joint (rockjoint.fem.water).
     argument: the caller's name of `laws` in error messages. closure_laws_only: accept closure laws
     and tables only (JointedRockModel's joints=).
     """
@@ -158,6 +160,9 @@ def joint_behaviours(joint_tags: Mapping[str, int], laws: Mapping[str, object], 
     ratio = None if shear_stiffness_ratio is None else per_joint(shear_stiffness_ratio, names,
                                                                   "shear_stiffness_ratio")
     strengths = strength_per_joint(strength, names)
+    alpha = per_joint(effective_stress_coefficient, names, "effective_stress_coefficient")
+    if isinstance(effective_stress_coefficient, Mapping):   # a joint left out keeps α = 1 (Terzaghi)
+        alpha.update({n: 1.0 for n in names if n not in effective_stress_coefficient})
     out = {}
     for name, law in laws.items():
         if not closure_laws_only:
@@ -175,10 +180,11 @@ def joint_behaviours(joint_tags: Mapping[str, int], laws: Mapping[str, object], 
         # JointBehaviour validates the stiffnesses (finite, >= 0) and names the bad one.
         if ratio is None:
             b = JointBehaviour(law, ShearModel.constant, shear_stiffness=ks[name], residual_stiffness=kr[name],
-                               strength=strengths[name])
+                               strength=strengths[name], effective_stress_coefficient=alpha[name])
         else:
             b = JointBehaviour(law, ShearModel.proportional, shear_stiffness_ratio=ratio[name],
-                               residual_stiffness=kr[name], strength=strengths[name])
+                               residual_stiffness=kr[name], strength=strengths[name],
+                               effective_stress_coefficient=alpha[name])
         out[int(joint_tags[name])] = b
     return out
 

@@ -112,20 +112,24 @@ void declare_joint(py::module_& m)
       .def(py::init(
                [](std::shared_ptr<const rockjoint::constitutive::ClosureLaw> law,
                   ShearModel model, double ks, double ratio, double kr,
-                  std::optional<JointStrength> strength)
+                  std::optional<JointStrength> strength, double alpha)
                {
-                 JointBehaviour b{law, model, ks, ratio, kr, strength.value_or(JointStrength{})};
+                 JointBehaviour b{law, model, ks, ratio, kr, strength.value_or(JointStrength{}),
+                                  alpha};
                  validate(b, law ? law->name() : std::string("?"));
                  return b;
                }),
            py::arg("law"), py::arg("shear_model") = ShearModel::constant,
            py::arg("shear_stiffness") = 0.0, py::arg("shear_stiffness_ratio") = 0.0,
-           py::arg("residual_stiffness") = 0.0, py::arg("strength") = py::none())
+           py::arg("residual_stiffness") = 0.0, py::arg("strength") = py::none(),
+           py::arg("effective_stress_coefficient") = 1.0)
       .def_readonly("shear_model", &JointBehaviour::shear_model, "how k_s is set")
       .def_readonly("shear_stiffness", &JointBehaviour::shear_stiffness, "k_s [Pa/m] (ShearModel::constant), >= 0")
       .def_readonly("shear_stiffness_ratio", &JointBehaviour::shear_stiffness_ratio, "α [-] (ShearModel::proportional), >= 0")
       .def_readonly("residual_stiffness", &JointBehaviour::residual_stiffness, "k_r [Pa/m], >= 0")
       .def_readonly("strength", &JointBehaviour::strength, "shear strength (default none: elastic joint)")
+      .def_readonly("effective_stress_coefficient", &JointBehaviour::effective_stress_coefficient,
+                    "α [-] of σ'_n = σ_n - α p (water in the joint)")
       .def_property_readonly("law", [](const JointBehaviour& b)
                              { return std::const_pointer_cast<rockjoint::constitutive::ClosureLaw>(b.law); },
                              "the normal-closure law σ(Δ) (a law with history unloads on its "
@@ -161,7 +165,8 @@ void declare_joint(py::module_& m)
 
   m.def(
       "joint_response",
-      [](const JointBehaviour& b, const Array<double>& jump, const JointPointState& converged)
+      [](const JointBehaviour& b, const Array<double>& jump, const JointPointState& converged,
+         double pore_pressure)
       {
         const int gdim = static_cast<int>(jump.size());
         if (gdim != 2 && gdim != 3)
@@ -170,7 +175,7 @@ void declare_joint(py::module_& m)
         std::array<double, 3> j{};
         std::copy_n(jump.data(), gdim, j.begin());
         JointPointState trial;
-        const LocalResponse r = joint_response(b, gdim, j, converged, trial);
+        const LocalResponse r = joint_response(b, gdim, j, converged, trial, pore_pressure);
         py::array_t<double> t(gdim), D({gdim, gdim});
         for (int i = 0; i < gdim; ++i)
         {
@@ -189,9 +194,10 @@ void declare_joint(py::module_& m)
         return out;
       },
       py::arg("behaviour"), py::arg("local_jump"), py::arg("converged") = JointPointState{},
-      "{traction [Pa], tangent ∂t/∂j [Pa/m], closure [m], normal_stress [Pa], status, "
-      "shear_state, state (trial JointPointState)} at local jump (n, t1[, t2]) [m] from the "
-      "converged state");
+      py::arg("pore_pressure") = 0.0,
+      "{traction [Pa], tangent ∂t/∂j [Pa/m], closure [m], normal_stress [Pa] (effective: the "
+      "law's σ'), status, shear_state, state (trial JointPointState)} at local jump (n, t1[, t2]) "
+      "[m] from the converged state, with the fluid pressure p [Pa] in the joint (0: dry)");
 
   m.def(
       "local_response",

@@ -558,3 +558,31 @@ TEST(FemJointBehaviour, ClosureAtNormalStressRefusesBadTargetsWithNamedErrors)
   EXPECT_NEAR(closure_at_normal_stress(b, 5e6), 5e6 / (kn + 1e9), 1e-14 * 5e6 / (kn + 1e9));
   expect_error([&] { closure_at_normal_stress(JointBehaviour{}, 1e6); }, "no closure law");
 }
+
+// Water in the joint (joint_behaviour.hpp): the law and the strength see σ' = σ_n - α p, the
+// water pushes the walls apart with α p; the closed forms of the linear test law (σ' = k_n Δ).
+TEST(JointSlip, WaterPressureActsThroughTheEffectiveStress)
+{
+  const double phi = 30 * deg, c = 1e5, closure = 1e-4, p = 4e5;
+  JointBehaviour b = coulomb(phi, c);
+  JointPointState trial;
+  const double sigma_eff = kn * closure;               // the law's σ' at this closure
+  // Inside the cone: t_n = -(σ' + α p), the tangent is the dry one (p is a given load).
+  const LocalResponse dry = joint_response(b, 2, {-closure, 1e-5, 0.0}, {}, trial);
+  const LocalResponse wet = joint_response(b, 2, {-closure, 1e-5, 0.0}, {}, trial, p);
+  EXPECT_DOUBLE_EQ(wet.traction[0], -(sigma_eff + p));
+  EXPECT_DOUBLE_EQ(wet.normal_stress, sigma_eff);
+  for (int i = 0; i < 2; ++i)
+    for (int k = 0; k < 2; ++k)
+      EXPECT_EQ(wet.tangent[i][k], dry.tangent[i][k]);
+  // Sliding: the strength is c + σ' tan φ, not c + (σ' + p) tan φ.
+  const LocalResponse slip = joint_response(b, 2, {-closure, 5e-4, 0.0}, {}, trial, p);
+  EXPECT_EQ(slip.shear_state, ShearState::slip);
+  EXPECT_NEAR(slip.traction[1], c + sigma_eff * std::tan(phi), 1e-9 * sigma_eff);
+  // α scales the water's push; α outside [0, 1] is refused, named.
+  b.effective_stress_coefficient = 0.5;
+  EXPECT_DOUBLE_EQ(joint_response(b, 2, {-closure, 1e-5, 0.0}, {}, trial, p).traction[0],
+                   -(sigma_eff + 0.5 * p));
+  b.effective_stress_coefficient = 1.5;
+  rockjoint::testing::expect_error([&] { validate(b, "fault"); }, "effective_stress_coefficient");
+}

@@ -213,6 +213,13 @@ PYBIND11_MODULE(_rockjoint_fem_coupling, m)
           py::arg("initial_jump"), "(num_points, gdim) initial local jump j0 [m]")
       .def_property_readonly("initial_jump", [](const InterfaceAssembler& a)
                              { return to_numpy(a.initial_jump(), a.gdim()); })
+      .def(
+          "set_pore_pressure",
+          [](InterfaceAssembler& a, const Array<double>& p) { a.set_pore_pressure(span_of(p)); },
+          py::arg("pressure"), "(num_points,) fluid pressure p [Pa] in the joint at each point")
+      .def_property_readonly("pore_pressure", [](const InterfaceAssembler& a)
+                             { return to_numpy(a.pore_pressure()); },
+                             "(num_points,) fluid pressure p [Pa] at each point")
       .def("commit_state", &InterfaceAssembler::commit_state, "converged point state <- trial")
       .def("revert_state", &InterfaceAssembler::revert_state, "trial point state <- converged")
       .def("reset_state", &InterfaceAssembler::reset_state,

@@ -212,6 +212,22 @@ class JointInterface:
         """(num_points, gdim) initial local jump j0 [m] of this rank's joint points."""
         return self._cpp.initial_jump
 
+    def set_pore_pressure(self, pressure) -> None:
+        """Fluid pressure p [Pa] in the joint at every point of this rank (num_points,): the law
+        and the strength see σ'_n = σ_n - α p, the water pushes the walls apart with α p
+        (joint/joint_behaviour.hpp)."""
+        p = np.asarray(pressure, dtype=float)
+        if p.shape != (self.num_points,):
+            raise ValueError(f"set_pore_pressure: pressure has shape {p.shape}; expected ({self.num_points},) "
+                             "(one value per joint point on this rank)")
+        if not np.all(np.isfinite(p)):
+            raise ValueError(f"set_pore_pressure: pressure[{int(np.argmax(~np.isfinite(p)))}] is not finite [Pa]")
+        self._cpp.set_pore_pressure(np.ascontiguousarray(p))
+
+    def pore_pressure(self) -> np.ndarray:
+        """The fluid pressure p [Pa] set at every point of this rank."""
+        return self._cpp.pore_pressure
+
     def commit_state(self) -> None:
         """Accept the trial point state (after a converged load step)."""
         self._cpp.commit_state()

@@ -89,6 +89,7 @@ class JointedRockModel:
         the block): joint sets smeared in these blocks (docs/equivalent-continuum.md); the other
         blocks stay elastic and may hold discrete joints. Plane strain in 2D.
     :beyond_range: "warn" (a RangeWarning) or "raise" (BeyondRangeError): a law past its range (law_range.py).
+    :effective_stress_coefficient: α of σ'_n = σ_n - α p for water in the joints (fem.water.joint_pressure).
 
     Composed of: blocks (ElasticBlocks), load_path (LoadPath), smeared (SmearedBlocks or None)
     and the problem (problem.JointedProblem: F, J, joints, linear solver) that the project's
@@ -101,7 +102,7 @@ class JointedRockModel:
                  quadrature: str = "nodal", linear_solver: str = "auto",
                  newton: NewtonOptions | None = None, petsc_options: dict | None = None,
                  options_prefix: str | None = None, density=None, gravity=STANDARD_GRAVITY,
-                 continuum: dict | None = None, beyond_range: str = "warn"):
+                 continuum: dict | None = None, beyond_range: str = "warn", effective_stress_coefficient=1.0):
         t0 = time.perf_counter()
         self.dmesh = dmesh
         self.mesh = dmesh.mesh
@@ -117,6 +118,7 @@ class JointedRockModel:
         self.behaviours = joint_behaviours(names_of(dmesh, "joints"), joints or {}, shear_stiffness=shear_stiffness,
                                            shear_stiffness_ratio=shear_stiffness_ratio,
                                            residual_stiffness=residual_stiffness, strength=strength,
+                                           effective_stress_coefficient=effective_stress_coefficient,
                                            argument="joints", closure_laws_only=True)
         self.densities = check_density(dmesh, density)  #: {block name: ρ [kg/m³]} ({} without gravity)
         self.stages: list[StageResult] = []  #: the result of every stage, in order

@@ -69,6 +69,9 @@ class JointedProblem(JointedSNESProblem, NewtonProblem):
         self.r = la_petsc.create_vector([(V.dofmap.index_map, V.dofmap.index_map_bs)])
         self._r_joint = self.r.duplicate()
         self._saved = None            # (u, load factor) of the last converged load step
+        # water in the joints (rockjoint.fem.water.joint_pressure): p per joint point at the end
+        # of the next stage, ramped from its value at the stage's start; None: dry
+        self._pressure_target = self._pressure_start = self._pressure_applied = None
         self.step_iterations = 0      #: Newton iterations of the load step being solved
         self.clock = None             #: progress clock (stages.StageClock) of the stage being solved
         #: wall-clock seconds on this rank: bulk_assembly (K), interface_residual and
@@ -127,6 +130,23 @@ class JointedProblem(JointedSNESProblem, NewtonProblem):
         self.load_path.begin_stage(self.u.x.array, hold=hold)
         self.load_factor = 0.0
         self.step_iterations = 0
+        if self._pressure_target is not None:   # the water ramps from where it stands now
+            self._pressure_start = (np.zeros_like(self._pressure_target) if self._pressure_applied is None
+                                    else self._pressure_applied.copy())
+
+    def set_pressure_target(self, pressure: np.ndarray) -> None:
+        """The fluid pressure p [Pa] at every joint point of this rank at the end of the next
+        stage (ramped over it like the loads, from its value at the stage's start)."""
+        self._pressure_target = np.array(pressure, dtype=float)
+
+    def _apply_pressure(self) -> None:
+        """p(λ) = p_start + λ (p_target - p_start) into the joints (once per load factor)."""
+        if self._pressure_target is None or self._pressure_start is None:
+            return
+        p = self._pressure_start + self.load_factor * (self._pressure_target - self._pressure_start)
+        if self._pressure_applied is None or not np.array_equal(p, self._pressure_applied):
+            self.coupling.interface.set_pore_pressure(p)
+            self._pressure_applied = p
 
     # ---- the residual and the Jacobian ---------------------------------------------------
     def load_norm(self, load_factor: float) -> float:
@@ -136,6 +156,7 @@ class JointedProblem(JointedSNESProblem, NewtonProblem):
     def _joint_forces(self) -> bool:
         """r_joint(u) into self._r_joint (owned entries complete); False if not finite."""
         t0 = time.perf_counter()
+        self._apply_pressure()
         rj = self._r_joint
         with rj.localForm() as loc:
             loc.set(0.0)

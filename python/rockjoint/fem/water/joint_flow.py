@@ -78,6 +78,8 @@ class NetworkFlow:
     flow_rates: dict             # {boundary: Q into the network there [m³/s; m²/s in 2D]}
     heads: dict                  # the heads given {boundary: h [m]}
     fluid: Fluid = field(default_factory=Fluid)
+    #: the node of every joint point (result.gather_joints order): p there = ρ g (h - z)
+    point_nodes: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.int64))
 
     def write(self, path: str, comm=None) -> str:
         """The network as an XDMF grid for ParaView (segments in 2D, triangles in 3D; HDF5 data
@@ -221,7 +223,7 @@ def network_flow(model, transmissivity: Mapping[str, Callable], heads: Mapping[s
     h = np.where(np.isnan(head), 0.0, head)
     inflow = K @ h                                      # net flow into the network at each node
     rates = {name: float(inflow[fixed == k].sum()) for k, name in enumerate(heads)}
-    return NetworkFlow(nodes, head, elements, tags, t_element, t_point, rates, dict(heads), fluid)
+    return NetworkFlow(nodes, head, elements, tags, t_element, t_point, rates, dict(heads), fluid, index)
 
 
 def _merge_points(x: np.ndarray, tolerance: float):

@@ -1,0 +1,48 @@
+# SPDX-License-Identifier: MIT
+"""Water pressure in the joints of a JointedRockModel, acting back on them (docs/flow.md, "Water
+that pushes back"): each joint point carries a fluid pressure p; its closure law and its strength
+see the effective normal stress σ'_n = σ_n - α p (α: the joint's effective_stress_coefficient, 1
+by default) and the water pushes both walls apart with α p (joint/joint_behaviour.hpp, in C++:
+the joint element learns σ'_n without knowing about flow).
+
+A pressure set here is the value at the end of the model's next stage: it ramps over that stage
+from the value at its start (0 before any), like the loads, so a joint that water opens
+(hydraulic jacking, p above the total normal stress) is approached load step by load step.
+Where such a joint has no residual stiffness the model is singular (the linear solver says so).
+"""
+from __future__ import annotations
+
+from typing import Callable, Union
+
+import numpy as np
+
+Pressure = Union[float, Callable, np.ndarray]
+
+
+def joint_point_coordinates(model) -> np.ndarray:
+    """(num_points, gdim) coordinates [m] of the model's joint points on this rank."""
+    model.prepare()
+    return np.asarray(model.interface.state()["coordinates"], dtype=float).reshape(-1, model.gdim)
+
+
+def set_joint_pressure(model, pressure: Pressure) -> np.ndarray:
+    """Water pressure p [Pa] in the joints at the end of the next stage: one value, a callable
+    f(x) of the points' coordinates x (gdim, n) [m] returning n values (e.g. hydrostatic
+    ρ g (h - z)), or an array of one value per joint point of this rank (the order of
+    model.interface.state()). Returns the values set on this rank. ValueError for a non-finite
+    pressure or a wrong size."""
+    x = joint_point_coordinates(model)
+    if callable(pressure):
+        p = np.asarray(pressure(x.T), dtype=float).reshape(-1)
+    elif np.ndim(pressure) == 0:
+        p = np.full(x.shape[0], float(pressure))
+    else:
+        p = np.asarray(pressure, dtype=float).reshape(-1)
+    if p.shape != (x.shape[0],):
+        raise ValueError(f"set_joint_pressure: {p.size} values for {x.shape[0]} joint points on this rank")
+    if not np.all(np.isfinite(p)):
+        raise ValueError(f"set_joint_pressure: the pressure is not finite at point {int(np.argmax(~np.isfinite(p)))} "
+                         f"(x = {x[int(np.argmax(~np.isfinite(p)))]} m) [Pa]")
+    model.problem().set_pressure_target(p)
+    return p
+

@@ -1,0 +1,83 @@
+# SPDX-License-Identifier: MIT
+"""Steady water along one joint, coupled both ways (issue 45, items 2-3): the joint under a
+uniform normal stress σ between two heads. With q the flow per unit width, T(Δ) the cubic law of
+the aperture e0 - Δ and Δ(σ') Barton-Bandis' inverse, continuity gives T dp/dx = -μ q, so
+
+    G(p) = ∫_p^{p_L} T(Δ(σ - α p')) dp' = μ q x,   μ q = G(p_R) / L,
+
+a profile that is nonlinear because T depends on p. The reference is that quadrature (SciPy quad
+and brentq on the closed forms), independent of the code under test; the FE joint network
+converges to it at second order in the element size."""
+import math
+
+import numpy as np
+import pytest
+from scipy.integrate import quad
+from scipy.optimize import brentq
+
+from fe_stack import require_fe
+require_fe()
+
+from mpi4py import MPI  # noqa: E402
+
+import rockjoint  # noqa: E402
+from rockjoint import meshes  # noqa: E402
+from rockjoint.fem import Fluid, JointedRockModel, NewtonOptions, distribute  # noqa: E402
+from rockjoint.fem.water.coupled import coupled_steady  # noqa: E402
+
+KNI, VM = 1e10, 1e-3            # Barton-Bandis: 10 MPa/mm, 1 mm
+E0 = 1.2e-3                     # the joint's aperture with no load [m]
+SIGMA = 5e6                     # normal stress on the joint [Pa]
+P_LEFT, P_RIGHT = 4e6, 1e6      # water pressure at the ends [Pa]
+LENGTH, Z = 1.0, 1.0            # the joint: 0 <= x <= 1 m at z = 1 m
+FLUID = Fluid()
+
+
+def transmissivity(closure):
+    return (E0 - np.asarray(closure)) ** 3 / 12.0
+
+
+def closure_at(effective):
+    return effective * VM / (KNI * VM + effective)
+
+
+def reference_pressure(x):
+    """p(x) from G(p) = (x / L) G(p_R) (module docstring)."""
+    g = lambda p: quad(lambda s: float(transmissivity(closure_at(SIGMA - s))), p, P_LEFT, epsabs=0, epsrel=1e-13)[0]  # noqa: E731
+    total = g(P_RIGHT)
+    fraction = np.clip(np.asarray(x) / LENGTH, 0.0, 1.0)     # round-off of the mesh's end points
+    return np.array([P_LEFT if f == 0 else P_RIGHT if f == 1 else
+                     brentq(lambda p: g(p) - f * total, P_RIGHT, P_LEFT, xtol=1e-6, rtol=1e-14) for f in fraction])
+
+
+def coupled_joint(joint_size, comm=MPI.COMM_WORLD):
+    # Soft blocks (E << the joint's stiffness × length) pass the top traction to the joint
+    # undistributed: σ_n = σ along it, as the reference assumes (checked below).
+    jm = meshes.column(LENGTH, 2.0, [Z], dim=2, mesh_size=0.25, joint_mesh_size=joint_size, comm=comm)
+    model = JointedRockModel(distribute(jm, comm), rock=(1e5, 0.0), joints={"joint_1": rockjoint.BartonBandis(KNI, VM)},
+                             shear_stiffness=1e6, plane="strain", newton=NewtonOptions(verbose=False))
+    model.fix("bottom", "y")
+    model.fix("left", "x")
+    model.add_traction("top", (0.0, -SIGMA))
+    heads = {"left": Z + P_LEFT / (FLUID.density * FLUID.gravity), "right": Z + P_RIGHT / (FLUID.density * FLUID.gravity)}
+    water = coupled_steady(model, {"joint_1": transmissivity}, heads, FLUID, tolerance=1e-10)
+    state = model.solution.gather_joints()
+    x = np.asarray(state["coordinates"]).reshape(-1, 2)[:, 0]
+    return model, water, state, x
+
+
+def test_steady_water_along_a_joint_is_the_nonlinear_quadrature():
+    errors = []
+    for h in (0.1, 0.05):
+        model, water, state, x = coupled_joint(h)
+        total = np.asarray(state["normal_stress"]) + water.pressure          # σ'_n + α p
+        np.testing.assert_allclose(total, SIGMA, rtol=1e-3)                   # the uniform σ assumed
+        ref = reference_pressure(x)
+        errors.append(np.max(np.abs(water.pressure - ref)) / (P_LEFT - P_RIGHT))
+        print(f"h = {h} m: max |p - p_ref| / (p_L - p_R) = {errors[-1]:.3e}, {water.iterations} iterations, "
+              f"σ_n within {np.max(np.abs(total / SIGMA - 1)):.1e} of σ")
+    # the profile is not the linear one of a joint that the water does not open
+    linear = P_LEFT + (P_RIGHT - P_LEFT) * x / LENGTH
+    assert np.max(np.abs(ref - linear)) > 50 * errors[-1] * (P_LEFT - P_RIGHT)
+    assert errors[-1] < 1e-3 and errors[-1] < 0.35 * errors[0]   # second order: halving h quarters it
+    assert water.iterations < 30
