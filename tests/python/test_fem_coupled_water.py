@@ -50,19 +50,23 @@ def reference_pressure(x):
                      brentq(lambda p: g(p) - f * total, P_RIGHT, P_LEFT, xtol=1e-6, rtol=1e-14) for f in fraction])
 
 
-def coupled_joint(joint_size, comm=MPI.COMM_WORLD):
+def coupled_joint(joint_size, comm=MPI.COMM_WORLD, dim=2):
     # Soft blocks (E << the joint's stiffness × length) pass the top traction to the joint
     # undistributed: σ_n = σ along it, as the reference assumes (checked below).
-    jm = meshes.column(LENGTH, 2.0, [Z], dim=2, mesh_size=0.25, joint_mesh_size=joint_size, comm=comm)
+    jm = meshes.column(LENGTH, 2.0, [Z], dim=dim, mesh_size=0.25 if dim == 2 else 0.5, joint_mesh_size=joint_size,
+                       comm=comm)
     model = JointedRockModel(distribute(jm, comm), rock=(1e5, 0.0), joints={"joint_1": rockjoint.BartonBandis(KNI, VM)},
-                             shear_stiffness=1e6, plane="strain", newton=NewtonOptions(verbose=False))
-    model.fix("bottom", "y")
+                             shear_stiffness=1e6, plane="strain" if dim == 2 else None,
+                             newton=NewtonOptions(verbose=False))
+    model.fix("bottom", "y" if dim == 2 else "z")
     model.fix("left", "x")
-    model.add_traction("top", (0.0, -SIGMA))
+    if dim == 3:
+        model.fix("front", "y")
+    model.add_traction("top", (0.0,) * (dim - 1) + (-SIGMA,))
     heads = {"left": Z + P_LEFT / (FLUID.density * FLUID.gravity), "right": Z + P_RIGHT / (FLUID.density * FLUID.gravity)}
     water = coupled_steady(model, {"joint_1": transmissivity}, heads, FLUID, tolerance=1e-10)
     state = model.solution.gather_joints()
-    x = np.asarray(state["coordinates"]).reshape(-1, 2)[:, 0]
+    x = np.asarray(state["coordinates"]).reshape(-1, dim)[:, 0]
     return model, water, state, x
 
 
@@ -81,3 +85,16 @@ def test_steady_water_along_a_joint_is_the_nonlinear_quadrature():
     assert np.max(np.abs(ref - linear)) > 50 * errors[-1] * (P_LEFT - P_RIGHT)
     assert errors[-1] < 1e-3 and errors[-1] < 0.35 * errors[0]   # second order: halving h quarters it
     assert water.iterations < 30
+
+
+def test_steady_water_along_a_joint_plane_in_3d():
+    """The same joint as a plane in a 3D column (flow along x, uniform across): the same profile,
+    converging with the size of the joint's triangles."""
+    errors = []
+    for h in (0.1, 0.05):
+        model, water, state, x = coupled_joint(h, dim=3)
+        total = np.asarray(state["normal_stress"]) + water.pressure
+        np.testing.assert_allclose(total, SIGMA, rtol=1e-3)
+        errors.append(np.max(np.abs(water.pressure - reference_pressure(x))) / (P_LEFT - P_RIGHT))
+        print(f"3D, h = {h} m: max |p - p_ref| / (p_L - p_R) = {errors[-1]:.3e}, {water.iterations} iterations")
+    assert errors[-1] < 1e-4 and errors[-1] < 0.5 * errors[0]

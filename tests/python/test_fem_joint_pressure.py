@@ -51,3 +51,12 @@ def test_bad_pressures_are_refused_with_their_reason():
         set_joint_pressure(model, np.zeros(3))
     with pytest.raises(ValueError, match="effective_stress_coefficient.*\\[0, 1\\]"):
         column(2, alpha=1.5)
+
+
+def test_water_that_would_open_an_unheld_joint_is_refused_naming_it():
+    """Hydraulic jacking without a residual stiffness: nothing would hold the joint open, so the
+    water is refused before the solve, naming the joint, the pressure and the stress."""
+    model = column(2)                                   # k_r = 0
+    with_water(model, 4.9e6)                            # below σ: fine
+    with pytest.raises(ValueError, match=r"joint 'joint_1'.*water up to 5\.2 MPa.*residual_stiffness"):
+        set_joint_pressure(model, 5.2e6)
