@@ -22,3 +22,4 @@ echo "== flow along the joint"; /usr/bin/python3 bench/bench_flow.py --repeat 3
 echo "== accuracy ladder"; /usr/bin/python3 bench/bench_accuracy_ladder.py
 echo "== equivalent continuum"; /usr/bin/python3 bench/bench_continuum.py
 echo "== slipping-joint profile"; /usr/bin/python3 bench/bench_tunnel_profile.py --repeat 3
+echo "== coupled water"; /usr/bin/python3 bench/bench_coupled_water.py --repeat 3
