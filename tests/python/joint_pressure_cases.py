@@ -32,11 +32,14 @@ def closure(s: float, kr: float = 0.0) -> float:
     return (-b - math.sqrt(b * b - 4 * a * c)) / (2 * a)
 
 
-def column(dim: int, comm=MPI.COMM_WORLD, residual_stiffness: float = 0.0, alpha: float = 1.0):
-    """The loaded column (first stage solved, dry): returns the model."""
-    jm = meshes.column(1.0, 2.0, [1.0], dim=dim, mesh_size=0.5, comm=comm)
-    model = JointedRockModel(distribute(jm, comm), rock=(E, NU), joints={"joint_1": rockjoint.BartonBandis(KNI, VM)},
-                             shear_stiffness=1e9, residual_stiffness=residual_stiffness,
+def loaded_column(dim: int, comm=MPI.COMM_WORLD, *, rock=(E, NU), shear_stiffness: float = 1e9,
+                  mesh_size: float = 0.5, joint_mesh_size=None, residual_stiffness: float = 0.0,
+                  alpha: float = 1.0):
+    """The 1 m wide, 2 m high column, its joint at z = 1 m, rollers at the bottom and sides, σ on
+    top (not solved): returns the model."""
+    jm = meshes.column(1.0, 2.0, [1.0], dim=dim, mesh_size=mesh_size, joint_mesh_size=joint_mesh_size, comm=comm)
+    model = JointedRockModel(distribute(jm, comm), rock=rock, joints={"joint_1": rockjoint.BartonBandis(KNI, VM)},
+                             shear_stiffness=shear_stiffness, residual_stiffness=residual_stiffness,
                              effective_stress_coefficient=alpha, plane="strain" if dim == 2 else None,
                              newton=NewtonOptions(verbose=False))
     model.fix("bottom", "y" if dim == 2 else "z")
@@ -44,6 +47,12 @@ def column(dim: int, comm=MPI.COMM_WORLD, residual_stiffness: float = 0.0, alpha
     if dim == 3:
         model.fix("front", "y")
     model.add_traction("top", (0.0,) * (dim - 1) + (-SIGMA,))
+    return model
+
+
+def column(dim: int, comm=MPI.COMM_WORLD, residual_stiffness: float = 0.0, alpha: float = 1.0):
+    """The loaded column (first stage solved, dry): returns the model."""
+    model = loaded_column(dim, comm, residual_stiffness=residual_stiffness, alpha=alpha)
     model.solve(name="load")
     return model
 

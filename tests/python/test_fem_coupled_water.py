@@ -8,7 +8,6 @@ the aperture e0 - Δ and Δ(σ') Barton-Bandis' inverse, continuity gives T dp/d
 a profile that is nonlinear because T depends on p. The reference is that quadrature (SciPy quad
 and brentq on the closed forms), independent of the code under test; the FE joint network
 converges to it at second order in the element size."""
-import math
 
 import numpy as np
 import pytest
@@ -20,14 +19,11 @@ require_fe()
 
 from mpi4py import MPI  # noqa: E402
 
-import rockjoint  # noqa: E402
-from rockjoint import meshes  # noqa: E402
-from rockjoint.fem import Fluid, JointedRockModel, NewtonOptions, distribute  # noqa: E402
+from joint_pressure_cases import KNI, SIGMA, VM, loaded_column  # noqa: E402  (the column and its joint)
+from rockjoint.fem import Fluid  # noqa: E402
 from rockjoint.fem.water.coupled import coupled_steady  # noqa: E402
 
-KNI, VM = 1e10, 1e-3            # Barton-Bandis: 10 MPa/mm, 1 mm
 E0 = 1.2e-3                     # the joint's aperture with no load [m]
-SIGMA = 5e6                     # normal stress on the joint [Pa]
 P_LEFT, P_RIGHT = 4e6, 1e6      # water pressure at the ends [Pa]
 LENGTH, Z = 1.0, 1.0            # the joint: 0 <= x <= 1 m at z = 1 m
 FLUID = Fluid()
@@ -53,16 +49,8 @@ def reference_pressure(x):
 def coupled_joint(joint_size, comm=MPI.COMM_WORLD, dim=2):
     # Soft blocks (E << the joint's stiffness × length) pass the top traction to the joint
     # undistributed: σ_n = σ along it, as the reference assumes (checked below).
-    jm = meshes.column(LENGTH, 2.0, [Z], dim=dim, mesh_size=0.25 if dim == 2 else 0.5, joint_mesh_size=joint_size,
-                       comm=comm)
-    model = JointedRockModel(distribute(jm, comm), rock=(1e5, 0.0), joints={"joint_1": rockjoint.BartonBandis(KNI, VM)},
-                             shear_stiffness=1e6, plane="strain" if dim == 2 else None,
-                             newton=NewtonOptions(verbose=False))
-    model.fix("bottom", "y" if dim == 2 else "z")
-    model.fix("left", "x")
-    if dim == 3:
-        model.fix("front", "y")
-    model.add_traction("top", (0.0,) * (dim - 1) + (-SIGMA,))
+    model = loaded_column(dim, comm, rock=(1e5, 0.0), shear_stiffness=1e6, mesh_size=0.25 if dim == 2 else 0.5,
+                          joint_mesh_size=joint_size)
     heads = {"left": Z + P_LEFT / (FLUID.density * FLUID.gravity), "right": Z + P_RIGHT / (FLUID.density * FLUID.gravity)}
     water = coupled_steady(model, {"joint_1": transmissivity}, heads, FLUID, tolerance=1e-10)
     state = model.solution.gather_joints()
