@@ -11,6 +11,11 @@ from the value at its start (0 before any), like the loads, so a joint that wate
 Where such a joint has no residual stiffness nothing would hold it open: `set_joint_pressure`
 refuses water that reaches the total normal stress such a joint carries in the model's solved
 state, naming the joint (the check a scene's statics make for tension).
+
+Water already in place in the initial state (a water table above the rock mass: hydrostatic p0 =
+ρ g (z_table - z)) is set with `set_initial_joint_pressure` before the first solve: the in-situ
+stress is then the total stress, the joints are pre-closed at the effective stress σ_n0 - α p0
+(mechanics/joint_initial_state.py) and every later stage ramps from p0.
 """
 from __future__ import annotations
 
@@ -36,6 +41,33 @@ def set_joint_pressure(model, pressure: Pressure) -> np.ndarray:
     ρ g (h - z)), or an array of one value per joint point of this rank (the order of
     model.interface.state()). Returns the values set on this rank. ValueError for a non-finite
     pressure or a wrong size."""
+    p = _values(model, pressure)
+    _check_jacking(model, p)
+    model.problem().set_pressure_target(p)
+    return p
+
+
+def set_initial_joint_pressure(model, pressure: Pressure) -> np.ndarray:
+    """Water p0 [Pa] in the joints from the initial state on (given as for set_joint_pressure):
+    the model's in-situ stress is the total stress, its joints are pre-closed at the effective
+    normal stress σ_n0 - α p0, and the first stage starts (and ramps) from p0. Before the first
+    solve, after set_in_situ_stress (RuntimeError otherwise: without an in-situ stress nothing holds
+    the water). Returns the values set on this rank."""
+    if model.stages:
+        raise RuntimeError("set_initial_joint_pressure: the initial water belongs to the initial state; "
+                           "set it before the first solve() (later: set_joint_pressure)")
+    if model.load_path.in_situ is None:
+        raise RuntimeError("set_initial_joint_pressure: the initial water needs the in-situ stress that holds "
+                           "it: set_in_situ_stress first")
+    p = _values(model, pressure)
+    model.problem().initial_pressure = p
+    model.load_path.stage.initial_state_set = False    # pre-close the joints again, with p0
+    model.prepare()
+    return p
+
+
+def _values(model, pressure: Pressure) -> np.ndarray:
+    """The pressure [Pa] at every joint point of this rank from one value, a callable or an array."""
     x = joint_point_coordinates(model)
     if callable(pressure):
         p = np.asarray(pressure(x.T), dtype=float).reshape(-1)
@@ -48,8 +80,6 @@ def set_joint_pressure(model, pressure: Pressure) -> np.ndarray:
     if not np.all(np.isfinite(p)):
         raise ValueError(f"set_joint_pressure: the pressure is not finite at point {int(np.argmax(~np.isfinite(p)))} "
                          f"(x = {x[int(np.argmax(~np.isfinite(p)))]} m) [Pa]")
-    _check_jacking(model, p)
-    model.problem().set_pressure_target(p)
     return p
 
 
