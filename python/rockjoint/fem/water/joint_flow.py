@@ -145,9 +145,14 @@ def network_flow(model, transmissivity: Mapping[str, Callable], heads: Mapping[s
         raise ValueError("network_flow: the model has no solved stage yet (solve() it first)")
     conditions = Conditions.given(model, heads, pressures, rates)
     network, state, t_point = joint_network(model, transmissivity, result)
+    return steady_network(network, state, t_point, conditions, boundary_nodes(model, network, conditions), fluid)
+
+
+def steady_network(network, state, t_point, conditions, owner, fluid) -> NetworkFlow:
+    """The steady NetworkFlow on `network` with T [m³] at its points and the boundary `owner` of
+    every node (network.boundary_nodes)."""
     t_element = t_point.reshape(network.elements.shape).mean(axis=1)
     K = network.conductance(fluid.conductivity_factor * t_element)
-    owner = boundary_nodes(model, network, conditions)
     head = solve_heads(network, K, conditions, owner, fluid, t_element > 0)
     return network_result(network, state, K, head, owner, conditions, t_element, t_point, fluid)
 

@@ -19,7 +19,7 @@ A node on two boundaries takes the first condition listed (heads, then pressures
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Mapping
 
 import numpy as np
@@ -80,6 +80,7 @@ class Network:
     elements: np.ndarray
     point_nodes: np.ndarray
     tolerance: float
+    _pattern: tuple | None = field(default=None, repr=False)   #: conductance's element integrals and sparsity
 
     @classmethod
     def of_points(cls, x: np.ndarray) -> "Network":
@@ -91,13 +92,20 @@ class Network:
         return cls(nodes, index.reshape(-1, x.shape[1]), index, tolerance)
 
     def conductance(self, factor: np.ndarray) -> sp.csr_matrix:
-        """K = Σ_e factor_e ∫ ∇N_i·∇N_j (factor per element, e.g. ρ g T / μ for heads)."""
-        per = self.elements.shape[1]
-        local = element_conductance(self.nodes[self.elements]) * factor[:, None, None]
-        rows = np.repeat(self.elements, per, axis=1).ravel()
-        cols = np.tile(self.elements, (1, per)).ravel()
+        """K = Σ_e factor_e ∫ ∇N_i·∇N_j (factor per element, e.g. ρ g T / μ for heads). The
+        element integrals and the matrix's sparsity are computed once per network: the coupled
+        solves assemble K at every iteration, with new factors only."""
+        if self._pattern is None:
+            per = self.elements.shape[1]
+            n = self.nodes.shape[0]
+            keys = (np.repeat(self.elements, per, axis=1).ravel() * n + np.tile(self.elements, (1, per)).ravel())
+            unique, position = np.unique(keys, return_inverse=True)
+            indptr = np.searchsorted(unique // n, np.arange(n + 1))
+            self._pattern = (element_conductance(self.nodes[self.elements]), position, unique % n, indptr)
+        local, position, indices, indptr = self._pattern
+        data = np.bincount(position, weights=(local * factor[:, None, None]).ravel(), minlength=indices.size)
         n = self.nodes.shape[0]
-        return sp.csr_matrix((local.ravel(), (rows, cols)), shape=(n, n))
+        return sp.csr_matrix((data, indices, indptr), shape=(n, n))
 
     def lumped_measure(self) -> np.ndarray:
         """∫ N_i over the network: each node's share of the joint length (2D) or area (3D) [m, m²]."""
@@ -168,11 +176,16 @@ def solve_heads(network: Network, K: sp.csr_matrix, conditions: Conditions, owne
                 raise ValueError(f"network_flow: no joint meets boundary {name!r}: nothing to inject the rate into")
             dof[at] = at[0]
     used, dof = np.unique(dof, return_inverse=True)
-    P = sp.csr_matrix((np.ones(n), (np.arange(n), dof)), shape=(n, used.size))
-    A = (P.T @ K @ P).tocsr()
-    b = np.zeros(used.size) if rhs is None else P.T @ rhs
-    if diagonal is not None:
-        A = A + sp.diags(P.T @ diagonal)
+    if used.size == n:           # no port: the nodes are the dofs
+        A, b = K, (np.zeros(n) if rhs is None else np.array(rhs, dtype=float))
+        if diagonal is not None:
+            A = (K + sp.diags(diagonal)).tocsr()
+    else:
+        P = sp.csr_matrix((np.ones(n), (np.arange(n), dof)), shape=(n, used.size))
+        A = (P.T @ K @ P).tocsr()
+        b = np.zeros(used.size) if rhs is None else P.T @ rhs
+        if diagonal is not None:
+            A = (A + sp.diags(P.T @ diagonal)).tocsr()
     h = np.full(used.size, np.nan)
     z = network.nodes[:, -1]
     for k, (name, kind) in enumerate(named):
@@ -199,7 +212,8 @@ def solve_heads(network: Network, K: sp.csr_matrix, conditions: Conditions, owne
                                  "or a pressure through open joints: there is no steady state")
         free &= reached
     if np.any(free):
-        h[free] = spsolve(A[free][:, free].tocsc(), b[free] - A[free][:, known] @ h[known])
+        rows = A[free]
+        h[free] = spsolve(rows[:, free].tocsc(), b[free] - rows[:, known] @ h[known])
     return h[dof]
 
 

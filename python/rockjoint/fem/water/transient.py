@@ -41,7 +41,7 @@ from typing import Callable, Mapping
 import numpy as np
 
 from .acceleration import accelerator
-from .coupled import CouplingError, pressure_at_points, pressure_scale, scatter_pressure
+from .coupled import CouplingError, gathered_pressure, pressure_at_points, pressure_scale, scatter_pressure
 from .joint_flow import Fluid, joint_network, network_result, point_transmissivity
 from ..mesh.distributed_mesh import names_of
 from .network import Conditions, boundary_nodes, solve_heads
@@ -83,11 +83,6 @@ def storage(model, state: dict, t_point: np.ndarray, compressibility: float) -> 
         k = np.asarray(b.law.normal_stiffness(closure[on]), dtype=float) + b.residual_stiffness
         out[on] = b.effective_stress_coefficient / np.maximum(k, np.finfo(float).tiny)
     return out, np.cbrt(12.0 * t_point) * compressibility
-
-
-def gathered_pressure(model) -> np.ndarray:
-    """The joint pressure set now at every point (gathered order)."""
-    return np.concatenate(model.comm.allgather(np.asarray(model.interface.pore_pressure(), dtype=float)))
 
 
 def coupled_transient(model, transmissivity: Mapping[str, Callable], duration: float, steps: int,
