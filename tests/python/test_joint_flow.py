@@ -125,3 +125,44 @@ def test_the_network_is_written_for_paraview(tmp_path):
     np.testing.assert_allclose(back.points[:, :2], flow.nodes)
     np.testing.assert_allclose(back.point_data["head_m"], flow.head)
     np.testing.assert_allclose(back.cell_data["transmissivity_m3"][0], flow.element_transmissivity)
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_pressures_and_injected_rates_are_the_closed_form_too(dim):
+    """pressures={b: p}: h = z + p/(ρ g) at each node (the same flow as those heads where z is
+    constant along the boundary's joints: here z varies, every joint its own head); rates={b: Q}:
+    the closed-form rate injected on the left gives back the left head, the boundary's joints
+    sharing it (a port), and Q flows out on the right."""
+    model = solved_column(dim)
+    laws = {"joint_1": cubic_law, "joint_2": cubic_law}
+    fluid = Fluid()
+    rg = fluid.density * fluid.gravity
+    q = expected_rate(dim, 2)
+    # pressure p on the right: each joint at height z gets h = z + p/(ρg); the left head fixed
+    flow = network_flow(model, laws, {"left": HEADS["left"]}, pressures={"right": rg * (HEADS["right"] - 1.0)})
+    # joint_1 (z = 1) sees the right head HEADS["right"], joint_2 (z = 2) one metre more
+    one = expected_rate(dim, 1)
+    assert flow.flow_rates["left"] == pytest.approx(one + one * (HEADS["left"] - HEADS["right"] - 1.0)
+                                                    / (HEADS["left"] - HEADS["right"]), rel=1e-9)
+    np.testing.assert_allclose(flow.pressure[np.isclose(flow.nodes[:, 0], WIDTH)], rg * (HEADS["right"] - 1.0),
+                               rtol=1e-12)
+    injected = network_flow(model, laws, {"right": HEADS["right"]}, rates={"left": q})
+    assert injected.port_heads["left"] == pytest.approx(HEADS["left"], rel=1e-9)
+    assert injected.flow_rates["left"] == pytest.approx(q, rel=1e-9)
+    assert injected.flow_rates["right"] == pytest.approx(-q, rel=1e-9)
+
+
+def test_bad_boundary_conditions_are_refused_by_name():
+    model = solved_column(2)
+    laws = {"joint_1": cubic_law, "joint_2": cubic_law}
+    with pytest.raises(ValueError, match="heads=.*or pressures="):
+        network_flow(model, laws, rates={"left": 1e-6})
+    with pytest.raises(ValueError, match="boundary 'left' has two conditions"):
+        network_flow(model, laws, HEADS, pressures={"left": 1e5})
+    with pytest.raises(ValueError, match="rate on 'left'"):
+        network_flow(model, laws, {"right": 1.0}, rates={"left": float("inf")})
+    closed = dict(laws, joint_1=lambda d: np.zeros_like(d), joint_2=lambda d: np.zeros_like(d))
+    with pytest.raises(ValueError, match="injected on 'left' reaches no boundary"):
+        network_flow(model, closed, {"right": 1.0}, rates={"left": 1e-6})
+    with pytest.raises(ValueError, match="no joint meets boundary 'top'"):
+        network_flow(model, laws, {"right": 1.0}, rates={"top": 1e-6})

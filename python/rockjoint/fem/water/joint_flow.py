@@ -2,8 +2,8 @@
 """Steady flow along the joint network of a solved jointed model (docs/flow.md).
 
 Each joint point carries a transmissivity T(Δ) [m³] from its current closure (a transmissivity
-law per joint: docs/flow.md); the network carries the flow along the joints between heads given on
-named boundaries:
+law per joint: docs/flow.md); the network carries the flow along the joints between the heads,
+pressures or injected rates given on named boundaries (network.py):
 
     q = -(ρ g / μ) T ∇h   along a joint [m²/s: flow per unit width of the joint],     (F1)
     ∇·q = 0                on the network (continuity; where joints meet, the flows add up).
@@ -21,6 +21,7 @@ only (FEniCS/dolfinx PR 3916); 0.9, which rockjoint supports too, refuses it, an
 holds the two walls' copies of every joint node, not one network. The network is small beside the
 rock mass (one node per joint point position), so it is gathered and solved here by a sparse
 direct solve (SciPy's SuperLU), the same on every rank: results do not depend on the partition.
+The discrete network (nodes, elements, conductance, boundary conditions) is network.py.
 """
 from __future__ import annotations
 
@@ -29,19 +30,9 @@ from dataclasses import dataclass, field
 from typing import Callable, Mapping
 
 import numpy as np
-import scipy.sparse as sp
-from scipy.sparse.csgraph import connected_components
-from scipy.sparse.linalg import spsolve
-from scipy.spatial import cKDTree
 
-from dolfinx import mesh as dmesh
-
-from ..mesh.distributed_mesh import lookup, names_of
-
-
-#: points of the network closer than this fraction of its extent are one node (round-off only:
-#: the mesh's smallest element is many orders larger)
-_MERGE_TOLERANCE = 1e-9
+from ..mesh.distributed_mesh import names_of
+from .network import Conditions, Network, boundary_nodes, solve_heads
 
 
 @dataclass(frozen=True)
@@ -75,11 +66,19 @@ class NetworkFlow:
     element_tags: np.ndarray     # (m,) joint tag of each element
     element_transmissivity: np.ndarray   # (m,) T [m³], the mean of its points'
     point_transmissivity: np.ndarray     # T [m³] at every joint point (result.gather_joints order)
-    flow_rates: dict             # {boundary: Q into the network there [m³/s; m²/s in 2D]}
+    flow_rates: dict             # {boundary: Q into the network there [m³/s; m²/s in 2D]}, every condition
     heads: dict                  # the heads given {boundary: h [m]}
     fluid: Fluid = field(default_factory=Fluid)
     #: the node of every joint point (result.gather_joints order): p there = ρ g (h - z)
     point_nodes: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.int64))
+    pressures: dict = field(default_factory=dict)   #: the pressures given {boundary: p [Pa]}
+    rates: dict = field(default_factory=dict)       #: the rates injected {boundary: Q}
+    port_heads: dict = field(default_factory=dict)  #: the head at every rate boundary {boundary: h [m]}
+
+    @property
+    def pressure(self) -> np.ndarray:
+        """p = ρ g (h - z) [Pa] at the nodes (NaN where no head reaches)."""
+        return self.fluid.density * self.fluid.gravity * (self.head - self.nodes[:, -1])
 
     def write(self, path: str, comm=None) -> str:
         """The network as an XDMF grid for ParaView (segments in 2D, triangles in 3D; HDF5 data
@@ -132,116 +131,52 @@ def point_transmissivity(state: dict, transmissivity: Mapping[str, Callable], jo
     return out
 
 
-def _element_conductance(x: np.ndarray) -> np.ndarray:
-    """∫ ∇N_i·∇N_j over each P1 element (segments in 2D, triangles in 3D): (m, k, k)."""
-    if x.shape[1] == 2:                                   # segments: [[1, -1], [-1, 1]] / L
-        length = np.linalg.norm(x[:, 1] - x[:, 0], axis=1)
-        return np.array([[1.0, -1.0], [-1.0, 1.0]])[None] / length[:, None, None]
-    jac = np.stack([x[:, 1] - x[:, 0], x[:, 2] - x[:, 0]], axis=2)      # (m, 3, 2)
-    metric = np.einsum("mki,mkj->mij", jac, jac)                        # JᵀJ
-    area = 0.5 * np.sqrt(np.linalg.det(metric))
-    ref = np.array([[-1.0, -1.0], [1.0, 0.0], [0.0, 1.0]])             # ∂N/∂ξ
-    inv = np.linalg.inv(metric)
-    return area[:, None, None] * np.einsum("ia,mab,jb->mij", ref, inv, ref)
-
-
-def _boundary_points(model, name: str) -> np.ndarray:
-    """Coordinates of the vertices of the boundary group `name` (all ranks)."""
-    mesh = model.mesh
-    tdim = mesh.topology.dim
-    facets = model.dmesh.boundary(name)
-    mesh.topology.create_connectivity(tdim - 1, tdim)
-    x = np.zeros((0, mesh.geometry.dim))
-    if facets.size:   # DOLFINx 0.9's entities_to_geometry divides by zero on an empty list
-        nodes = dmesh.entities_to_geometry(mesh, tdim - 1, facets, False)
-        x = mesh.geometry.x[np.unique(nodes.ravel())][:, :mesh.geometry.dim]
-    return np.concatenate(mesh.comm.allgather(x), axis=0)
-
-
-def network_flow(model, transmissivity: Mapping[str, Callable], heads: Mapping[str, float],
-                 fluid: Fluid = Fluid(), stage=None) -> NetworkFlow:
-    """Steady flow (F1) along the joints of a solved JointedRockModel `model` with heads
-    {boundary name: h [m]} on named boundaries of the mesh and transmissivity {joint name:
-    T(closure [m]) -> [m³]} per joint (docs/flow.md), at the closures of `stage` (a StageResult
-    of the model; default: its last, model.solution). Collective; the same NetworkFlow on every
-    rank. Needs the nodal joint rule on P1 (the joint points are the facet vertices)."""
+def network_flow(model, transmissivity: Mapping[str, Callable], heads: Mapping[str, float] | None = None,
+                 fluid: Fluid = Fluid(), stage=None, *, pressures: Mapping[str, float] | None = None,
+                 rates: Mapping[str, float] | None = None) -> NetworkFlow:
+    """Steady flow (F1) along the joints of a solved JointedRockModel `model` with transmissivity
+    {joint name: T(closure [m]) -> [m³]} per joint (docs/flow.md), at the closures of `stage` (a
+    StageResult of the model; default: its last, model.solution), between the boundary conditions
+    on named boundaries of the mesh (network.py): heads {boundary: h [m]}, pressures {boundary: p
+    [Pa]} and rates {boundary: Q injected [m³/s; m²/s in 2D]}. Collective; the same NetworkFlow on
+    every rank. Needs the nodal joint rule on P1 (the joint points are the facet vertices)."""
     result = model.solution if stage is None else stage
     if result is None:
         raise ValueError("network_flow: the model has no solved stage yet (solve() it first)")
+    conditions = Conditions.given(model, heads, pressures, rates)
+    network, state, t_point = joint_network(model, transmissivity, result)
+    return steady_network(network, state, t_point, conditions, boundary_nodes(model, network, conditions), fluid)
+
+
+def steady_network(network, state, t_point, conditions, owner, fluid) -> NetworkFlow:
+    """The steady NetworkFlow on `network` with T [m³] at its points and the boundary `owner` of
+    every node (network.boundary_nodes)."""
+    t_element = t_point.reshape(network.elements.shape).mean(axis=1)
+    K = network.conductance(fluid.conductivity_factor * t_element)
+    head = solve_heads(network, K, conditions, owner, fluid, t_element > 0)
+    return network_result(network, state, K, head, owner, conditions, t_element, t_point, fluid)
+
+
+def joint_network(model, transmissivity: Mapping[str, Callable], result):
+    """(Network, the gathered joint state, T [m³] at every point) of a solved stage `result`."""
     if model.degree != 1 or model.quadrature != "nodal":
         raise ValueError("network_flow: the joint network is built from the joint points as facet "
                          "vertices: P1 with quadrature='nodal' is needed, got degree "
                          f"{model.degree}, quadrature {model.quadrature!r}")
-    if len(heads) < 1:
-        raise ValueError("network_flow: give heads={boundary name: h [m]} on at least one boundary")
-    for name, h in heads.items():
-        lookup(model.dmesh, "boundaries", name)     # ValueError naming the available boundaries
-        if not (isinstance(h, (int, float)) and math.isfinite(h)):
-            raise ValueError(f"network_flow: head on {name!r} = {h!r} must be a finite number [m]")
     state = result.gather_joints()
-    joints = names_of(model.dmesh, "joints")
-    t_point = point_transmissivity(state, transmissivity, joints)
-    gdim = model.gdim
-    x = np.asarray(state["coordinates"], dtype=float).reshape(-1, gdim)
-    per = gdim                                      # points per pair: the facet's vertices (P1)
-    # One node per position: the split copies of a joint node and the points of joints meeting
-    # there are one mesh node (their coordinates, interpolated per pair, agree to round-off).
-    tolerance = _MERGE_TOLERANCE * max(float(np.ptp(x, axis=0).max()) if x.size else 0.0, 1e-300)
-    nodes, index = _merge_points(x, tolerance)
-    elements = index.reshape(-1, per)
-    tags = np.asarray(state["tag"]).reshape(-1, per)[:, 0]
-    t_element = t_point.reshape(-1, per).mean(axis=1)
-    local = _element_conductance(nodes[elements]) * (fluid.conductivity_factor * t_element)[:, None, None]
-    n = nodes.shape[0]
-    rows = np.repeat(elements, per, axis=1).ravel()
-    cols = np.tile(elements, (1, per)).ravel()
-    K = sp.csr_matrix((local.ravel(), (rows, cols)), shape=(n, n))
-    # Heads: nodes at the vertices of each named boundary (the first boundary named wins at a corner)
-    fixed = np.full(n, -1)
-    for k, name in enumerate(heads):
-        points = _boundary_points(model, name)
-        at = np.zeros(0, dtype=int)
-        if points.size and nodes.size:
-            distance, at = cKDTree(nodes).query(points, distance_upper_bound=tolerance)
-            at = at[np.isfinite(distance)]
-        fixed[at[fixed[at] < 0]] = k
-    values = np.array(list(heads.values()), dtype=float)
-    head = np.full(n, np.nan)
-    # Parts of the network connected (through elements with T > 0) to a node with a head
-    open_ = np.repeat((t_element > 0).astype(float), per * per)
-    flowing = sp.csr_matrix((open_, (rows, cols)), shape=(n, n))
-    flowing.eliminate_zeros()
-    _, part = connected_components(flowing, directed=False)
-    reached = np.isin(part, part[fixed >= 0])
-    known = fixed >= 0
-    head[known] = values[fixed[known]]
-    free = reached & ~known
-    if np.any(free):
-        A = K[free][:, free].tocsc()
-        b = -K[free][:, known] @ head[known]
-        head[free] = spsolve(A, b)
-    h = np.where(np.isnan(head), 0.0, head)
-    inflow = K @ h                                      # net flow into the network at each node
-    rates = {name: float(inflow[fixed == k].sum()) for k, name in enumerate(heads)}
-    return NetworkFlow(nodes, head, elements, tags, t_element, t_point, rates, dict(heads), fluid, index)
+    t_point = point_transmissivity(state, transmissivity, names_of(model.dmesh, "joints"))
+    x = np.asarray(state["coordinates"], dtype=float).reshape(-1, model.gdim)
+    return Network.of_points(x), state, t_point
 
 
-def _merge_points(x: np.ndarray, tolerance: float):
-    """(nodes, index): the distinct positions among the rows of x (points closer than `tolerance`
-    are one), sorted lexicographically so that the numbering does not depend on the partition,
-    and the node of every row."""
-    if x.shape[0] == 0:
-        return x.copy(), np.zeros(0, dtype=np.int64)
-    pairs = cKDTree(x).query_pairs(tolerance, output_type="ndarray")
-    n = x.shape[0]
-    graph = sp.coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(n, n))
-    count, label = connected_components(graph, directed=False)
-    centre = np.zeros((count, x.shape[1]))
-    np.add.at(centre, label, x)
-    centre /= np.bincount(label, minlength=count)[:, None]
-    # by x, then y (then z), each rounded to the tolerance: round-off (which differs with the
-    # partition) does not reorder nodes on one line x = const
-    order = np.lexsort(np.round(centre / tolerance).T[::-1])
-    rank = np.empty(count, dtype=np.int64)
-    rank[order] = np.arange(count)
-    return centre[order], rank[label]
+def network_result(network, state, K, head, owner, conditions, t_element, t_point, fluid) -> NetworkFlow:
+    """The NetworkFlow of heads solved on `network` (net inflow per boundary from K h)."""
+    inflow = K @ np.where(np.isnan(head), 0.0, head)     # net flow into the network at each node
+    named = conditions.named()
+    rates = {name: float(inflow[owner == k].sum()) for k, (name, _) in enumerate(named)}
+    ports = {name: float(head[owner == k][0]) for k, (name, kind) in enumerate(named)
+             if kind == "rates" and np.any(owner == k)}
+    tags = np.asarray(state["tag"]).reshape(network.elements.shape)[:, 0]
+    given = {**conditions.heads}
+    return NetworkFlow(network.nodes, head, network.elements, tags, t_element, t_point, rates, given,
+                       fluid, network.point_nodes, dict(conditions.pressures), dict(conditions.rates), ports)
