@@ -73,7 +73,7 @@ def test_the_table_pre_closes_the_joint_and_the_flow_follows_the_coupling(tmp_pa
     for stage in ("in-situ", "hold"):
         row = result.row("jointed", stage)
         expected = one_way if coupling == "one_way" else two_way
-        assert row.flow_rates["left"] == pytest.approx(expected, rel=2e-4), stage
+        assert row.flow_rates["left"] == pytest.approx(expected, rel=1e-5), stage
         assert row.flow_rates["right"] == pytest.approx(-row.flow_rates["left"], rel=1e-9)
         assert row.water.opened_by_water == 0
         if coupling == "one_way":   # the joint sees the table's water only
@@ -81,7 +81,8 @@ def test_the_table_pre_closes_the_joint_and_the_flow_follows_the_coupling(tmp_pa
             assert row.water.max_pressure == pytest.approx(P0, rel=1e-12)
         else:                       # the left end's water, ρ g (h_L - z), now acting on the joint
             assert row.water.max_pressure == pytest.approx(RHO * G * (H_LEFT - Z_JOINT), rel=1e-8)
-            assert row.water.iterations >= 2
+            # from the table's water the in-situ stage must iterate; the next starts where it ended
+            assert row.water.iterations >= (2 if stage == "in-situ" else 1)
     assert result.row("intact", "hold").water.max_pressure == 0.0
     text = summary_table(result)
     assert "water: largest joint p [MPa]" in text and f"{P0 * 1e-6:14.5g}" in text
