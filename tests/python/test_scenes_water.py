@@ -84,6 +84,12 @@ def test_the_table_pre_closes_the_joint_and_the_flow_follows_the_coupling(tmp_pa
             # from the table's water the in-situ stage must iterate; the next starts where it ended
             assert row.water.iterations >= (2 if stage == "in-situ" else 1)
     assert result.row("intact", "hold").water.max_pressure == 0.0
+    # the network for ParaView: the pressure beside the head, p = ρ g (h - z) at every node
+    import meshio  # Debian python3-meshio, as the writer
+    grid = meshio.read(str(tmp_path / "out" / "jointed_flow.xdmf"))
+    z = grid.points[:, 1]
+    assert grid.point_data["pressure_Pa"] == pytest.approx(RHO * G * (grid.point_data["head_m"] - z), rel=1e-12)
+    assert grid.point_data["pressure_Pa"].max() == pytest.approx(RHO * G * (H_LEFT - Z_JOINT), rel=1e-12)
     text = summary_table(result)
     assert "water: largest joint p [MPa]" in text and f"{P0 * 1e-6:14.5g}" in text
 
