@@ -11,6 +11,7 @@ an isotropic in-situ stress σ = 10 MPa, below a water table. Against closed for
 - unloaded below the water's pressure (one way: p stays p0), the joint is held open by the water
   alone: k_r Δ = σ - p0 < 0, every point counted as opened by water; dry, none.
 """
+import numpy as np
 import pytest
 from scipy.integrate import quad
 
@@ -132,3 +133,25 @@ def test_water_and_the_older_flow_output_are_not_both_given(tmp_path):
     with pytest.raises(SceneError, match="needs the in-situ stress"):
         load_scene(write(tmp_path, scene_text("{table: 10 m}").replace(
             "in_situ: {vertical: 10 MPa, horizontal_ratio: 1}\n", "")))
+
+
+def test_the_picture_colours_the_joints_by_their_water(tmp_path, monkeypatch):
+    """scene.png gets a row with the jointed model's joints coloured by p [MPa]: the colours are
+    the joints' pressures, from the left end's ρ g (h_L - z) down to the right end's (two ways)."""
+    from rockjoint.scenes import pictures
+    drawn, save = [], pictures._save
+
+    def keep(fig, path):
+        for ax in fig.axes:
+            for lines in ax.collections:
+                if ax.get_title().endswith("water in the joints") and lines.get_array() is not None \
+                        and lines.get_array().size and hasattr(lines, "get_segments"):
+                    drawn.append(np.asarray(lines.get_array()))
+        save(fig, path)
+
+    monkeypatch.setattr(pictures, "_save", keep)
+    run(tmp_path, scene_text(f"{{table: {TABLE:g} m, coupling: two_way, heads: "
+                             f"{{left: {H_LEFT:g} m, right: {H_RIGHT:g} m}}}}"))
+    (values,) = drawn
+    assert values.max() == pytest.approx(RHO * G * (H_LEFT - Z_JOINT) * 1e-6, rel=1e-8)
+    assert values.min() == pytest.approx(RHO * G * (H_RIGHT - Z_JOINT) * 1e-6, rel=1e-8)

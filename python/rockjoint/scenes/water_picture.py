@@ -1,0 +1,38 @@
+# SPDX-License-Identifier: MIT
+"""The water in a scene picture (pictures.py): the jointed model's deformed mesh in grey with its
+joints coloured by the water pressure p [MPa] they hold at the end of the run (2D), on the same
+magnification as the overview above it, so that a rock engineer sees where the water stands and
+where the joints drained."""
+from __future__ import annotations
+
+import numpy as np
+
+
+def joint_pressure(model) -> np.ndarray:
+    """The water pressure p [Pa] at every joint point of `model`, gathered (the order of
+    result.gather_joints); zeros for dry joints. Collective."""
+    p = np.asarray(model.interface.pore_pressure(), dtype=float)
+    if p.size != np.asarray(model.interface.state()["tag"]).size:   # no water ever set
+        p = np.zeros(np.asarray(model.interface.state()["tag"]).size)
+    return np.concatenate(model.comm.allgather(p))
+
+
+def draw_pressure(ax, tri, u, scale: float, joints: dict, segments_of, u_at, title: str) -> None:
+    """The deformed mesh (`tri` + scale `u`, grey) with the joints coloured by joints["pressure"]
+    [Pa], drawn in MPa with a colour bar; segments_of(x, values, tags, u_at) cuts the traces
+    (pictures.joint_segments), each piece carrying its point's pressure."""
+    from matplotlib.collections import LineCollection, PolyCollection  # slow: only when drawing
+    ax.add_collection(PolyCollection(tri + scale * u, facecolors="0.88", edgecolors="0.75", linewidths=0.2))
+    pieces = segments_of(joints["x"], joints["pressure"], joints["tag"], lambda p: scale * u_at(p))
+    if pieces:
+        values = np.concatenate([np.full(len(s), float(v)) for v, s in pieces.items()]) * 1e-6
+        lines = LineCollection(np.concatenate(list(pieces.values())), array=values, cmap="Blues",
+                               linewidths=2.0)
+        lines.set_clim(0.0, max(float(values.max()), 1e-12))
+        ax.add_collection(lines)
+        ax.figure.colorbar(lines, ax=ax, label="water pressure in the joints p [MPa]")
+    ax.autoscale()
+    ax.set_aspect("equal")
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+    ax.set_title(title)
