@@ -139,15 +139,13 @@ def draw(models: dict, scene, path: str) -> list:
             axes[0][k].add_patch(_view_box(plt, opening))
     if opening:
         _opening_views(axes[1], gathered, joints, opening, scene.data["name"])
-    if wet:   # the jointed model's water, on the overview's magnification; the row's other panels off
-        tri, u = gathered["jointed"]
-        scale = 0.05 * float(np.ptp(tri.reshape(-1, 2), axis=0).max()) / top
+    if wet:   # the jointed model's water on its undeformed mesh; the row's other panels off
         for k, ax in enumerate(axes[-1]):
-            if k != list(gathered).index("jointed"):
+            if k == list(gathered).index("jointed"):
+                water_picture.draw_pressure(ax, gathered["jointed"][0], joints["jointed"], joint_segments,
+                                            f"{scene.data['name']}: water in the joints")
+            else:
                 ax.set_axis_off()
-                continue
-            water_picture.draw_pressure(ax, tri, u, scale, joints["jointed"], joint_segments,
-                                        _vertex_displacement(tri, u), f"{scene.data['name']}: water in the joints")
     _save(fig, path)
     return [path]
 
