@@ -41,6 +41,7 @@ def joint_states(model) -> dict:
     names (n,) ('stick', 'slip', 'open'; 'closed' for joints without strength) and joint tags.
     Collective."""
     from ..fem import ShearState  # the FE stack is optional: imported when drawing
+    from ..fem.water.coupled import gathered_pressure  # the FE stack, as above
     state = model.solution.gather_joints()
     x = np.asarray(state["coordinates"], dtype=float).reshape(-1, model.gdim)
     if "shear_state" in state:
@@ -50,7 +51,7 @@ def joint_states(model) -> dict:
     else:
         labels = ["open" if int(v) == int(Status.open) else "closed" for v in np.asarray(state["status"])]
     return {"x": x, "state": np.array(labels, dtype=object), "tag": np.asarray(state["tag"]),
-            "pressure": water_picture.joint_pressure(model)}
+            "pressure": gathered_pressure(model)}
 
 
 def joint_segments(x: np.ndarray, labels: np.ndarray, tags: np.ndarray, u_at):

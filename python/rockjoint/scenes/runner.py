@@ -42,6 +42,7 @@ class StageRow:
     max_closure: float = 0.0       # [m], all joints
     max_normal_stress: float = 0.0  # [Pa]
     slipping: int = 0              # joint points in the slip state (smeared: quadrature points)
+    max_slip: float = 0.0          # the largest |slip| [m] of the discrete joints (slipped so far)
     per_set: dict = dataclasses.field(default_factory=dict)  # set -> (max closure [m], max σ_n [Pa])
     slipping_per_set: dict = dataclasses.field(default_factory=dict)  # set -> slipping points
     smeared: tuple = ()            # the sets of per_set that are smeared (equivalent continuum)
@@ -162,6 +163,7 @@ def _record(scene, plan, model, label, stage, solution, water) -> StageRow:
         if "shear_state" in state:
             slip = np.asarray(state["shear_state"]) == int(ShearState.slip)
             row.slipping = int(np.sum(slip))
+            row.max_slip = float(np.linalg.norm(np.asarray(state["slip"]).reshape(slip.size, -1), axis=1).max(initial=0.0))
             row.slipping_per_set = {str(name): int(np.sum(slip[sets == name])) for name in np.unique(sets)}
     smeared = model.smeared.set_summary() if model.smeared is not None else {}
     for name, (closure, sn, slipping) in smeared.items():
@@ -232,6 +234,7 @@ def run_stages(scene, plan, model, label: str, current: list | None = None, tran
                 add = model.add_traction if kind == "traction" else model.add_pressure
                 handles[face, kind] = add(face, value)
         steps = stage.get("steps", plan.load_steps)
+        scene_water.before_stage(scene, model, transmissivity, excavated)
         solution = record(stage["name"], model.solve(load_steps=steps, name=stage["name"]))
         log.info("%s: stage %s, %d load step(s), %d Newton iterations (%.1f s)", label, stage["name"],
                  steps, solution.newton_iterations, time.perf_counter() - t0)

@@ -28,6 +28,7 @@ def summary_table(result) -> str:
         lines.append(f"{stage:{w}}{'joints: max closure [mm]':{q}}{j.max_closure * 1e3:14.5g}")
         lines.append(f"{stage:{w}}{'joints: max σ_n [MPa]':{q}}{j.max_normal_stress * 1e-6:14.5g}")
         lines.append(f"{stage:{w}}{'joints: slipping points':{q}}{j.slipping:14d}")
+        lines.append(f"{stage:{w}}{'joints: largest slip [mm]':{q}}{j.max_slip * 1e3:14.5g}")
         for name, (closure, sn) in sorted(j.per_set.items()):  # every set, smeared ones too
             kind = f"{name} (smeared)" if name in j.smeared else name
             lines.append(f"{stage:{w}}{'  ' + kind + ': max closure [mm]':{q}}{closure * 1e3:14.5g}")

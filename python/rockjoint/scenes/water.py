@@ -20,7 +20,7 @@ from rockjoint import Status, contact, flow
 from rockjoint import topography as topo
 
 from ..fem import Fluid, darcy_flow, network_flow
-from ..fem.water.coupled import coupled_steady
+from ..fem.water.coupled import coupled_steady, gathered_pressure, pressure_at_points, scatter_pressure
 from ..fem.water.joint_pressure import set_initial_joint_pressure
 from ..meshes import joint_sets_of
 from . import joint_laws, ladder, water_keys
@@ -107,8 +107,8 @@ def after_stage(scene, model, solution, laws: dict | None, excavated, name: str)
     heads, pressures = conditions(scene, excavated)
     bcs = dict(heads=heads, **({"pressures": pressures} if pressures else {}))
     if requested(scene) and laws is not None:
-        per_joint = {n: laws[s].transmissivity for n, s in joint_sets_of(model.dmesh.names).items()}
-        if scene.data.get("water", {}).get("coupling") == "two_way":
+        per_joint = _per_joint(model, laws)
+        if two_way(scene):
             coupled = coupled_steady(model, per_joint, name=f"{name}: water", **bcs)
             solution, network, water.iterations = model.stages[-1], coupled.network, coupled.iterations
         else:
@@ -124,17 +124,39 @@ def after_stage(scene, model, solution, laws: dict | None, excavated, name: str)
     return solution, water
 
 
+def two_way(scene) -> bool:
+    """The scene's water acts on the joints, coupled to the equilibrium (coupling: two_way)."""
+    return scene.data.get("water", {}).get("coupling") == "two_way"
+
+
+def _per_joint(model, laws: dict) -> dict:
+    """{joint name: T(closure)} of the model's joints from {joint set: TransmissivityLaw}."""
+    return {n: laws[s].transmissivity for n, s in joint_sets_of(model.dmesh.names).items()}
+
+
+def before_stage(scene, model, laws: dict | None, excavated) -> None:
+    """Two ways, before a stage is solved: the water its conditions bring (e.g. an opening drained
+    as it is excavated), the network at the last closures, ramped over the stage with its loads, so
+    that the joints drain or fill while the rock moves (slip is path dependent); after the stage
+    the coupling corrects it (after_stage). Nothing one way, or before the first stage."""
+    if laws is None or not two_way(scene) or not model.stages:
+        return
+    heads, pressures = conditions(scene, excavated)
+    last = model.stages[-1]
+    network = network_flow(model, _per_joint(model, laws), heads=heads, stage=last,
+                           **({"pressures": pressures} if pressures else {}))
+    x = np.asarray(last.gather_joints()["coordinates"], dtype=float).reshape(-1, model.gdim)
+    scatter_pressure(model, last, pressure_at_points(network, x, network.fluid))
+
+
 def opened_by_water(model, solution) -> tuple:
     """(the largest joint pressure p [Pa], a mask of the points opened by water), gathered: a joint
     point is opened by water when it is open (status open: its walls apart, its law carrying nothing)
     while water fills it (p > 0) and its total normal stress σ_n = σ'_n + α p is compressive
     (> 0): the rock presses the walls together and only the water holds them apart. A point pulled
     open by the rock (σ_n <= 0) is not counted. Collective."""
-    state = solution.gather_joints()
-    p = np.concatenate(model.comm.allgather(np.asarray(model.interface.pore_pressure(), dtype=float)))
+    state, p = solution.gather_joints(), gathered_pressure(model)
     tags = np.asarray(state["tag"])
-    if p.size != tags.size:       # no water was ever set: dry joints
-        p = np.zeros(tags.size)
     alpha = np.array([model.behaviours[int(t)].effective_stress_coefficient for t in tags])
     total = np.asarray(state["normal_stress"]) + alpha * p
     opened = (np.asarray(state["status"]) == int(Status.open)) & (p > 0.0) & (total > 0.0)

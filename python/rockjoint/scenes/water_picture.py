@@ -8,15 +8,6 @@ from __future__ import annotations
 import numpy as np
 
 
-def joint_pressure(model) -> np.ndarray:
-    """The water pressure p [Pa] at every joint point of `model`, gathered (the order of
-    result.gather_joints); zeros for dry joints. Collective."""
-    p = np.asarray(model.interface.pore_pressure(), dtype=float)
-    if p.size != np.asarray(model.interface.state()["tag"]).size:   # no water ever set
-        p = np.zeros(np.asarray(model.interface.state()["tag"]).size)
-    return np.concatenate(model.comm.allgather(p))
-
-
 def draw_pressure(ax, tri, joints: dict, segments_of, title: str) -> None:
     """The mesh `tri` (grey) with the joints coloured by joints["pressure"] [Pa], drawn in MPa with
     a colour bar; segments_of(x, values, tags, u_at) cuts the traces (pictures.joint_segments),
