@@ -11,25 +11,15 @@ from mpi4py import MPI
 from fe_stack import require_fe
 require_fe()
 
-import rockjoint  # noqa: E402
-from joint_pressure_cases import E, KNI, NU, SIGMA, VM, closure  # noqa: E402
-from rockjoint import meshes  # noqa: E402
-from rockjoint.fem import InSituStress, JointedRockModel, NewtonOptions, distribute  # noqa: E402
+from joint_pressure_cases import SIGMA, closure, loaded_column  # noqa: E402
+from rockjoint.fem import InSituStress  # noqa: E402
 from rockjoint.fem.water.joint_pressure import set_initial_joint_pressure, set_joint_pressure  # noqa: E402
 
 
 def column_in_situ(dim: int, alpha: float = 1.0, in_situ: bool = True):
-    """The 1 m x 2 m column with its joint at z = 1 m under an isotropic in-situ stress σ (rollers
-    on the bottom and sides; the top free: σ0·n is carried there as a traction)."""
-    jm = meshes.column(1.0, 2.0, [1.0], dim=dim, mesh_size=0.5, comm=MPI.COMM_WORLD)
-    model = JointedRockModel(distribute(jm, MPI.COMM_WORLD), rock=(E, NU),
-                             joints={"joint_1": rockjoint.BartonBandis(KNI, VM)}, shear_stiffness=1e9,
-                             effective_stress_coefficient=alpha, plane="strain" if dim == 2 else None,
-                             newton=NewtonOptions(verbose=False))
-    model.fix("bottom", "y" if dim == 2 else "z")
-    model.fix("left", "x")
-    if dim == 3:
-        model.fix("front", "y")
+    """The column of joint_pressure_cases without its top load, under an isotropic in-situ stress
+    σ instead (the top free: σ0·n is carried there as a traction)."""
+    model = loaded_column(dim, alpha=alpha, loaded=False)
     if in_situ:
         model.set_in_situ_stress(InSituStress.uniform(-SIGMA * np.eye(dim)))
     return model

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: MIT
-"""The tunnel below a water table (demos/demo_tunnel_water.py) runs as it is (--quick), serially and
+"""The tunnel below a water table (demos/demo_tunnel_below_water_table.py) runs as it is (--quick), serially and
 on 2 ranks, and its water obeys what physics guarantees, whatever the coupling:
 
 - before excavation every boundary keeps the table's head and nothing drains: the water in the
@@ -33,7 +33,7 @@ WET = ("one way", "two way", "one way, lined")
 
 
 def run_demo(out, ranks):
-    r = demo_runner.run_demo("demo_tunnel_water.py", out, ranks, ("--quick",))
+    r = demo_runner.run_demo("demo_tunnel_below_water_table.py", out, ranks, ("--quick",))
     assert "demo wall time" in r.stdout
     for name in ("tunnel_water.txt", "tunnel_water.json", "two_way/scene.png", "two_way/jointed_flow.xdmf"):
         assert (out / name).exists(), name

@@ -4,7 +4,7 @@
 
 Read it top to bottom; run it as it is (serial or `mpirun -n 2`):
 
-    PYTHONPATH=python:build/python /usr/bin/python3 demos/demo_tunnel_water.py [--output DIR] [--quick]
+    PYTHONPATH=python:build/python /usr/bin/python3 demos/demo_tunnel_below_water_table.py [--output DIR] [--quick]
 
 The scene (demos/scenes/tunnel_below_water_table.yaml): the 8 m tunnel of the tunnel demo, 300 m
 deep in granite (σ_v = 7.95 MPa, K0 = 0.5, plane strain, an 80 m section), cut by bedding (3 m
@@ -45,7 +45,7 @@ from rockjoint.scenes import load_scene, make_plan, run_scene
 
 COMM = MPI.COMM_WORLD
 quiet_compiler_logging()  # DOLFINx's form compiler would log every command
-log = logging.getLogger("demo_tunnel_water")
+log = logging.getLogger("demo_tunnel_below_water_table")
 log.propagate = False
 log.addHandler(logging.StreamHandler())
 log.handlers[0].setFormatter(logging.Formatter("%(message)s"))
