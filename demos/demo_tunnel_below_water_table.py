@@ -33,23 +33,17 @@ import argparse
 import copy
 import dataclasses
 import json
-import logging
 import os
 import time
 
 import numpy as np
 from mpi4py import MPI
 
-from rockjoint.console import quiet_compiler_logging
+from rockjoint.console import quiet_compiler_logging, say
 from rockjoint.scenes import load_scene, make_plan, run_scene
 
 COMM = MPI.COMM_WORLD
 quiet_compiler_logging()  # DOLFINx's form compiler would log every command
-log = logging.getLogger("demo_tunnel_below_water_table")
-log.propagate = False
-log.addHandler(logging.StreamHandler())
-log.handlers[0].setFormatter(logging.Formatter("%(message)s"))
-log.setLevel(logging.INFO if COMM.rank == 0 else logging.WARNING)
 
 # %% The scene and its three (four) runs -------------------------------------------------------
 SCENE = load_scene(os.path.join(os.path.dirname(os.path.abspath(__file__)), "scenes",
@@ -126,12 +120,12 @@ def main():
         t0 = time.perf_counter()
         result = run_scene(scene, plan, os.path.join(args.output, name.replace(", ", "_").replace(" ", "_")), COMM)
         answers[name] = numbers(result)
-        log.info("%s: %.1f s", name, time.perf_counter() - t0)
+        say(f"{name}: {time.perf_counter() - t0:.1f} s")
     lines = table(answers)
     elapsed = COMM.allreduce(time.perf_counter() - t_start, op=MPI.MAX)
     lines.append(f"demo wall time [s]: {elapsed:.1f} on {COMM.size} rank(s)")
+    say("\n" + "\n".join(lines))
     if COMM.rank == 0:
-        print("\n" + "\n".join(lines), flush=True)
         with open(os.path.join(args.output, "tunnel_water.txt"), "w", encoding="utf-8") as f:
             f.write("# rockjoint: the tunnel below a water table (demos/scenes/tunnel_below_water_table.yaml"
                     + (", reduced" if args.quick else "") + ")\n" + "\n".join(lines) + "\n")
