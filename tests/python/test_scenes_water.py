@@ -5,7 +5,8 @@ an isotropic in-situ stress σ = 10 MPa, below a water table. Against closed for
 
 - the table's hydrostatic p0 = ρ g (z_table - z) in the joint; its in-situ closure the law's at
   σ - p0 (Barton-Bandis inverse);
-- one way, heads h_L, h_R on the sides: the cubic law at that closure, Q = (ρ g/μ) T Δh / W;
+- one way, heads h_L, h_R on the sides: the cubic law at that closure, Q = (ρ g/μ) T Δh / W
+  (per metre in 2D; times the depth W of the 3D column);
 - two ways: T follows p = ρ g (h - z) along the joint, q = -(ρ g/μ) T(h) dh/dx constant, so
   Q W = (ρ g/μ) ∫ T(Δ(σ - ρ g (h - z))) dh from h_R to h_L (SciPy quad);
 - unloaded below the water's pressure (one way: p stays p0), the joint is held open by the water
@@ -44,13 +45,17 @@ def transmissivity(s):
     return (E0 - closure(s)) ** 3 / 12
 
 
-def scene_text(water, stages="  - {name: hold}\n", residual="", extra="", soft=True):
+def scene_text(water, stages="  - {name: hold}\n", residual="", extra="", soft=True, dim=2):
     text = COLUMN.replace("    strength: {model: coulomb, friction_angle: 30 deg, cohesion: 0 MPa}\n",
                           "    flow: {law: cubic_law, initial_aperture: 0.3 mm}\n" + residual)
     text = text.replace("  - name: load\n    loads: {top: {traction: [0 MPa, -10 MPa]}}\n", stages)
     text = text.replace("mesh: {size: 25 mm}", "mesh: {size: 25 mm, joint_size: 2.5 mm}")
     # soft blocks (E << the joint's stiffness x the column's height): they pass the stress to the
     # joint uniformly, whatever its stiffness along it (no arching: σ_n = σ, the references' case)
+    if dim == 3:   # the column as a 0.1 m deep box, its joint a plane; 10 mm triangles on it
+        text = text.replace("geometry: {kind: column,", "geometry: {kind: column, dimension: 3,")
+        text = text.replace("joint_size: 2.5 mm", "joint_size: 10 mm")
+        text = text.replace("supports: {bottom: y, left: x}", "supports: {bottom: z, left: x, front: y}")
     if soft:
         text = text.replace("  young: 50 GPa\n  poisson: 0.25\n", "  young: 1 MPa\n  poisson: 0\n")
     return (text + "in_situ: {vertical: 10 MPa, horizontal_ratio: 1}\nplan: {table_tolerance: 1e-7}\n"
@@ -63,12 +68,14 @@ def run(tmp_path, text):
     return run_scene(scene, make_plan(scene), str(tmp_path / "out"))
 
 
-@pytest.mark.parametrize("coupling", ["one_way", "two_way"])
-def test_the_table_pre_closes_the_joint_and_the_flow_follows_the_coupling(tmp_path, coupling):
+@pytest.mark.parametrize("dim, coupling", [(2, "one_way"), (2, "two_way"), (3, "two_way")])
+def test_the_table_pre_closes_the_joint_and_the_flow_follows_the_coupling(tmp_path, dim, coupling):
+    """In 3D the flow is the 2D flow per metre times the column's depth (WIDTH)."""
     result = run(tmp_path, scene_text(f"{{table: {TABLE:g} m, coupling: {coupling}, heads: "
-                                      f"{{left: {H_LEFT:g} m, right: {H_RIGHT:g} m}}}}"))
-    one_way = RHO * G / MU * transmissivity(SIGMA - P0) * (H_LEFT - H_RIGHT) / WIDTH
-    two_way = RHO * G / MU / WIDTH * quad(lambda h: transmissivity(SIGMA - RHO * G * (h - Z_JOINT)),
+                                      f"{{left: {H_LEFT:g} m, right: {H_RIGHT:g} m}}}}", dim=dim))
+    depth = WIDTH if dim == 3 else 1.0
+    one_way = depth * RHO * G / MU * transmissivity(SIGMA - P0) * (H_LEFT - H_RIGHT) / WIDTH
+    two_way = depth * RHO * G / MU / WIDTH * quad(lambda h: transmissivity(SIGMA - RHO * G * (h - Z_JOINT)),
                                           H_RIGHT, H_LEFT, epsabs=0, epsrel=1e-12)[0]
     assert abs(two_way / one_way - 1) > 0.02          # the two answers differ: the test tells them apart
     for stage in ("in-situ", "hold"):
@@ -88,7 +95,7 @@ def test_the_table_pre_closes_the_joint_and_the_flow_follows_the_coupling(tmp_pa
     # the network for ParaView: the pressure beside the head, p = ρ g (h - z) at every node
     import meshio  # Debian python3-meshio, as the writer
     grid = meshio.read(str(tmp_path / "out" / "jointed_flow.xdmf"))
-    z = grid.points[:, 1]
+    z = grid.points[:, dim - 1]
     assert grid.point_data["pressure_Pa"] == pytest.approx(RHO * G * (grid.point_data["head_m"] - z), rel=1e-12)
     assert grid.point_data["pressure_Pa"].max() == pytest.approx(RHO * G * (H_LEFT - Z_JOINT), rel=1e-12)
     text = summary_table(result)
