@@ -12,6 +12,8 @@ an isotropic in-situ stress σ = 10 MPa, below a water table. Against closed for
 - unloaded below the water's pressure (one way: p stays p0), the joint is held open by the water
   alone: k_r Δ = σ - p0 < 0, every point counted as opened by water; dry, none.
 """
+import os
+
 import numpy as np
 import pytest
 from scipy.integrate import quad
@@ -162,3 +164,19 @@ def test_the_picture_colours_the_joints_by_their_water(tmp_path, monkeypatch):
     (values,) = drawn
     assert values.max() == pytest.approx(RHO * G * (H_LEFT - Z_JOINT) * 1e-6, rel=1e-8)
     assert values.min() == pytest.approx(RHO * G * (H_RIGHT - Z_JOINT) * 1e-6, rel=1e-8)
+
+
+def test_a_drained_opening_alone_gives_no_flow_before_it_is_excavated(tmp_path):
+    """water: {table, opening: drained} and no other boundary: before excavation nothing drains
+    (no flow, the table's water stays); after it, two ways, with nothing to recharge it the steady
+    network drains into the opening: no net flow, and every head within the wall's (h = z there,
+    z from 36 to 44 m: the maximum principle), so p <= ρ g (44 m - z) <= ρ g 44 m."""
+    from scene_cases import SCENES
+    text = open(os.path.join(SCENES, "tunnel_below_water_table.yaml"), encoding="utf-8").read()
+    text = text.replace("  heads: {left: 140 m, right: 140 m, bottom: 140 m, top: 140 m}\n", "")
+    scene = load_scene(write(tmp_path, text)).at_reduced_size()
+    result = run_scene(scene, make_plan(scene), str(tmp_path / "out"))
+    before, after = result.row("jointed", "in-situ"), result.row("jointed", "excavation")
+    assert before.flow_rates is None and before.water.max_pressure == pytest.approx(RHO * G * 140.0, rel=1e-12)
+    assert abs(after.flow_rates["opening"]) < 1e-12 and after.water.iterations > 0
+    assert after.water.max_pressure <= RHO * G * 44.0 * (1 + 1e-9)

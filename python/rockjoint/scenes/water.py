@@ -106,7 +106,8 @@ def after_stage(scene, model, solution, laws: dict | None, excavated, name: str)
     water = StageWater()
     heads, pressures = conditions(scene, excavated)
     bcs = dict(heads=heads, **({"pressures": pressures} if pressures else {}))
-    if requested(scene) and laws is not None:
+    flows = requested(scene) and bool(heads or pressures)   # e.g. a drained opening not yet excavated: no flow
+    if flows and laws is not None:
         per_joint = _per_joint(model, laws)
         if two_way(scene):
             coupled = coupled_steady(model, per_joint, name=f"{name}: water", **bcs)
@@ -114,7 +115,7 @@ def after_stage(scene, model, solution, laws: dict | None, excavated, name: str)
         else:
             network = network_flow(model, per_joint, stage=solution, **bcs)
         water.flow_rates, water.network = network.flow_rates, network
-    elif requested(scene) and not pressures and scene.data["rock"].get("permeability") is not None:
+    elif flows and not pressures and scene.data["rock"].get("permeability") is not None:
         k = scene.data["rock"]["permeability"]
         water.flow_rates = darcy_flow(model.dmesh, k * np.eye(model.gdim), heads).flow_rates
     if "water" in scene.data and model.behaviours:   # the jointed model: its joints hold the water
@@ -139,9 +140,9 @@ def before_stage(scene, model, laws: dict | None, excavated) -> None:
     as it is excavated), the network at the last closures, ramped over the stage with its loads, so
     that the joints drain or fill while the rock moves (slip is path dependent); after the stage
     the coupling corrects it (after_stage). Nothing one way, or before the first stage."""
-    if laws is None or not two_way(scene) or not model.stages:
-        return
     heads, pressures = conditions(scene, excavated)
+    if laws is None or not two_way(scene) or not model.stages or not (heads or pressures):
+        return
     last = model.stages[-1]
     network = network_flow(model, _per_joint(model, laws), heads=heads, stage=last,
                            **({"pressures": pressures} if pressures else {}))
