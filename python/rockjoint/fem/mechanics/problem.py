@@ -72,6 +72,8 @@ class JointedProblem(JointedSNESProblem, NewtonProblem):
         # water in the joints (rockjoint.fem.water.joint_pressure): p per joint point at the end
         # of the next stage, ramped from its value at the stage's start; None: dry
         self._pressure_target = self._pressure_start = self._pressure_applied = None
+        #: what a singular solve should add to its error (e.g. the joints the water opens)
+        self.failure_hints: list = []
         self.step_iterations = 0      #: Newton iterations of the load step being solved
         self.clock = None             #: progress clock (stages.StageClock) of the stage being solved
         #: wall-clock seconds on this rank: bulk_assembly (K), interface_residual and
