@@ -38,7 +38,7 @@ from .elastic_blocks import ElasticBlocks
 from .equivalent_continuum import SmearedBlocks
 from .in_situ import STANDARD_GRAVITY, InSituStress
 from .law_range import check_beyond_range
-from ..solvers.linear_solver import LinearSolveError, LinearSolver
+from ..solvers.linear_solver import LinearSolver
 from .load_path import LoadPath
 from .loads import Load, Support
 from .model_inputs import check_density, check_element, check_plane, check_rock
@@ -260,14 +260,9 @@ class JointedRockModel:
                 reports = solve_load_path(p, load_steps, self.newton_options, solve_step=self._step_solver())
             else:
                 reports = snes_load_path(p, load_steps, self.newton_options)
-        except LinearSolveError as e:
+        except Exception as e:
             self.load_path.end_stage(p.load_factor)
-            if p.failure_hints:
-                raise LinearSolveError(f"{e}. {' '.join(p.failure_hints)}") from e
-            raise
-        except Exception:
-            self.load_path.end_stage(p.load_factor)
-            raise
+            raise p.explained(e)
         finally:
             p.timings["newton"] += time.perf_counter() - t0
             p.clock = None
