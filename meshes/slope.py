@@ -171,18 +171,10 @@ def slope_section(geometry: SlopeGeometry, joints: Iterable = (), *, mesh_size: 
     outline = geometry.pieces()
     nodes, chains, vertex = planar_section.arrange(segs, [joints[i].name for i in owner], tol,
                                                    np.array([p.start for p in outline]))
-    starts = np.concatenate([c[:-1] for c in chains]) if chains else np.empty(0, np.int64)
-    ends = np.concatenate([c[1:] for c in chains]) if chains else np.empty(0, np.int64)
-    line_owner = np.concatenate([np.full(len(c) - 1, owner[k]) for k, c in enumerate(chains)]) if chains else owner
-    tips = np.unique(np.concatenate([[c[0], c[-1]] for c in chains])) if chains else np.empty(0, np.int64)
+    starts, ends, line_owner, tips = planar_section.chain_lines(chains, owner)
     with _gmsh_model("rockjoint_slope_section") as gmsh:
         geo = gmsh.model.geo
-        tags = np.zeros(len(nodes), dtype=np.int64)
-
-        def point(k):
-            if not tags[k]:
-                tags[k] = geo.addPoint(*nodes[k], 0.0)
-            return int(tags[k])
+        point = planar_section.GeoPoints(geo, nodes)
 
         splits = planar_section.split_outline(outline, nodes, tips, tol)
         groups, curves = {}, []
