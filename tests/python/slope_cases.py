@@ -53,24 +53,34 @@ def water(x, depth):
 
 
 def trial_solver(dmesh, friction_angle, cohesion, water_depth=0.0):
-    """trial(F): the slope model with the plane's strength reduced by F, solved under gravity (and
-    the water); raises ConvergenceError / LinearSolveError where there is no equilibrium."""
-    law = rockjoint.BartonBandis(1e10, 5e-3)
+    """trial(F): the plane failure slope with the plane's strength reduced by F, solved under
+    gravity (and the water)."""
     plane = JointStrength(StrengthModel.coulomb, friction_angle=friction_angle, cohesion=cohesion)
-    crack = JointStrength(StrengthModel.coulomb, friction_angle=0.0, cohesion=0.0)
+    pressure = (lambda x: water(x, water_depth)) if water_depth > 0.0 else None
+    return slope_trials(dmesh, {"plane": plane}, pressure)
+
+
+def slope_trials(dmesh, strengths: dict, pressure=None):
+    """trial(F): the slope of `dmesh` with every joint's strength ({joint: JointStrength}; a joint
+    not named: the crack, no strength) reduced by F, solved under gravity and then the water
+    `pressure` (a callable of the joint points, or None); raises ConvergenceError /
+    LinearSolveError where there is no equilibrium."""
+    law = rockjoint.BartonBandis(1e10, 5e-3)
+    free = JointStrength(StrengthModel.coulomb, friction_angle=0.0, cohesion=0.0)
+    joints = list(dmesh.names["joints"].values())
 
     def trial(factor):
-        model = JointedRockModel(dmesh, rock=(10e9, 0.25), joints={"plane": law, "crack": law},
+        model = JointedRockModel(dmesh, rock=(10e9, 0.25), joints={j: law for j in joints},
                                  shear_stiffness=1e9, density=DENSITY,
-                                 strength={"plane": reduced_strength(plane, factor), "crack": crack},
+                                 strength={j: reduced_strength(strengths.get(j, free), factor) for j in joints},
                                  plane="strain", newton=NewtonOptions(verbose=False, max_iterations=40))
         model.fix("bottom", "x")
         model.fix("bottom", "y")
         model.fix("left", "x")
         model.fix("right", "x")
         model.solve(load_steps=2, name="gravity")
-        if water_depth > 0.0:
-            set_joint_pressure(model, lambda x: water(x, water_depth))
+        if pressure is not None:
+            set_joint_pressure(model, pressure)
             model.solve(load_steps=2, name="water")
         return model
     return trial
