@@ -11,3 +11,4 @@ from .gmsh_model import from_gmsh_model, from_msh_file  # noqa: F401
 from .openings import CircularOpening, HorseshoeOpening  # noqa: F401
 from .tunnel import (OPENING, OPENING_TAG,  # noqa: F401
                      tunnel_section)
+from .slope import FACE, TOE, SlopeGeometry, slope_section  # noqa: F401

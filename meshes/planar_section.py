@@ -184,3 +184,30 @@ def line_node_counts(lengths: np.ndarray, starts: np.ndarray, ends: np.ndarray, 
     pts = starts[:, None, :] + s[None, :, None] * (ends - starts)[:, None, :]
     h = size_at(pts.reshape(-1, 2)).reshape(len(lengths), samples)
     return node_count(np.mean(1.0 / h, axis=1) * lengths)
+
+
+def chain_lines(chains, owner: np.ndarray) -> tuple:
+    """The mesh lines of arranged segments (arrange's chains, owner[k] the joint of segment k):
+    (start node, end node, joint of every line, the nodes where a chain ends)."""
+    if not chains:
+        empty = np.empty(0, np.int64)
+        return empty, empty, owner, empty
+    starts = np.concatenate([c[:-1] for c in chains])
+    ends = np.concatenate([c[1:] for c in chains])
+    line_owner = np.concatenate([np.full(len(c) - 1, owner[k]) for k, c in enumerate(chains)])
+    tips = np.unique(np.concatenate([[c[0], c[-1]] for c in chains]))
+    return starts, ends, line_owner, tips
+
+
+class GeoPoints:
+    """gmsh built-in kernel points of the arranged nodes, each added on first use: points(k) is
+    the tag of node k."""
+
+    def __init__(self, geo, nodes: np.ndarray):
+        self.geo, self.nodes = geo, nodes
+        self.tags = np.zeros(len(nodes), dtype=np.int64)
+
+    def __call__(self, k: int) -> int:
+        if not self.tags[k]:
+            self.tags[k] = self.geo.addPoint(*self.nodes[k], 0.0)
+        return int(self.tags[k])

@@ -176,10 +176,7 @@ def _build_planar(gmsh, size, opening, joints, segments, mesh_size, opening_mesh
     outline = loops[0] + loops[1]
     nodes, chains, vertex = planar_section.arrange(segs, [joints[i].name for i in owner], tol,
                                                    np.array([p.start for p in outline]))
-    starts = np.concatenate([c[:-1] for c in chains]) if chains else np.empty(0, np.int64)
-    ends = np.concatenate([c[1:] for c in chains]) if chains else np.empty(0, np.int64)
-    line_owner = np.concatenate([np.full(len(c) - 1, owner[k]) for k, c in enumerate(chains)]) if chains else owner
-    tips = np.unique(np.concatenate([[c[0], c[-1]] for c in chains])) if chains else np.empty(0, np.int64)
+    starts, ends, line_owner, tips = planar_section.chain_lines(chains, owner)
     # A joint piece between two nodes on the outline may run along it (then it separates nothing).
     on_outline = np.zeros(len(nodes), dtype=bool)
     on_outline[tips[planar_section.outline_distance(nodes[tips], outline) <= tol] if tips.size else tips] = True
@@ -191,12 +188,7 @@ def _build_planar(gmsh, size, opening, joints, segments, mesh_size, opening_mesh
                              f"two blocks everywhere: {_DANGLING}")
 
     geo = gmsh.model.geo
-    tags = np.zeros(len(nodes), dtype=np.int64)
-
-    def point(k):
-        if not tags[k]:
-            tags[k] = geo.addPoint(*nodes[k], 0.0)
-        return int(tags[k])
+    point = planar_section.GeoPoints(geo, nodes)
 
     names = ("bottom", "right", "top", "left")
     splits = planar_section.split_outline(outline, nodes, tips, tol)

@@ -260,9 +260,9 @@ class JointedRockModel:
                 reports = solve_load_path(p, load_steps, self.newton_options, solve_step=self._step_solver())
             else:
                 reports = snes_load_path(p, load_steps, self.newton_options)
-        except Exception:
+        except Exception as e:
             self.load_path.end_stage(p.load_factor)
-            raise
+            raise p.explained(e)
         finally:
             p.timings["newton"] += time.perf_counter() - t0
             p.clock = None

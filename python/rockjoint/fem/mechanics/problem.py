@@ -22,7 +22,7 @@ from petsc4py import PETSc
 
 from ..compat import la_petsc
 from .joint_initial_state import initial_jump
-from ..solvers.linear_solver import LinearSolver, resolve_kind, rigid_body_modes
+from ..solvers.linear_solver import LinearSolveError, LinearSolver, resolve_kind, rigid_body_modes
 from ..solvers.newton import NewtonProblem
 from ..solvers.snes_problem import JointedSNESProblem
 
@@ -74,6 +74,8 @@ class JointedProblem(JointedSNESProblem, NewtonProblem):
         self._pressure_target = self._pressure_start = self._pressure_applied = None
         #: water p0 [Pa] per joint point from the initial state on (set_initial_joint_pressure)
         self.initial_pressure = None
+        #: what a singular solve should add to its error (e.g. the joints the water opens)
+        self.failure_hints: list = []
         self.step_iterations = 0      #: Newton iterations of the load step being solved
         self.clock = None             #: progress clock (stages.StageClock) of the stage being solved
         #: wall-clock seconds on this rank: bulk_assembly (K), interface_residual and
@@ -139,6 +141,15 @@ class JointedProblem(JointedSNESProblem, NewtonProblem):
         if self._pressure_target is not None:   # the water ramps from where it stands now
             self._pressure_start = (np.zeros_like(self._pressure_target) if self._pressure_applied is None
                                     else self._pressure_applied.copy())
+
+    def explained(self, error: Exception) -> Exception:
+        """`error`, or for a singular solve (LinearSolveError) with failure_hints a LinearSolveError
+        that adds them (caused by `error`)."""
+        if not (isinstance(error, LinearSolveError) and self.failure_hints):
+            return error
+        out = LinearSolveError(f"{error}. {' '.join(self.failure_hints)}")
+        out.__cause__ = error
+        return out
 
     def set_pressure_target(self, pressure: np.ndarray) -> None:
         """The fluid pressure p [Pa] at every joint point of this rank at the end of the next

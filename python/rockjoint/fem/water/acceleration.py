@@ -11,7 +11,7 @@ p_k and H(p_k), each accelerator returns p_{k+1}.
 - ``iqn-ils``: the interface quasi-Newton method with an inverse Jacobian from a least-squares
   model (Degroote, Bathe & Vierendeels 2009, Eqs. 12-16; Anderson mixing): the columns of
   V = [r_k - r_{k-1}, ...] and W = [H(p_k) - H(p_{k-1}), ...] since the first iterate, c from
-  min |V c + r_k|, then::
+  min ``|V c + r_k|``, then::
 
       p_{k+1} = H(p_k) + W c.
 

@@ -8,9 +8,12 @@ the joint element learns σ'_n without knowing about flow).
 A pressure set here is the value at the end of the model's next stage: it ramps over that stage
 from the value at its start (0 before any), like the loads, so a joint that water opens
 (hydraulic jacking, p above the total normal stress) is approached load step by load step.
-Where such a joint has no residual stiffness nothing would hold it open: `set_joint_pressure`
-refuses water that reaches the total normal stress such a joint carries in the model's solved
-state, naming the joint (the check a scene's statics make for tension).
+Where such a joint has no residual stiffness the opened part carries nothing; that is an answer
+where the blocks are held otherwise (a tension crack in a slope: the water a load on its walls),
+and a singular system where a block is held only by that joint. `set_joint_pressure` finds the
+joints without k_r that the water would open (points in contact in the solved state whose total
+normal stress it reaches) and, if the next solve then finds no equilibrium (LinearSolveError),
+the error names them, the pressure and the stress, as it names an open joint for tension.
 
 Water already in place in the initial state (a water table above the rock mass: hydrostatic p0 =
 ρ g (z_table - z)) is set with `set_initial_joint_pressure` before the first solve: the in-situ
@@ -42,7 +45,7 @@ def set_joint_pressure(model, pressure: Pressure) -> np.ndarray:
     model.interface.state()). Returns the values set on this rank. ValueError for a non-finite
     pressure or a wrong size."""
     p = _values(model, pressure)
-    _check_jacking(model, p)
+    model.problem().failure_hints = _jacking(model, p)
     model.problem().set_pressure_target(p)
     return p
 
@@ -83,12 +86,12 @@ def _values(model, pressure: Pressure) -> np.ndarray:
     return p
 
 
-def _check_jacking(model, pressure: np.ndarray) -> None:
-    """ValueError naming the joints without a residual stiffness where α p would reach the total
-    normal stress σ_n = σ' + α p_now they carry in the last solved state (collective; nothing to
-    check before a first solve)."""
+def _jacking(model, pressure: np.ndarray) -> list:
+    """[what to say if the next solve is singular]: the joints without a residual stiffness where
+    α p would reach the total normal stress σ_n = σ' + α p_now of points in contact in the last
+    solved state (collective; nothing before a first solve)."""
     if not model.stages:
-        return
+        return []
     state = model.interface.state()
     tags = np.asarray(state["tag"])
     alpha = np.array([model.behaviours[int(t)].effective_stress_coefficient for t in tags])
@@ -97,15 +100,14 @@ def _check_jacking(model, pressure: np.ndarray) -> None:
     for name, tag in sorted(names_of(model.dmesh, "joints").items()):
         if model.behaviours[tag].residual_stiffness > 0.0:
             continue
-        at = (tags == tag) & (alpha * pressure >= total)
+        at = (tags == tag) & (total > 0.0) & (alpha * pressure >= total)
         count = model.comm.allreduce(int(np.sum(at)))
         if count:
             top = model.comm.allreduce(float(np.max(pressure[at], initial=0.0)), op=MPI.MAX)
             low = model.comm.allreduce(float(np.min(total[at], initial=np.inf)), op=MPI.MIN)
             problems.append(f"joint {name!r}: {count} point(s), water up to {top * 1e-6:.4g} MPa against a total "
                             f"normal stress down to {low * 1e-6:.4g} MPa")
-    if problems:
-        raise ValueError("set_joint_pressure: the water would open joints that nothing holds open (hydraulic "
-                         "jacking without a residual stiffness): " + "; ".join(problems)
-                         + ". Give those joints a residual_stiffness, or lower the pressure.")
-
+    if not problems:
+        return []
+    return ["The water opens joints without a residual stiffness (hydraulic jacking): " + "; ".join(problems)
+            + ". Nothing holds what it opens: give those joints a residual_stiffness, or lower the pressure."]

@@ -1,0 +1,114 @@
+# SPDX-License-Identifier: MIT
+"""Factor of safety by strength reduction (issue 40; Dawson, Roth & Drescher 1999 for continua,
+the discontinuum form of UDEC/3DEC): every joint's strength divided by a trial F,
+
+    tan φ_F = tan φ / F,   c_F = c / F,   T_F = T / F   (and ψ_F = min(ψ, φ_F)),
+
+the model built and solved through its stages at each trial; a trial fails when its solve finds
+no equilibrium (Newton's load stepping gives up, ConvergenceError, or the linear solve of a
+mechanism fails, LinearSolveError). F is found by bracketing from F = 1 (×/÷ `growth` until a
+trial fails / holds) and bisection until the bracket is within `tolerance` (relative) of its
+stable end. The intact rock stays elastic (the joints are what fails). Barton's strength is
+reduced through its peak angle in C++ only: refused here until it is (a ValueError names it).
+"""
+from __future__ import annotations
+
+import logging
+import math
+from dataclasses import dataclass, field
+from typing import Callable
+
+from ...joint import JointStrength, StrengthModel
+from ..solvers.linear_solver import LinearSolveError
+from ..solvers.newton import ConvergenceError
+
+log = logging.getLogger(__name__)
+
+
+def reduced_strength(strength: JointStrength, factor: float) -> JointStrength:
+    """The Coulomb strength with tan φ, c and T divided by `factor` (> 0); no strength stays none."""
+    if not (math.isfinite(factor) and factor > 0.0):
+        raise ValueError(f"strength reduction factor = {factor!r} must be finite and > 0")
+    if strength.model == StrengthModel.none:
+        return strength
+    if strength.model != StrengthModel.coulomb:
+        raise ValueError("strength reduction: only the Coulomb strength is reduced (Barton's peak angle needs its "
+                         "reduction in the C++ strength; not available yet)")
+    phi = math.atan(math.tan(strength.friction_angle) / factor)
+    return JointStrength(StrengthModel.coulomb, friction_angle=phi, cohesion=strength.cohesion / factor,
+                         tensile_strength=strength.tensile_strength / factor,
+                         dilation_angle=min(strength.dilation_angle, phi), dilation_limit=strength.dilation_limit)
+
+
+@dataclass
+class SafetyFactor:
+    """The strength-reduction factor of safety: F (the middle of the last bracket), the bracket
+    (largest F with equilibrium, smallest without; None where none was found), and every trial
+    (F, held, why it failed)."""
+
+    factor: float
+    stable: float | None
+    failed: float | None
+    tolerance: float
+    trials: list = field(default_factory=list)
+
+    @property
+    def bounded(self) -> bool:
+        """True if both ends of the bracket were found (a real factor, not a search limit)."""
+        return self.stable is not None and self.failed is not None
+
+
+def factor_of_safety(trial: Callable[[float], object], *, tolerance: float = 0.01, growth: float = 2.0,
+                     smallest: float = 0.05, largest: float = 50.0) -> SafetyFactor:
+    """F of the model that `trial(F)` builds with every joint strength reduced by F
+    (reduced_strength) and solves through its stages (raising ConvergenceError or LinearSolveError
+    when it finds no equilibrium). `tolerance`: relative width of the final bracket (default 0.01,
+    issue 40). A scene stable at `largest` (or failing at `smallest`) returns that limit with
+    bounded False, and says so in the log."""
+    if not 0.0 < tolerance < 1.0:
+        raise ValueError(f"factor_of_safety: tolerance = {tolerance!r} must be in (0, 1)")
+    if not growth > 1.0:
+        raise ValueError(f"factor_of_safety: growth = {growth!r} must be > 1")
+    trials = []
+
+    def holds(f: float) -> bool:
+        try:
+            trial(f)
+        except (ConvergenceError, LinearSolveError) as e:
+            trials.append((f, False, str(e).splitlines()[0]))
+            log.info("strength reduction F = %.4g: no equilibrium (%s)", f, trials[-1][2][:120])
+            return False
+        trials.append((f, True, ""))
+        log.info("strength reduction F = %.4g: equilibrium", f)
+        return True
+
+    stable = failed = None
+    f = 1.0
+    if holds(f):
+        stable = f
+        while failed is None and stable < largest:
+            f = min(stable * growth, largest)
+            if holds(f):
+                stable = f
+            else:
+                failed = f
+    else:
+        failed = f
+        while stable is None and failed > smallest:
+            f = max(failed / growth, smallest)
+            if holds(f):
+                stable = f
+            else:
+                failed = f
+    if stable is None or failed is None:
+        limit = largest if failed is None else smallest
+        log.info("strength reduction: %s at every F tried up to %g: no factor of safety in [%g, %g]",
+                    "equilibrium" if failed is None else "no equilibrium", limit, smallest, largest)
+        return SafetyFactor(limit, stable, failed, tolerance, trials)
+    while failed - stable > tolerance * stable:
+        f = 0.5 * (stable + failed)
+        if holds(f):
+            stable = f
+        else:
+            failed = f
+    return SafetyFactor(0.5 * (stable + failed), stable, failed, tolerance, trials)

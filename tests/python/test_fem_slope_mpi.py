@@ -1,0 +1,26 @@
+# SPDX-License-Identifier: MIT
+"""The strength-reduction factor of safety on 2 ranks (ctest pytest_mpi2_fem) = serial: every
+trial holds or fails alike (the failure is collective: Newton's norms and MUMPS' null pivots are
+global), so the search takes the same steps to the same F."""
+import math
+
+import pytest
+
+from fe_stack import require_fe
+require_fe()
+
+from mpi4py import MPI  # noqa: E402
+
+from mpi_ranks import two_ranks  # noqa: E402
+from slope_cases import slope_mesh, trial_solver  # noqa: E402
+from rockjoint.fem.mechanics.strength_reduction import factor_of_safety  # noqa: E402
+
+
+@pytest.mark.mpi
+def test_factor_of_safety_on_two_ranks_is_the_serial_one():
+    comm = two_ranks()
+    phi, c = math.radians(30.0), 60e3
+    parallel = factor_of_safety(trial_solver(slope_mesh(comm=comm), phi, c), tolerance=0.01)
+    serial = factor_of_safety(trial_solver(slope_mesh(comm=MPI.COMM_SELF), phi, c), tolerance=0.01)
+    assert [(f, held) for f, held, _ in parallel.trials] == [(f, held) for f, held, _ in serial.trials]
+    assert parallel.factor == serial.factor
