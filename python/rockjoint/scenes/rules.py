@@ -288,7 +288,7 @@ def water(ctx: Context):
             why="set in the scene (water.coupling: two_way)",
             cost=(f"after every stage the coupled steady state: about {defaults.COUPLED_ITERATIONS} mechanical "
                   "stage solves (+ one network solve each) per stage, the staggered iterations measured on the "
-                  "verification column (bench/results/coupled_water.md)"),
+                  "verification column and the drained tunnel (bench/results/coupled_water*.md)"),
             error="the coupling converged to 1e-8 of the pressures; the network's P1 error on the joints")]
     return coupling, [Choice(
         "water", "one way: the flow along the joints at each stage's closures" + table,
