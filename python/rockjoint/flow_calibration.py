@@ -83,10 +83,7 @@ class FlowCalibration:
 
     def parameter(self, name: str) -> FittedParameter:
         """The fitted parameter `name` (KeyError if none)."""
-        for p in self.parameters:
-            if p.name == name:
-                return p
-        raise KeyError(name)
+        return {p.name: p for p in self.parameters}[name]
 
     def report(self) -> str:
         """The calibration in words: data, parameters with uncertainties, rms per branch, what the

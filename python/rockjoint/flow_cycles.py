@@ -24,7 +24,6 @@ inside.
 """
 from __future__ import annotations
 
-import csv
 import math
 import re
 from dataclasses import dataclass
@@ -32,6 +31,7 @@ from typing import Optional
 
 import numpy as np
 
+from .calibration import read_rows
 from .cycle_calibration import branch_labels
 from .units import DIMENSIONS
 
@@ -146,15 +146,7 @@ def _columns(path: str, line: int, header) -> dict:
 def read_flow_cycles(path, geometry: Optional[FlowGeometry] = None) -> FlowCycles:
     """FlowCycles from a CSV file (module docstring); `geometry` turns a flow rate into T."""
     path = str(path)
-    try:
-        with open(path, newline="", encoding="utf-8") as f:
-            rows = [(k + 1, r) for k, r in enumerate(csv.reader(f))]
-    except OSError as err:
-        raise ValueError(f"{path}: cannot read the flow cycles ({err.strerror})") from err
-    rows = [(k, r) for k, r in rows if r and any(c.strip() for c in r) and not r[0].lstrip().startswith("#")]
-    if not rows:
-        raise ValueError(f"{path}: the file is empty")
-    (line, header), rows = rows[0], rows[1:]
+    (line, header), *rows = read_rows(path, "the flow cycles")
     cols = _columns(path, line, header)
     if "normal_stress" not in cols:
         raise ValueError(f"{path}: line {line}: no normal stress column; the header needs e.g. "

@@ -25,7 +25,7 @@ gives d from a measured ratio R at a closure Δ: d = (1 - R^(1/3)) / (1 - e_v(Δ
 recovery after unloading to zero stress also carries the closure law's own permanent closure
 (a hysteretic closure law, docs/hysteresis.md): T(Δ_p, Δ_m)/T_v(0) with Δ_p = r Δ_m.
 
-Range of d: [0, 1); the issue's laboratory ratios correspond to d ~ 0.05-0.5 (T3 with
+Range of d: [0, 1); the issue's laboratory ratios 0.6-0.95 correspond to d ~ 0.03-0.8 (T3 with
 e_v(Δ_m)/e_v(Δ) ~ 0.5-0.8, the ratio of the hydraulic apertures at the peak and unloaded).
 SI units: m, m³.
 """
