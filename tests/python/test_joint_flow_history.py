@@ -12,41 +12,13 @@ import pytest
 from fe_stack import require_fe  # noqa: E402
 require_fe()
 
-from mpi4py import MPI  # noqa: E402
-
-import rockjoint  # noqa: E402
-from rockjoint import flow, meshes  # noqa: E402
-from rockjoint.fem import JointedRockModel, NewtonOptions, network_flow  # noqa: E402
-from rockjoint.fem.mesh.distributed_mesh import distribute, names_of  # noqa: E402
+from rockjoint import flow  # noqa: E402
+from rockjoint.fem import network_flow  # noqa: E402
+from rockjoint.fem.mesh.distributed_mesh import names_of  # noqa: E402
 from rockjoint.fem.water.joint_flow import Fluid  # noqa: E402
-from joint_flow_cases import APERTURE, E, HEADS, HEIGHT, KNI, LOAD, NU, VM, WIDTH  # noqa: E402
-
-R, M, LOSS = 0.25, 3.0, 0.35
-UNLOADED = 0.25            # load factor of the second stage
-
-
-def bb_closure(stress):
-    return stress * VM / (KNI * VM + stress)
-
-
-def branch_transmissivity(closure, peak):
-    """(T1-T2) over the cubic law e_v = e0 - Δ, independently of the library."""
-    e_peak, e_now = APERTURE - peak, APERTURE - closure
-    return (e_peak + (1 - LOSS) * (e_now - e_peak)) ** 3 / 12
-
-
-def cycled_column(comm=MPI.COMM_WORLD):
-    jm = meshes.column(WIDTH, HEIGHT, (1.0, 2.0), dim=2, mesh_size=0.5, comm=comm)
-    joints = {"joint_1": rockjoint.NormalHysteresis(rockjoint.BartonBandis(KNI, VM), R, M),
-              "joint_2": rockjoint.BartonBandis(KNI, VM)}
-    model = JointedRockModel(distribute(jm, comm), rock=(E, NU), joints=joints,
-                             newton=NewtonOptions(verbose=False), shear_stiffness=1e9, plane="strain")
-    model.fix("bottom", "y")
-    model.fix("left", "x")
-    model.add_traction("top", (0.0, -LOAD))
-    model.advance(1.0, load_steps=2)
-    model.advance(UNLOADED, load_steps=2)
-    return model
+from joint_flow_cases import APERTURE, HEADS, LOAD, WIDTH  # noqa: E402
+from flow_history_cases import (LOSS, bb_closure, branch_transmissivity, cycled_column,  # noqa: E402
+                                unloaded_closures)
 
 
 def test_unloaded_network_against_the_closed_form_of_the_law_with_history():
@@ -54,8 +26,7 @@ def test_unloaded_network_against_the_closed_form_of_the_law_with_history():
     law = flow.transmissivity_law("hydraulic_history", initial_aperture=APERTURE, hydraulic_loss=LOSS)
     laws = {"joint_1": law.transmissivity, "joint_2": law}        # a bound method or the law itself
     peak = bb_closure(LOAD)
-    sigma = UNLOADED * LOAD
-    closure = {"joint_1": R * peak + (1 - R) * peak * UNLOADED ** (1 / M), "joint_2": bb_closure(sigma)}
+    closure = unloaded_closures()
     factor = Fluid().conductivity_factor * (HEADS["left"] - HEADS["right"]) / WIDTH
     unloaded = network_flow(model, laws, HEADS)
     tags = names_of(model.dmesh, "joints")
