@@ -149,6 +149,24 @@ def test_flow_rate_through_a_radial_core_and_the_command(tmp_path):
     assert "not identifiable" not in out.stdout and "d = 0.30" in out.stdout and png.stat().st_size > 10000
 
 
+def test_the_command_with_a_closure_law_file_and_without_one(tmp_path):
+    """T only, the closure law from a parameter file (`rockjoint tabulate`'s format, docs/hysteresis.md;
+    its [table] is not used): d comes back;
+    without a closure column or a closure law the command names what is missing."""
+    stress, _, t, _ = cycle(seed=11)
+    f = write(tmp_path / "t.csv", "normal_stress [MPa], transmissivity [m3]", np.column_stack([stress * 1e-6, t]))
+    toml = tmp_path / "law.toml"
+    toml.write_text('[law]\nmodel = "normal_hysteresis"\nvirgin = "barton_bandis"\n'
+                    'initial_normal_stiffness_MPa_per_mm = 12.0\nmaximum_closure_mm = 0.4\n'
+                    'permanent_fraction = 0.25\nunloading_exponent = 3.0\n[table]\nmaximum_stress_MPa = 20.0\n')
+    run = [sys.executable, "-m", "rockjoint", "calibrate", str(f), "--flow", "--plot", str(tmp_path / "t.png")]
+    out = subprocess.run(run + ["--closure-law", str(toml)], capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    assert "e0 = 0.350" in out.stdout and "d = 0.30" in out.stdout, out.stdout
+    out = subprocess.run(run, capture_output=True, text=True)
+    assert out.returncode == 1 and "no closure column; name the closure law" in out.stderr, out.stderr
+
+
 @pytest.mark.parametrize("header, rows, geometry, message", [
     ("closure [mm], transmissivity [m3]", [[0.0, 1e-12]], None, "no normal stress column"),
     ("normal_stress [MPa], transmissivity [ft3]", [[1.0, 1e-12]], None, "unit 'ft3'"),

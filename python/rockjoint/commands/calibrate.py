@@ -97,7 +97,8 @@ def add_flow_arguments(p) -> None:
                    help="the file holds flow through load cycles: fit the transmissivity law with history")
     g.add_argument("--virgin", choices=HISTORY_VIRGINS, default=HISTORY_VIRGINS[0],
                    help="transmissivity law of first loading (default cubic_law)")
-    g.add_argument("--closure-law", metavar="TOML", help="a closure law parameter file (data without closure)")
+    g.add_argument("--closure-law", metavar="TOML", help="a closure law parameter file (data without closure; the tabulate "
+                        "command's format, its [table] not used)")
     g.add_argument("--geometry", choices=("radial", "linear"), default="radial",
                    help="flow-rate data: radial from a central borehole (default) or linear")
     for name, what in (("inner-radius", "borehole radius r_i"), ("outer-radius", "core radius r_o"),
