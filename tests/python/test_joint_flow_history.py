@@ -51,3 +51,24 @@ def test_unloaded_network_against_the_closed_form_of_the_law_with_history():
     plain = network_flow(model, {n: virgin.transmissivity for n in closure}, HEADS)
     assert plain.flow_rates["left"] == pytest.approx(
         factor * sum(virgin.transmissivity(d) for d in closure.values()), rel=1e-7)
+
+
+@pytest.mark.parametrize("solve", ["steady", "transient"])
+def test_coupled_water_keeps_the_largest_closure_of_the_stages_before_it(solve):
+    """The coupled solves re-gather the joint state at every iterate: each point's Δ_m is still
+    the largest closure of the stages before the coupling (the loading to 4 MPa), not the iterate's
+    own closure, so T stays the closed form of the law with history at the final closures."""
+    from rockjoint.fem.water.coupled import coupled_steady
+    from rockjoint.fem.water.transient import coupled_transient
+    model = cycled_column()
+    law = flow.transmissivity_law("hydraulic_history", initial_aperture=APERTURE, hydraulic_loss=LOSS)
+    laws = {"joint_1": law, "joint_2": law}
+    if solve == "steady":
+        network = coupled_steady(model, laws, HEADS).network
+    else:
+        network = coupled_transient(model, laws, 1.0, 2, HEADS).networks[-1]
+    state = model.solution.gather_joints()
+    closure = np.asarray(state["closure"])
+    np.testing.assert_allclose(network.point_transmissivity, branch_transmissivity(closure, bb_closure(LOAD)),
+                               rtol=1e-9)
+    assert np.all(closure < bb_closure(LOAD))            # unloaded: below the peak, on the branch
