@@ -83,8 +83,9 @@ class NetworkFlow:
 
     def write(self, path: str, comm=None) -> str:
         """The network as an XDMF grid for ParaView (segments in 2D, triangles in 3D; HDF5 data
-        beside it): head_m at the nodes (NaN where no head reaches), transmissivity_m3 and
-        joint_tag per element. Written by rank 0 of `comm` (default: this process). Returns path."""
+        beside it): head_m and pressure_Pa (p = ρ g (h - z)) at the nodes (NaN where no head
+        reaches), transmissivity_m3 and joint_tag per element. Written by rank 0 of `comm`
+        (default: this process). Returns path."""
         if comm is not None and comm.rank != 0:
             comm.barrier()
             return path
@@ -92,7 +93,8 @@ class NetworkFlow:
         xyz = np.zeros((self.nodes.shape[0], 3))
         xyz[:, :self.nodes.shape[1]] = self.nodes
         kind = "line" if self.elements.shape[1] == 2 else "triangle"
-        meshio.write(path, meshio.Mesh(xyz, [(kind, self.elements)], point_data={"head_m": self.head},
+        nodal = {"head_m": self.head, "pressure_Pa": self.pressure}
+        meshio.write(path, meshio.Mesh(xyz, [(kind, self.elements)], point_data=nodal,
                                        cell_data={"transmissivity_m3": [self.element_transmissivity],
                                                   "joint_tag": [self.element_tags.astype(np.int32)]}),
                      file_format="xdmf")
