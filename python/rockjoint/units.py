@@ -25,6 +25,7 @@ DIMENSIONS = {
     # a joint's transmissivity T (q = -(T/μ) ∇p per unit width) and a laboratory flow rate
     "transmissivity": {"m3": 1.0, "m³": 1.0, "mm3": 1e-9, "mm³": 1e-9},
     "flow_rate": {"m3/s": 1.0, "m³/s": 1.0, "L/s": 1e-3, "L/min": 1e-3 / 60, "mL/s": 1e-6, "mL/min": 1e-6 / 60},
+    "time": {"s": 1.0, "min": 60.0, "h": 3600.0, "d": 86400.0},
     "number": {"-": 1.0},
 }
 #: the units of law parameters in files and reports, with their dimension

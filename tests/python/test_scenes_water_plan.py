@@ -57,3 +57,22 @@ def test_the_plan_says_what_the_coupling_costs(tmp_path, coupling, words):
 def test_a_dry_scene_plans_no_water(tmp_path):
     plan = make_plan(load_scene(write(tmp_path, COLUMN)))
     assert plan.water is None and not [c for c in plan.choices if c.topic == "water"]
+
+
+@pytest.mark.parametrize("coupling, words", [
+    ("", "one network solve per time step"),
+    (", coupling: two_way", f"about {defaults.TRANSIENT_ITERATIONS} mechanical stage solves (+ one network solve each) "
+                            "per time step"),
+])
+def test_the_plan_says_what_a_transient_water_stage_costs(tmp_path, coupling, words):
+    """A stage with water: {duration, steps}: its time steps and what each costs; the two-way
+    count is the benchmark's transient row (read back)."""
+    text = COLUMN.replace("    strength: {model: coulomb, friction_angle: 30 deg, cohesion: 0 MPa}\n",
+                          "    flow: {law: cubic_law, initial_aperture: 0.3 mm}\n")
+    text = text.replace("  - name: load\n", "  - name: load\n    water: {duration: 2 d, steps: 8}\n")
+    plan = make_plan(load_scene(write(tmp_path, text + WATER % coupling)))
+    (choice,) = [c for c in plan.choices if c.topic == "water"]
+    assert "transient water in stage(s) load (2 d in 8 implicit steps" in choice.choice and words in choice.choice
+    with open(os.path.join(SOURCE, "bench", "results", "coupled_water.md"), encoding="utf-8") as f:
+        two_way = [line for line in f if line.startswith("| two_way |")]
+    assert two_way and int(two_way[0].split("|")[5]) == defaults.TRANSIENT_ITERATIONS

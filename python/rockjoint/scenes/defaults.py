@@ -82,3 +82,6 @@ SMEARED_EVIDENCE = ((1.0, 0.728, 0.1, 0.176, 0.6), (0.5, 0.769, 0.1, 0.289, 0.8)
 #: (bench/results/coupled_water_tunnel.md), 2026-11-29; each iteration is one mechanical stage
 #: solve and one network solve
 COUPLED_ITERATIONS = 4
+#: fixed-stress iterations per time step of the two-way transient water: 3 on the erfc column of
+#: tests/python/test_fem_transient_water.py (bench/results/coupled_water.md's transient rows)
+TRANSIENT_ITERATIONS = 3

@@ -282,6 +282,13 @@ def water(ctx: Context):
     coupling = w["coupling"] if w is not None else "one_way"
     table = (f"; the table at z = {w['table']:g} m: hydrostatic water in the joints from the in-situ "
              "stage on, joints pre-closed at the effective stress") if w is not None and "table" in w else ""
+    timed = [(s["name"], s["water"]) for s in d["stages"] if "water" in s]
+    if timed:
+        per = (f"about {defaults.TRANSIENT_ITERATIONS} mechanical stage solves (+ one network solve each) per "
+               "time step, the fixed-stress iterations measured on the erfc column (bench/results/coupled_water.md)"
+               if coupling == "two_way" else "one network solve per time step (the mechanics held)")
+        table += "; transient water in stage(s) " + ", ".join(
+            f"{n} ({t['duration'] / 86400:g} d in {t['steps']} implicit steps: {per})" for n, t in timed)
     if coupling == "two_way":
         return coupling, [Choice(
             "water", "two way: the water's pressure acts on the joints, coupled to the equilibrium" + table,

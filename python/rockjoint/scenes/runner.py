@@ -208,8 +208,8 @@ def run_stages(scene, plan, model, label: str, current: list | None = None, tran
     rows, excavated = [], set()
     jointed = bool(model.behaviours)
 
-    def record(name, solution):
-        solution, water = scene_water.after_stage(scene, model, solution, transmissivity, excavated, name)
+    def record(name, solution, transient=None):
+        solution, water = scene_water.after_stage(scene, model, solution, transmissivity, excavated, name, transient)
         rows.append(_record(scene, plan, model, label, name, solution, water))
         return solution
 
@@ -234,8 +234,8 @@ def run_stages(scene, plan, model, label: str, current: list | None = None, tran
                 add = model.add_traction if kind == "traction" else model.add_pressure
                 handles[face, kind] = add(face, value)
         steps = stage.get("steps", plan.load_steps)
-        scene_water.before_stage(scene, model, transmissivity, excavated)
-        solution = record(stage["name"], model.solve(load_steps=steps, name=stage["name"]))
+        scene_water.before_stage(scene, model, transmissivity, excavated, stage.get("water"))
+        solution = record(stage["name"], model.solve(load_steps=steps, name=stage["name"]), stage.get("water"))
         log.info("%s: stage %s, %d load step(s), %d Newton iterations (%.1f s)", label, stage["name"],
                  steps, solution.newton_iterations, time.perf_counter() - t0)
     return rows

@@ -227,7 +227,8 @@ LOAD = Mapping({"traction": ListOf(Quantity("stress"), length=(2, 3), required=F
 
 STAGE = Mapping({"name": Text(), "steps": Integer(low=1, high=1000, required=False),
                  "excavate": Text(required=False),
-                 "loads": NamedMapping(LOAD, required=False, default={})})
+                 "loads": NamedMapping(LOAD, required=False, default={}),
+                 "water": water_keys.STAGE_WATER})
 
 MESH = Mapping({"size": Quantity("length", **POSITIVE),
                 "joint_size": Quantity("length", required=False, **POSITIVE),

@@ -22,6 +22,7 @@ from rockjoint import topography as topo
 from ..fem import Fluid, darcy_flow, network_flow
 from ..fem.water.coupled import coupled_steady, gathered_pressure, pressure_at_points, scatter_pressure
 from ..fem.water.joint_pressure import set_initial_joint_pressure
+from ..fem.water.transient import coupled_transient
 from ..meshes import joint_sets_of
 from . import joint_laws, ladder, water_keys
 
@@ -97,19 +98,26 @@ class StageWater:
     wet: bool = False               #: the scene has water and the model joints to hold it
 
 
-def after_stage(scene, model, solution, laws: dict | None, excavated, name: str) -> tuple:
+def after_stage(scene, model, solution, laws: dict | None, excavated, name: str, transient=None) -> tuple:
     """(the stage's final StageResult, StageWater) after `solution` was solved. The jointed model
     (`laws`: {joint set: TransmissivityLaw}) with `coupling: two_way`: the coupled steady state
     (coupled_steady: each iteration a stage '<name>: water k'; the last one is returned); one way:
-    the network at the stage's closures. The intact model: Darcy with the rock's permeability
-    between heads (none with pressures given: Darcy here takes uniform heads only)."""
+    the network at the stage's closures. `transient` (the stage's water: {duration [s], steps}):
+    the water flows for that time instead, with storage (coupled_transient, one way or two way),
+    from the water the joints hold. The intact model: Darcy with the rock's permeability between
+    heads, steady (none with pressures given: Darcy here takes uniform heads only)."""
     water = StageWater()
     heads, pressures = conditions(scene, excavated)
     bcs = dict(heads=heads, **({"pressures": pressures} if pressures else {}))
     flows = requested(scene) and bool(heads or pressures)   # e.g. a drained opening not yet excavated: no flow
     if flows and laws is not None:
         per_joint = _per_joint(model, laws)
-        if two_way(scene):
+        if transient is not None:
+            steps = coupled_transient(model, per_joint, transient["duration"], transient["steps"], name=f"{name}: water",
+                                      coupling="two_way" if two_way(scene) else "one_way", **bcs)
+            solution, network = model.stages[-1], steps.networks[-1]
+            water.iterations = sum(steps.iterations) if two_way(scene) else 0
+        elif two_way(scene):
             coupled = coupled_steady(model, per_joint, name=f"{name}: water", **bcs)
             solution, network, water.iterations = model.stages[-1], coupled.network, coupled.iterations
         else:
@@ -135,13 +143,14 @@ def _per_joint(model, laws: dict) -> dict:
     return {n: laws[s].transmissivity for n, s in joint_sets_of(model.dmesh.names).items()}
 
 
-def before_stage(scene, model, laws: dict | None, excavated) -> None:
+def before_stage(scene, model, laws: dict | None, excavated, transient=None) -> None:
     """Two ways, before a stage is solved: the water its conditions bring (e.g. an opening drained
     as it is excavated), the network at the last closures, ramped over the stage with its loads, so
     that the joints drain or fill while the rock moves (slip is path dependent); after the stage
-    the coupling corrects it (after_stage). Nothing one way, or before the first stage."""
+    the coupling corrects it (after_stage). Nothing one way, before the first stage, or before a
+    transient water stage (its water has not drained yet: the time steps let it)."""
     heads, pressures = conditions(scene, excavated)
-    if laws is None or not two_way(scene) or not model.stages or not (heads or pressures):
+    if laws is None or not two_way(scene) or not model.stages or not (heads or pressures) or transient:
         return
     last = model.stages[-1]
     network = network_flow(model, _per_joint(model, laws), heads=heads, stage=last,

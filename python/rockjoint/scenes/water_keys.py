@@ -9,13 +9,18 @@ relations it has with the rest of the scene, in SI. No FE stack: `rockjoint plan
       pressures: {top: 0 MPa}   # water pressures p [Pa] on named boundaries (h = z + p / (ρ g))
       opening: drained          # a tunnel's opening once excavated: drained (p = 0) | lined (no flow)
 
+A stage may let the water flow for a given time instead of to its steady state (transient flow
+with storage, rockjoint.fem.water.transient): ``stages: [{name: ..., water: {duration: 30 d,
+steps: 10}}]``, implicit time steps after the stage's mechanics, one way or two way as the
+scene's coupling says.
+
 The older `outputs: {flow: {heads}}` (one way, the joints dry) stays; a scene gives one or the
 other.
 """
 from __future__ import annotations
 
 from .. import flow
-from .fields import Mapping, NamedMapping, Quantity, Text
+from .fields import Integer, Mapping, NamedMapping, Quantity, Text
 
 COUPLINGS = ("one_way", "two_way")
 
@@ -31,6 +36,10 @@ WATER = Mapping({
     "heads": NamedMapping(Quantity("length"), required=False),
     "pressures": NamedMapping(Quantity("stress", low=0.0), required=False),
     "opening": Text(choices=("drained", "lined"), required=False)}, required=False, rule=_water_rule)
+
+
+STAGE_WATER = Mapping({"duration": Quantity("time", low=0.0, open_low=True),
+                       "steps": Integer(low=1, high=1000, required=False, default=10)}, required=False)
 
 
 def flows(d: dict) -> bool:
@@ -71,6 +80,10 @@ def check(d: dict, c) -> None:
         if d["plan"].get("smeared"):
             c.fail(("plan", "smeared"), "the water runs along the joint network and acts on the joints: "
                                         "smeared sets are not modelled with water; keep the sets discrete")
+    for i, stage in enumerate(d["stages"]):
+        if "water" in stage and not (w is not None and flows(d)):
+            c.fail(("stages", i, "water"), "a transient water stage needs the scene's water with the flow's "
+                                           "boundaries (water: {heads, pressures or opening: drained})")
     if not flows(d):
         return
     for name, joint in d["joints"].items():
