@@ -159,20 +159,26 @@ def read_closure_curve(path, *, intact_length: Optional[float] = None,
                                       young_modulus=young_modulus))
 
 
+def read_rows(path, what: str) -> list:
+    """[(line number, cells)] of a CSV file's rows, blank lines and lines starting with '#'
+    skipped; ValueError naming the file if it cannot be read (`what` it should hold) or is empty."""
+    try:
+        with open(path, newline="", encoding="utf-8") as f:
+            rows = [(k + 1, r) for k, r in enumerate(csv.reader(f))]
+    except OSError as err:
+        raise ValueError(f"{path}: cannot read {what} ({err.strerror})") from err
+    rows = [(k, r) for k, r in rows if r and any(c.strip() for c in r) and not r[0].lstrip().startswith("#")]
+    if not rows:
+        raise ValueError(f"{path}: the file is empty")
+    return rows
+
+
 def read_columns(path, *, intact_length: Optional[float] = None,
                  young_modulus: Optional[float] = None) -> tuple:
     """(stress [Pa], closure [m], closure_std [m] or None, line numbers, source) of a closure CSV
     file in file order (read_closure_curve's format; also load cycles, cycle_calibration.py)."""
     path = str(path)
-    try:
-        with open(path, newline="", encoding="utf-8") as f:
-            rows = [(k + 1, r) for k, r in enumerate(csv.reader(f))]
-    except OSError as err:
-        raise ValueError(f"{path}: cannot read the closure curve ({err.strerror})") from err
-    rows = [(k, r) for k, r in rows if r and any(c.strip() for c in r)
-            and not r[0].lstrip().startswith("#")]
-    if not rows:
-        raise ValueError(f"{path}: the file is empty")
+    rows = read_rows(path, "the closure curve")
     header_line, header = rows[0]
     columns = _parse_header(path, header)
     if "normal_stress" not in columns:

@@ -44,7 +44,7 @@ from .calibration import (CLOSURE_OFFSET, FittedParameter, calibration_spec, che
                           read_columns)
 
 __all__ = ["LoadCycles", "read_load_cycles", "calibrate_cycles", "CycleCalibration", "BRANCHES",
-           "UnloadingEnd", "identifiable"]
+           "UnloadingEnd", "identifiable", "branch_labels"]
 
 #: branch labels of the points of a path
 BRANCHES = ("loading", "unloading", "reloading")
@@ -72,17 +72,22 @@ class LoadCycles:
                                  "unloading (is this a single loading curve? use calibrate)")
 
     def branches(self) -> np.ndarray:
-        """Label of each point: 'loading' (virgin: the stress reaches a new maximum),
-        'unloading' (stress falling) or 'reloading' (rising below the earlier maximum)."""
-        s = self.normal_stress
-        out = np.empty(s.size, dtype=object)
-        top = -math.inf
-        for i, v in enumerate(s):
-            if v >= top:
-                out[i], top = "loading", v
-            else:
-                out[i] = "unloading" if i > 0 and v < s[i - 1] else "reloading"
-        return out
+        """Label of each point (branch_labels of its stress path)."""
+        return branch_labels(self.normal_stress)
+
+
+def branch_labels(stress) -> np.ndarray:
+    """Label of each point of a stress path in test order: 'loading' (virgin: the stress reaches
+    a new maximum), 'unloading' (stress falling) or 'reloading' (rising below the earlier maximum)."""
+    s = np.asarray(stress, dtype=float)
+    out = np.empty(s.size, dtype=object)
+    top = -math.inf
+    for i, v in enumerate(s):
+        if v >= top:
+            out[i], top = "loading", v
+        else:
+            out[i] = "unloading" if i > 0 and v < s[i - 1] else "reloading"
+    return out
 
 
 def read_load_cycles(path) -> LoadCycles:

@@ -15,10 +15,13 @@ only) are in :data:`TRANSMISSIVITY_LAWS`; :func:`transmissivity_law` builds one 
   with ``flow=True``): (0, T at first contact) and (Δ_i, T_i) at each load;
 * ``cubic_law``: parallel plates at the mechanical aperture e = e0 - Δ, T = e³/12;
 * ``barton_jrc``: e = e0 - Δ and Barton's conversion e_h = e²/JRC^2.5 (e, e_h in µm; Barton,
-  Bandis & Bakhtar 1985), T = e_h³/12.
+  Bandis & Bakhtar 1985), T = e_h³/12;
+* ``hydraulic_history``: T(Δ, Δ_m) with history (flow_history.py): first loading on a virgin law
+  (cubic_law or barton_jrc), unloading below the largest closure Δ_m recovering only 1 - d of the
+  virgin hydraulic aperture's recovery.
 
-T follows Δ only: with a law with history (``NormalHysteresis``) the closure on its branches
-(``closure_path``) gives T along load cycles.
+The others follow Δ only: with a closure law with history (``NormalHysteresis``) the closure on its
+branches (``closure_path``) gives T along load cycles.
 
 SI units: m, m³.
 """
@@ -32,6 +35,7 @@ import numpy as np
 
 from ._rockjoint import flow as _cpp
 from ._rockjoint.topography import Surface
+from .flow_history import HYDRAULIC_LOSS, HistoryTransmissivityLaw
 from .units import DIMENSIONS
 
 log = logging.getLogger(__name__)
@@ -306,6 +310,20 @@ def _walls(curve, component: str = "mean") -> TransmissivityLaw:
                               "closure": closure, "transmissivity": t})
 
 
+#: the virgin laws a law with history can take (parameters given, not the walls)
+HISTORY_VIRGINS = ("cubic_law", "barton_jrc")
+
+
+def _hydraulic_history(initial_aperture: float, hydraulic_loss: float, virgin: str = "cubic_law",
+                       **virgin_parameters) -> HistoryTransmissivityLaw:
+    """T(Δ, Δ_m) of flow_history.py over the virgin law `virgin` with its own parameters."""
+    if virgin not in HISTORY_VIRGINS:
+        raise ValueError(f"transmissivity law 'hydraulic_history': virgin = {virgin!r}; expected one of "
+                         f"{', '.join(HISTORY_VIRGINS)}")
+    base = transmissivity_law(virgin, initial_aperture=initial_aperture, **virgin_parameters)
+    return HistoryTransmissivityLaw(base, hydraulic_loss)
+
+
 for _record in (
         TransmissivityRecord(
             "walls", "the walls' own flow (BEM + Reynolds), tabulated",
@@ -319,7 +337,14 @@ for _record in (
         TransmissivityRecord(
             "barton_jrc", "Barton's JRC conversion",
             "e = e0 - Δ, e_h = e²/JRC^2.5 (µm; Barton, Bandis & Bakhtar 1985), T = e_h³/12",
-            {"initial_aperture": "e0 [m]", "jrc": "JRC [-]"}, _barton_jrc)):
+            {"initial_aperture": "e0 [m]", "jrc": "JRC [-]"}, _barton_jrc),
+        TransmissivityRecord(
+            "hydraulic_history", "with history: unloading recovers a fraction of the aperture",
+            "T(Δ, Δ_m): the virgin law on first loading; below the largest closure Δ_m the hydraulic "
+            "aperture e_v(Δ_m) + (1 - d)(e_v(Δ) - e_v(Δ_m)) (docs/flow.md)",
+            {"initial_aperture": "e0 [m]", HYDRAULIC_LOSS[0]: HYDRAULIC_LOSS[1],
+             "virgin": "optional: the law of first loading, cubic_law (default) or barton_jrc",
+             "jrc": "optional: JRC [-] (virgin barton_jrc)"}, _hydraulic_history)):
     _register(_record)
 
 
@@ -341,10 +366,15 @@ def transmissivity_along(law: TransmissivityLaw, closure_law, stresses: Sequence
                          maximum_closure: float = 0.0) -> np.ndarray:
     """T [m³] along a path of normal stresses [Pa] (load cycles): the closures of `closure_law`
     on that path (a law with history, NormalHysteresis: on its branches, from the largest closure
-    `maximum_closure` [m] reached before; a law without history: its curve), then T(Δ)."""
+    `maximum_closure` [m] reached before; a law without history: its curve), then T(Δ), or
+    T(Δ, Δ_m) for a transmissivity law with history (Δ_m the running maximum from
+    `maximum_closure` on)."""
     stresses = np.asarray(stresses, dtype=float)
     if getattr(closure_law, "has_history", False):
         closure = closure_law.closure_path(stresses, maximum_closure)
     else:
         closure = closure_law.closure_at_stress(stresses)
+    if getattr(law, "has_history", False):
+        closure = np.asarray(closure, dtype=float)
+        return np.asarray(law.transmissivity(closure, np.maximum.accumulate(np.maximum(closure, maximum_closure))))
     return np.asarray(law.transmissivity(closure))

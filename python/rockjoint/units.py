@@ -22,6 +22,9 @@ DIMENSIONS = {
     # intrinsic permeability k of rock (1 darcy = 9.869233e-13 m², by its definition)
     "permeability": {"m2": 1.0, "m²": 1.0, "D": 9.869233e-13, "mD": 9.869233e-16},
     "fraction": {"%": 1e-2, "-": 1.0},
+    # a joint's transmissivity T (q = -(T/μ) ∇p per unit width) and a laboratory flow rate
+    "transmissivity": {"m3": 1.0, "m³": 1.0, "mm3": 1e-9, "mm³": 1e-9},
+    "flow_rate": {"m3/s": 1.0, "m³/s": 1.0, "L/s": 1e-3, "L/min": 1e-3 / 60, "mL/s": 1e-6, "mL/min": 1e-6 / 60},
     "number": {"-": 1.0},
 }
 #: the units of law parameters in files and reports, with their dimension

@@ -34,9 +34,9 @@ def closure(s: float, kr: float = 0.0) -> float:
 
 def loaded_column(dim: int, comm=MPI.COMM_WORLD, *, rock=(E, NU), shear_stiffness: float = 1e9,
                   mesh_size: float = 0.5, joint_mesh_size=None, residual_stiffness: float = 0.0,
-                  alpha: float = 1.0):
+                  alpha: float = 1.0, loaded: bool = True):
     """The 1 m wide, 2 m high column, its joint at z = 1 m, rollers at the bottom and sides, σ on
-    top (not solved): returns the model."""
+    top unless not `loaded` (not solved): returns the model."""
     jm = meshes.column(1.0, 2.0, [1.0], dim=dim, mesh_size=mesh_size, joint_mesh_size=joint_mesh_size, comm=comm)
     model = JointedRockModel(distribute(jm, comm), rock=rock, joints={"joint_1": rockjoint.BartonBandis(KNI, VM)},
                              shear_stiffness=shear_stiffness, residual_stiffness=residual_stiffness,
@@ -46,7 +46,8 @@ def loaded_column(dim: int, comm=MPI.COMM_WORLD, *, rock=(E, NU), shear_stiffnes
     model.fix("left", "x")
     if dim == 3:
         model.fix("front", "y")
-    model.add_traction("top", (0.0,) * (dim - 1) + (-SIGMA,))
+    if loaded:
+        model.add_traction("top", (0.0,) * (dim - 1) + (-SIGMA,))
     return model
 
 

@@ -21,7 +21,7 @@ from rockjoint.scenes.joint_laws import source_law  # noqa: E402
 from scene_cases import SCENES, cli  # noqa: E402
 
 NAMES = ["lab_closure_test", "topography_to_closure", "blocky_rock_mass", "tunnel", "direct_shear",
-         "user_model", "injection_test"]
+         "user_model", "tunnel_below_water_table", "injection_test"]
 
 
 def run(name, tmp_path):
@@ -69,6 +69,18 @@ def test_tunnel_scene_intact_wall_is_kirsch(tmp_path):
     assert i.monitors["opening"][-1] == pytest.approx(kirsch, rel=0.10)
     assert j.monitors["opening"][-1] > i.monitors["opening"][-1]   # the joints add convergence
     assert (tmp_path / "tunnel" / "scene.png").stat().st_size > 10000
+
+
+def test_tunnel_below_a_water_table_intact_wall_is_kirsch_and_water_drains_in(tmp_path):
+    """The water's own checks are the demo's (test_demo_tunnel_below_water_table.py); here the scene
+    as `rockjoint run` runs it: the intact rock holds no water, so its wall is Kirsch's as above."""
+    scene, plan, result = run("tunnel_below_water_table", tmp_path)
+    g = 50e9 / (2 * 1.25)
+    kirsch = 4.0 * (7.95e6 + 0.5 * 7.95e6) / (4 * g)
+    i, j = result.row("intact", "excavation"), result.row("jointed", "excavation")
+    assert i.monitors["opening"][-1] == pytest.approx(kirsch, rel=0.10)
+    assert j.monitors["opening"][-1] > i.monitors["opening"][-1]
+    assert plan.water == "two_way" and j.water.iterations > 0 and j.flow_rates["opening"] < 0   # water in
 
 
 def test_direct_shear_and_user_model_scenes(tmp_path):

@@ -18,6 +18,14 @@ the law is fitted as the virgin curve of a hysteretic law together with its unlo
 (permanent fraction r, branch exponent m; rockjoint.cycle_calibration, docs/hysteresis.md) and
 the seating offset Δ_0 (the law's closure where the gauges were zeroed; --no-fit-offset: none);
 the report gives the rms of each branch, the permanent closure of each cycle and the uncertainties.
+
+With ``--flow`` the file holds flow through the joint along load cycles (rockjoint.flow_cycles:
+``normal_stress [MPa]``, optional ``closure [mm]``, ``transmissivity [m3]`` or ``flow_rate
+[mL/min]`` with ``pressure_drop [MPa]`` and the test's geometry): the transmissivity law with
+history (hydraulic_history over --virgin) is fitted (rockjoint.flow_calibration, docs/flow.md), on
+the measured closures, or with the closure law --law fitted together, or a given one
+(--closure-law FILE.toml); the report gives the rms of log10 T per branch and what the data
+identify; the PNG shows measured and fitted T through the cycle.
 """
 from __future__ import annotations
 
@@ -27,6 +35,10 @@ from pathlib import Path
 from .. import composite_modulus
 from ..calibration import calibrate, read_closure_curve
 from ..cycle_calibration import calibrate_cycles, read_load_cycles
+from ..flow import HISTORY_VIRGINS
+from ..flow_calibration import calibrate_flow
+from ..flow_cycles import ML_PER_MIN, FlowGeometry, read_flow_cycles
+from ..laws import read_law_file
 from ..law_registry import (DEFAULT_TANG_JIAO_BASE, GPA, HEIGHT_DISTRIBUTIONS, MM, MPA, TANG_JIAO_BASES,
                             calibratable)
 
@@ -38,8 +50,9 @@ def add_parser(subparsers) -> None:
         description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("curve", help="CSV file: 'closure [mm]' (or 'displacement [mm]') and "
                                  "'normal_stress [MPa]' columns, units in the header")
-    p.add_argument("--law", required=True, choices=calibratable(),
-                   help="law to fit (the calibratable laws of rockjoint.law_registry)")
+    p.add_argument("--law", choices=calibratable(),
+                   help="law to fit (the calibratable laws of rockjoint.law_registry); required but "
+                        "with --flow, where it is the closure law (optional with measured closures)")
     p.add_argument("--young", type=float, metavar="GPA",
                    help="Young's modulus of the rock [GPa] (intact-deformation removal; with "
                         "--poisson it also gives E* = E/(2(1-ν²)) for GW-type laws)")
@@ -69,6 +82,7 @@ def add_parser(subparsers) -> None:
     p.add_argument("--cycles", action="store_true",
                    help="the file holds load cycles (test order): fit the law with unloading "
                         "branches (permanent closure, branch exponent)")
+    add_flow_arguments(p)
     p.add_argument("--plot", metavar="PNG", help="plot file (default <curve>_<law>.png)")
     p.add_argument("--table", metavar="RJT", help="table file (default <curve>_<law>.rjt)")
     p.add_argument("--max-stress", type=float, metavar="MPA",
@@ -76,8 +90,55 @@ def add_parser(subparsers) -> None:
     p.set_defaults(func=run)
 
 
+def add_flow_arguments(p) -> None:
+    """The options of `calibrate --flow` (flow cycles: rockjoint.flow_calibration)."""
+    g = p.add_argument_group("flow cycles (--flow)")
+    g.add_argument("--flow", action="store_true",
+                   help="the file holds flow through load cycles: fit the transmissivity law with history")
+    g.add_argument("--virgin", choices=HISTORY_VIRGINS, default=HISTORY_VIRGINS[0],
+                   help="transmissivity law of first loading (default cubic_law)")
+    g.add_argument("--closure-law", metavar="TOML", help="a closure law parameter file (data without closure; the tabulate "
+                        "command's format, its [table] not used)")
+    g.add_argument("--geometry", choices=("radial", "linear"), default="radial",
+                   help="flow-rate data: radial from a central borehole (default) or linear")
+    for name, what in (("inner-radius", "borehole radius r_i"), ("outer-radius", "core radius r_o"),
+                       ("width", "width W across linear flow"), ("length", "length L along linear flow")):
+        g.add_argument(f"--{name}", type=float, metavar="MM", help=f"{what} [mm]")
+    g.add_argument("--pressure-drop", type=float, metavar="MPA", help="Δp [MPa] if the file has no pressure column")
+    g.add_argument("--rate", type=float, metavar="ML_MIN", help="Q [mL/min] if the file has no flow-rate column")
+    g.add_argument("--viscosity", type=float, default=1.002e-3, metavar="PA_S",
+                   help="fluid viscosity [Pa s] (default water at 20 °C)")
+
+
+def run_flow(args) -> int:
+    """Fit the transmissivity law with history to flow cycles (--flow); returns the exit code."""
+    rate_data = any(getattr(args, k) is not None for k in ("inner_radius", "outer_radius", "width", "length"))
+    geometry = None
+    if rate_data:
+        mm = {k: None if getattr(args, k) is None else getattr(args, k) * MM
+              for k in ("inner_radius", "outer_radius", "width", "length")}
+        geometry = FlowGeometry(args.geometry, **mm, viscosity=args.viscosity,
+                                pressure_drop=None if args.pressure_drop is None else args.pressure_drop * MPA,
+                                flow_rate=None if args.rate is None else args.rate * ML_PER_MIN)
+    closure_law = read_law_file(args.closure_law)[0].law if args.closure_law else None
+    data = read_flow_cycles(args.curve, geometry)
+    e_star = None if args.composite_modulus is None else args.composite_modulus * GPA
+    result = calibrate_flow(data, virgin=args.virgin, law=args.law, closure_law=closure_law,
+                            composite_modulus=e_star,
+                            summit_radius=None if args.summit_radius is None else args.summit_radius * MM)
+    print(result.report())
+    plot = Path(args.plot or f"{Path(args.curve).with_suffix('')}_flow.png")
+    result.plot(plot)
+    print(f"wrote {plot} (measured and fitted transmissivity through the cycle)")
+    return 0
+
+
 def run(args) -> int:
     """Fit the chosen law to the curve in args.curve, print the report; returns the exit code."""
+    if args.flow:
+        return run_flow(args)
+    if args.law is None:
+        raise ValueError("--law is required (the law to fit)")
     if args.cycles:
         return run_cycles(args)
 

@@ -74,3 +74,11 @@ SECONDS_PER_DOF = 0.71 / 26926
 SMEARED_EVIDENCE = ((1.0, 0.728, 0.1, 0.176, 0.6), (0.5, 0.769, 0.1, 0.289, 0.8),
                     (0.25, 0.133, 0.1, 0.089, 1.0), (0.125, 0.083, 0.4, 0.206, 1.5),
                     (0.0625, 0.420, 1.1, 0.077, 2.4))
+
+#: Two-way water (docs/flow.md): staggered iterations of the coupled steady state with
+#: coupled_steady's defaults (the network step with the joints' local response, IQN-ILS), the
+#: larger of the measured counts: 3 on the verification column, 2D and 3D
+#: (bench/results/coupled_water.md) and 4 on the tunnel drained below a water table
+#: (bench/results/coupled_water_tunnel.md), 2026-11-29; each iteration is one mechanical stage
+#: solve and one network solve
+COUPLED_ITERATIONS = 4

@@ -6,7 +6,8 @@ The overview shows the whole scene (displacements magnified so that the largest 
 A tunnel adds the view a rock engineer reads first: the opening, four radii across, at a
 magnification chosen so that the largest displacement there is 2-5 % of the radius and stated on
 the plot (a magnification that fits the 80 m section turns a 4 m opening into a sliver). In 3D the
-same views are drawn on the section through the opening at half its length."""
+same views are drawn on the section through the opening at half its length. A scene with water
+adds a row (2D): the jointed model's joints coloured by their water pressure (water_picture.py)."""
 from __future__ import annotations
 
 import math
@@ -15,6 +16,8 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 from .. import Status
+from . import water_picture
+from .outline import block_outline
 
 #: joint point states, drawn in this order and colour; "closed" is a joint without strength in
 #: contact (it has no stick/slip distinction)
@@ -38,6 +41,7 @@ def joint_states(model) -> dict:
     names (n,) ('stick', 'slip', 'open'; 'closed' for joints without strength) and joint tags.
     Collective."""
     from ..fem import ShearState  # the FE stack is optional: imported when drawing
+    from ..fem.water.coupled import gathered_pressure  # the FE stack, as above
     state = model.solution.gather_joints()
     x = np.asarray(state["coordinates"], dtype=float).reshape(-1, model.gdim)
     if "shear_state" in state:
@@ -46,7 +50,8 @@ def joint_states(model) -> dict:
         labels = [names[int(v)] for v in np.asarray(state["shear_state"])]
     else:
         labels = ["open" if int(v) == int(Status.open) else "closed" for v in np.asarray(state["status"])]
-    return {"x": x, "state": np.array(labels, dtype=object), "tag": np.asarray(state["tag"])}
+    return {"x": x, "state": np.array(labels, dtype=object), "tag": np.asarray(state["tag"]),
+            "pressure": gathered_pressure(model)}
 
 
 def joint_segments(x: np.ndarray, labels: np.ndarray, tags: np.ndarray, u_at):
@@ -122,7 +127,8 @@ def draw(models: dict, scene, path: str) -> list:
     if models["jointed"].comm.rank != 0:
         return [path]
     plt = _pyplot()
-    rows = 2 if opening else 1
+    wet = "water" in scene.data and "jointed" in joints
+    rows = (2 if opening else 1) + wet
     fig, axes = plt.subplots(rows, len(models), figsize=(5.8 * len(models), 4.9 * rows), squeeze=False)
     top = max(float(np.linalg.norm(u, axis=2).max()) for _, u in gathered.values()) or 1.0
     for k, (label, (tri, u)) in enumerate(gathered.items()):
@@ -134,6 +140,13 @@ def draw(models: dict, scene, path: str) -> list:
             axes[0][k].add_patch(_view_box(plt, opening))
     if opening:
         _opening_views(axes[1], gathered, joints, opening, scene.data["name"])
+    if wet:   # the jointed model's water on its undeformed mesh; the row's other panels off
+        for k, ax in enumerate(axes[-1]):
+            if k == list(gathered).index("jointed"):
+                water_picture.draw_pressure(ax, gathered["jointed"][0], joints["jointed"], joint_segments,
+                                            f"{scene.data['name']}: water in the joints")
+            else:
+                ax.set_axis_off()
     _save(fig, path)
     return [path]
 
@@ -167,7 +180,7 @@ def _field(ax, tri, u, scale, top, joints, limits=None):
                            linewidths=0.2)
     polys.set_clim(0.0, top * 1e3)
     ax.add_collection(polys)
-    ax.add_collection(LineCollection(_outline(tri, u, scale), colors="k", linewidths=0.6))
+    ax.add_collection(LineCollection(block_outline(tri, u, scale), colors="k", linewidths=0.6))
     if joints is not None and len(joints["x"]):
         u_at = _vertex_displacement(tri, u)
         segments = joint_segments(joints["x"], joints["state"], joints["tag"], lambda p: scale * u_at(p))
@@ -221,33 +234,6 @@ def _in_view(tri, limits):
     (x0, x1), (y0, y1) = limits
     x, y = tri[..., 0], tri[..., 1]
     return ((x >= x0) & (x <= x1) & (y >= y0) & (y <= y1)).any(axis=1)
-
-
-def _outline(tri: np.ndarray, u: np.ndarray, scale: float) -> np.ndarray:
-    """Deformed edges that belong to one triangle only (the outline of every block: boundaries,
-    openings and both faces of every joint), matched by their undeformed coordinates."""
-    edges = np.concatenate([tri[:, [0, 1]], tri[:, [1, 2]], tri[:, [2, 0]]])
-    moved = np.concatenate([(tri + scale * u)[:, [0, 1]], (tri + scale * u)[:, [1, 2]],
-                            (tri + scale * u)[:, [2, 0]]])
-    rounded = np.round(edges, 9)
-    a = np.where((rounded[:, 0, 0] < rounded[:, 1, 0]) | ((rounded[:, 0, 0] == rounded[:, 1, 0])
-                 & (rounded[:, 0, 1] <= rounded[:, 1, 1])), 0, 1)
-    ordered = np.stack([rounded[np.arange(len(a)), a], rounded[np.arange(len(a)), 1 - a]], 1)
-    _, inverse, counts = np.unique(ordered.reshape(-1, 4), axis=0, return_inverse=True, return_counts=True)
-    single = counts[inverse.ravel()] == 1
-    # on a joint both faces share coordinates (count 2) but move apart: draw edges whose two
-    # copies move differently too
-    moved_key = np.round(moved.reshape(-1, 4), 9)
-    order = np.argsort(inverse.ravel(), kind="stable")
-    split = np.zeros(len(a), bool)
-    inv = inverse.ravel()[order]
-    same = inv[1:] == inv[:-1]
-    diff = np.abs(moved_key[order][1:] - moved_key[order][:-1][:, [0, 1, 2, 3]]).max(axis=1) > 0
-    flip = np.abs(moved_key[order][1:] - moved_key[order][:-1][:, [2, 3, 0, 1]]).max(axis=1) > 0
-    cut = same & diff & flip
-    split[order[1:][cut]] = True
-    split[order[:-1][cut]] = True
-    return moved[single | split]
 
 
 def _draw_3d(models: dict, scene, path: str, sections, joints) -> list:

@@ -12,7 +12,9 @@ Rules (docs/scenes.md §planner):
   law given by name, curve or table is kept;
 - slip: only for joint sets with a strength whose mobilised friction τ/τ_max can reach
   defaults.SLIP_MARGIN under the bound (at an opening: the wall's uniaxial state, every plane);
-- mesh: refined only near joints and openings; the intact model on the same mesh (glued nodes).
+- mesh: refined only near joints and openings; the intact model on the same mesh (glued nodes);
+- water: one way (a network solve per stage) or two ways (the coupled steady state after every
+  stage: about defaults.COUPLED_ITERATIONS mechanical solves per stage, measured).
 
 Any choice can be overridden in the scene's `plan:` section; the plan then says so.
 """
@@ -48,6 +50,7 @@ class Plan:
     choices: list
     reduced: bool = False               # planned at the scene's reduced size (Scene.at_reduced_size)
     smeared: tuple = ()                 # joint sets smeared in the rock (equivalent continuum)
+    water: str | None = None            # the water's coupling (one_way, two_way), None: dry
 
     def text(self) -> str:
         """The plan's choices in words, one block per choice (topic, choice, why, cost, error)."""
@@ -77,5 +80,6 @@ def make_plan(scene) -> Plan:
     steps = decide(rules.load_steps, any(slip.values()))
     intact = decide(rules.intact)
     smeared = decide(smearing.smeared_sets, dim)
+    water = decide(rules.water)
     return Plan(dim, degree, quadrature, h, hj, ho, bound, table_top, tolerance, laws, slip, steps,
-                intact, choices, scene.reduced, smeared)
+                intact, choices, scene.reduced, smeared, water)

@@ -269,3 +269,30 @@ def intact(ctx: Context):
     return value, [Choice("intact model", "on the same mesh (split nodes glued)" if value else "left out",
                           why="the joints' share of every answer is jointed minus intact",
                           cost="one linear solve per load step", error="none: same mesh, same solver")]
+
+
+def water(ctx: Context):
+    """The scene's water (`water:`, or `outputs: {flow}`) and what its coupling costs: one way, a
+    network solve per stage; two ways, the coupled steady state after every stage, about
+    defaults.COUPLED_ITERATIONS mechanical solves each (the measured count)."""
+    d = ctx.scene.data
+    w = d.get("water")
+    if w is None and "flow" not in d["outputs"]:
+        return None, []
+    coupling = w["coupling"] if w is not None else "one_way"
+    table = (f"; the table at z = {w['table']:g} m: hydrostatic water in the joints from the in-situ "
+             "stage on, joints pre-closed at the effective stress") if w is not None and "table" in w else ""
+    if coupling == "two_way":
+        return coupling, [Choice(
+            "water", "two way: the water's pressure acts on the joints, coupled to the equilibrium" + table,
+            why="set in the scene (water.coupling: two_way)",
+            cost=(f"after every stage the coupled steady state: about {defaults.COUPLED_ITERATIONS} mechanical "
+                  "stage solves (+ one network solve each) per stage, the staggered iterations measured on the "
+                  "verification column and the drained tunnel (bench/results/coupled_water*.md)"),
+            error="the coupling converged to 1e-8 of the pressures; the network's P1 error on the joints")]
+    return coupling, [Choice(
+        "water", "one way: the flow along the joints at each stage's closures" + table,
+        why=("the scene's default (water.coupling: one_way)" if w is not None else "outputs.flow: the flow only")
+            + (": the joints see only the table's water" if table else ""),
+        cost="one network solve per stage (a sparse direct solve on the joint points)",
+        error="the water's pressure does not act back on the joints: they keep the table's water (or none)")]

@@ -25,6 +25,7 @@ from ..fem import (ConvergenceError, InSituStress, JointedRockModel, LinearSolve
                             ShearState, distribute)
 from . import water as scene_water
 from . import geometry, joint_laws, pictures, statics
+from .summary import summary_table  # noqa: F401  (re-exported: `rockjoint run` prints it)
 
 log = logging.getLogger("rockjoint.scenes")
 
@@ -41,15 +42,25 @@ class StageRow:
     max_closure: float = 0.0       # [m], all joints
     max_normal_stress: float = 0.0  # [Pa]
     slipping: int = 0              # joint points in the slip state (smeared: quadrature points)
+    max_slip: float = 0.0          # the largest |slip| [m] of the discrete joints (slipped so far)
     per_set: dict = dataclasses.field(default_factory=dict)  # set -> (max closure [m], max σ_n [Pa])
     slipping_per_set: dict = dataclasses.field(default_factory=dict)  # set -> slipping points
     smeared: tuple = ()            # the sets of per_set that are smeared (equivalent continuum)
     #: discrete sets with points past their table (the model's own check, from the points' status)
     past_table: tuple = ()
-    #: outputs.flow: {boundary with a head: flow into the rock there [m³/s; m²/s per metre in 2D]};
-    #: None: no flow asked for, or the intact rock has no permeability
-    flow_rates: dict | None = None
-    network: object = dataclasses.field(default=None, repr=False)   # the jointed model's NetworkFlow
+    #: the stage's water (scenes.water.StageWater: flow rates, the network, the largest joint
+    #: pressure, the joints opened by water, the coupling's iterations)
+    water: object = dataclasses.field(default_factory=scene_water.StageWater, repr=False)
+
+    @property
+    def flow_rates(self) -> dict | None:
+        """{boundary with a condition: flow into the rock there}, or None (water.flow_rates)."""
+        return self.water.flow_rates
+
+    @property
+    def network(self):
+        """The jointed model's NetworkFlow of the stage, or None."""
+        return self.water.network
 
 
 class NoEquilibrium(RuntimeError):
@@ -131,7 +142,7 @@ def smeared_material(scene, plan, tables: dict, rocks: dict) -> dict:
     return {b: EquivalentContinuum(plan.dimension, e, nu, sets) for b, (e, nu) in rocks.items()}
 
 
-def _record(scene, plan, model, label, stage, solution, transmissivity=None) -> StageRow:
+def _record(scene, plan, model, label, stage, solution, water) -> StageRow:
     monitors = {b: np.r_[model.boundary_mean_displacement(b), model.mean_normal_displacement(b)]
                 for b in scene.data["outputs"]["monitor"]}
     u = model.u.x.array.reshape(-1, model.gdim)
@@ -152,6 +163,7 @@ def _record(scene, plan, model, label, stage, solution, transmissivity=None) -> 
         if "shear_state" in state:
             slip = np.asarray(state["shear_state"]) == int(ShearState.slip)
             row.slipping = int(np.sum(slip))
+            row.max_slip = float(np.linalg.norm(np.asarray(state["slip"]).reshape(slip.size, -1), axis=1).max(initial=0.0))
             row.slipping_per_set = {str(name): int(np.sum(slip[sets == name])) for name in np.unique(sets)}
     smeared = model.smeared.set_summary() if model.smeared is not None else {}
     for name, (closure, sn, slipping) in smeared.items():
@@ -162,8 +174,7 @@ def _record(scene, plan, model, label, stage, solution, transmissivity=None) -> 
         row.max_closure = max(c for c, _ in row.per_set.values())
         row.max_normal_stress = max(s for _, s in row.per_set.values())
     row.smeared = tuple(smeared)
-    if scene_water.requested(scene):
-        row.flow_rates, row.network = scene_water.stage_flow(scene, model, solution, transmissivity)
+    row.water = water
     return row
 
 
@@ -194,16 +205,26 @@ def run_stages(scene, plan, model, label: str, current: list | None = None, tran
     being solved (for the caller's message when a solve fails). transmissivity: {joint set:
     TransmissivityLaw} of the jointed model when the scene asks for flow."""
     current = current if current is not None else [None]
-    rows = []
+    rows, excavated = [], set()
+    jointed = bool(model.behaviours)
+
+    def record(name, solution):
+        solution, water = scene_water.after_stage(scene, model, solution, transmissivity, excavated, name)
+        rows.append(_record(scene, plan, model, label, name, solution, water))
+        return solution
+
     if "in_situ" in scene.data:
         current[0] = "in-situ"
-        rows.append(_record(scene, plan, model, label, "in-situ", model.solve(name="in-situ"), transmissivity))
+        if jointed:
+            scene_water.initial_water(scene, model)
+        record("in-situ", model.solve(name="in-situ"))
     handles = {}
     for stage in scene.data["stages"]:
         t0 = time.perf_counter()
         current[0] = stage["name"]
         if "excavate" in stage:
             model.excavate(stage["excavate"])
+            excavated.add(stage["excavate"])
         for face, load in stage["loads"].items():
             kind = "traction" if "traction" in load else "pressure"
             value = load[kind]
@@ -213,8 +234,8 @@ def run_stages(scene, plan, model, label: str, current: list | None = None, tran
                 add = model.add_traction if kind == "traction" else model.add_pressure
                 handles[face, kind] = add(face, value)
         steps = stage.get("steps", plan.load_steps)
-        solution = model.solve(load_steps=steps, name=stage["name"])
-        rows.append(_record(scene, plan, model, label, stage["name"], solution, transmissivity))
+        scene_water.before_stage(scene, model, transmissivity, excavated)
+        solution = record(stage["name"], model.solve(load_steps=steps, name=stage["name"]))
         log.info("%s: stage %s, %d load step(s), %d Newton iterations (%.1f s)", label, stage["name"],
                  steps, solution.newton_iterations, time.perf_counter() - t0)
     return rows
@@ -282,37 +303,3 @@ def _run_explained(scene, plan, model, label, jm, comm, transmissivity=None) -> 
         if words is None:
             raise
         raise NoEquilibrium(words) from err
-
-
-def summary_table(result: SceneResult) -> str:
-    """Jointed beside intact, per stage: monitored displacements [mm], max ``|u|`` [mm], joints."""
-    stages = [r.stage for r in result.rows if r.model == "jointed"]
-    has_intact = any(r.model == "intact" for r in result.rows)
-    w = max([len(s) for s in stages] + [5]) + 2
-    q = max([len(f"  {n} (smeared): slipping points") + 2 for r in result.rows for n in r.per_set] + [28])
-    lines = [f"{'stage':{w}}{'quantity':{q}}{'jointed':>14}{'intact':>14}{'joints share':>14}"]
-    for stage in stages:
-        j = result.row("jointed", stage)
-        i = result.row("intact", stage) if has_intact else None
-        quantities = [("max |u| [mm]", j.max_displacement, i and i.max_displacement)]
-        for b, v in j.monitors.items():
-            for k, axis in enumerate(["x", "y", "z"][:len(v) - 1] + ["n"]):
-                quantities.append((f"mean u_{axis} {b} [mm]", v[k], i and i.monitors[b][k]))
-        for name, a, b in quantities:
-            share = f"{(a - b) * 1e3:14.5g}" if b is not None else f"{'':>14}"
-            other = f"{b * 1e3:14.5g}" if b is not None else f"{'-':>14}"
-            lines.append(f"{stage:{w}}{name:{q}}{a * 1e3:14.5g}{other}{share}")
-        lines.append(f"{stage:{w}}{'joints: max closure [mm]':{q}}{j.max_closure * 1e3:14.5g}")
-        lines.append(f"{stage:{w}}{'joints: max σ_n [MPa]':{q}}{j.max_normal_stress * 1e-6:14.5g}")
-        lines.append(f"{stage:{w}}{'joints: slipping points':{q}}{j.slipping:14d}")
-        for name, (closure, sn) in sorted(j.per_set.items()):  # every set, smeared ones too
-            kind = f"{name} (smeared)" if name in j.smeared else name
-            lines.append(f"{stage:{w}}{'  ' + kind + ': max closure [mm]':{q}}{closure * 1e3:14.5g}")
-            lines.append(f"{stage:{w}}{'  ' + kind + ': max σ_n [MPa]':{q}}{sn * 1e-6:14.5g}")
-            lines.append(f"{stage:{w}}{'  ' + kind + ': slipping points':{q}}{j.slipping_per_set.get(name, 0):14d}")
-        for b, rate in (j.flow_rates or {}).items():   # L/min (per metre out of plane in 2D)
-            other = i.flow_rates.get(b) if i is not None and i.flow_rates else None
-            unit = "L/min/m" if result.gdim == 2 else "L/min"
-            lines.append(f"{stage:{w}}{f'flow in at {b} [{unit}]':{q}}{rate * 6e4:14.5g}"
-                         + (f"{other * 6e4:14.5g}" if other is not None else f"{'-':>14}"))
-    return "\n".join(lines)

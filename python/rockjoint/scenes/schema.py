@@ -17,6 +17,7 @@ from ..joint import make_strength
 from .fields import (Anything, Checker, Flag, Integer, ListOf, Mapping, NamedMapping, Quantity,
                      Text)
 from .units import LAW_UNIT_DIMENSION, parse_quantity
+from . import water_keys
 from .yamlnodes import SceneError, compose
 
 POSITIVE = dict(low=0.0, open_low=True)
@@ -261,7 +262,7 @@ SCENE = Mapping({
     "supports": NamedMapping(Text(choices=_COMPONENTS)),
     "stages": ListOf(STAGE, min_length=1),
     "error_budget": Quantity("fraction", low=0.0, high=1.0, open_low=True),
-    "mesh": MESH, "outputs": OUTPUTS, "plan": PLAN, "reduced": REDUCED})
+    "mesh": MESH, "outputs": OUTPUTS, "plan": PLAN, "reduced": REDUCED, "water": water_keys.WATER})
 
 
 @dataclasses.dataclass
@@ -334,15 +335,8 @@ def _cross_checks(d: dict, c: Checker) -> None:
                 c.fail(("stages", i, "loads", k, "traction"),
                        f"{len(load['traction'])} components in a {g['dimension']}D scene")
     where += [(("outputs", "monitor", i), face) for i, face in enumerate(d["outputs"]["monitor"])]
-    if "flow" in d["outputs"]:
-        where += [(("outputs", "flow", "heads", k), k) for k in d["outputs"]["flow"]["heads"]]
-        for name, joint in d["joints"].items():
-            if "flow" not in joint:
-                c.fail(("joints", name), "the scene asks for flow: give the set's transmissivity "
-                                         "(flow: {law: ...}, docs/flow.md)")
-            if flow.built_from_walls(joint["flow"]["law"]) and "topography" not in joint["law"]:
-                c.fail(("joints", name, "flow", "law"), f"{joint['flow']['law']} needs the set's walls: "
-                       "its law must be a topography")
+    where += water_keys.boundary_names(d)
+    water_keys.check(d, c)
     for path, face in where:
         if face not in faces:
             c.fail(path, f"no boundary {face!r}; one of {', '.join(faces)}")

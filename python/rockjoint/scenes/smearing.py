@@ -8,7 +8,7 @@ import math
 
 import numpy as np
 
-from . import defaults, geometry
+from . import defaults, geometry, water_keys
 from .rules import Choice, friction_words
 from .stresses import mobilised_friction, stage_stresses
 
@@ -59,7 +59,7 @@ def smeared_sets(ctx, dim: int):
                 scene.fail(("plan", "smeared"), f"no joint set '{name}'; joint sets: {', '.join(names)}")
     if g["kind"] == "column":
         return (), choices
-    if "flow" in scene.data["outputs"]:   # the flow runs along the joint network (docs/flow.md)
+    if water_keys.flows(scene.data) or "water" in scene.data:   # water runs along the joint network (docs/flow.md)
         if over:
             scene.fail(("plan", "smeared"), "the scene asks for flow, which runs along the joint network: "
                        "flow through smeared sets and the rock around them is not modelled; keep the sets discrete")

@@ -14,7 +14,12 @@ With the nodal (vertex) rule on P1 facets, the joint's force at vertex a of a fa
 w_a t_a = ``|f|``/gdim · t_a, while the bulk's in-situ stress pulls on that vertex with the consistent
 ∫_f σ0 n N_a = ``|f|`` (t_a + Σ_b t_b) / (gdim (gdim + 1)) (t linear on the facet, e.g. a depth gradient
 along an inclined joint): the point traction is taken as t'_a = (t_a + Σ_b t_b) / (gdim + 1), the
-same for a uniform σ0 and exact equilibrium for a linear one. Gauss points (P1) and the P2 nodal
+same for a uniform σ0 and exact equilibrium for a linear one.
+
+Water in the joints from the initial state on (fem.water.joint_pressure.set_initial_joint_pressure,
+e.g. a hydrostatic water table) carries part of the total normal stress: the joint element's normal
+traction is -(σ(Δ) + k_r Δ + α p) (docs/flow.md), so the pre-closure is the law's at the effective
+stress, σ_n(Δ0) = σ_n0 - α p0, point by point (p acts at each point, not through the facet average). Gauss points (P1) and the P2 nodal
 rule in 2D integrate t N_a exactly with t'_a = t(x_a); the P2 nodal rule in 3D does not (a residual
 imbalance of order h² ∇σ0, reported by the model's equilibrium check).
 """
@@ -26,13 +31,15 @@ from ...joint import ShearModel, closure_at_normal_stress
 
 
 def initial_jump(interface, in_situ, behaviours: dict, gdim: int, joint_names: dict,
-                 vertex_rule: bool = True) -> np.ndarray:
+                 vertex_rule: bool = True, pore_pressure=None) -> np.ndarray:
     """(num_points, gdim) initial local jumps of this rank's joint points for the in-situ stress.
 
     behaviours: {joint tag: JointBehaviour}; joint_names: {name: tag} (for messages); vertex_rule:
-    the points are the vertices of P1 facets (nodal rule): consistent point tractions. Raises
-    ValueError where σ0 pulls a joint apart (a joint carries no tension) or shears a joint that has
-    no shear stiffness."""
+    the points are the vertices of P1 facets (nodal rule): consistent point tractions;
+    pore_pressure: the initial water p0 [Pa] at every point of this rank (None: dry). Raises
+    ValueError where σ0 pulls a joint apart (a joint carries no tension), where the water reaches
+    the in-situ normal stress (hydraulic jacking in situ) or where σ0 shears a joint that has no
+    shear stiffness."""
     frames = interface.point_frames()
     j0 = np.zeros((frames.shape[0], gdim))
     if frames.shape[0] == 0:
@@ -61,6 +68,15 @@ def initial_jump(interface, in_situ, behaviours: dict, gdim: int, joint_names: d
             k = sel[np.argmax(tension)]
             raise ValueError(f"the in-situ stress pulls joint {name_of.get(tag, tag)!r} apart: normal stress "
                              f"{-local[k, 0]:.4g} Pa (tension) at {points[k].tolist()}; a joint carries no tension")
+        if pore_pressure is not None:   # the law carries the effective stress σ_n0 - α p0
+            effective = normal_stress - behaviour.effective_stress_coefficient * np.asarray(pore_pressure)[sel]
+            jacked = effective < -1e-9 * scale
+            if jacked.any():
+                k = sel[np.argmax(jacked)]
+                raise ValueError(f"the initial water in joint {name_of.get(tag, tag)!r} reaches its in-situ normal "
+                                 f"stress: p0 = {pore_pressure[k]:.4g} Pa against σ_n0 = {-local[k, 0]:.4g} Pa at "
+                                 f"{points[k].tolist()} (hydraulic jacking in situ): lower the water table")
+            normal_stress = effective
         normal_stress = np.maximum(normal_stress, 0.0)
         try:
             closure = closure_at_normal_stress(behaviour, normal_stress)

@@ -72,6 +72,8 @@ class JointedProblem(JointedSNESProblem, NewtonProblem):
         # water in the joints (rockjoint.fem.water.joint_pressure): p per joint point at the end
         # of the next stage, ramped from its value at the stage's start; None: dry
         self._pressure_target = self._pressure_start = self._pressure_applied = None
+        #: water p0 [Pa] per joint point from the initial state on (set_initial_joint_pressure)
+        self.initial_pressure = None
         #: what a singular solve should add to its error (e.g. the joints the water opens)
         self.failure_hints: list = []
         self.step_iterations = 0      #: Newton iterations of the load step being solved
@@ -111,16 +113,20 @@ class JointedProblem(JointedSNESProblem, NewtonProblem):
 
     def set_initial_state(self, behaviours: dict, joint_names: dict, vertex_rule: bool) -> None:
         """u = 0 and the loads of the initial state; with an in-situ stress, joints pre-closed
-        (initial jump j0 = (-Δ0, τ0/k_s), Δ0 the closure at σ_n0 = -n·σ0·n) and the equilibrium
-        checked (ValueError). behaviours: {joint tag: JointBehaviour}; joint_names: {name: tag}."""
+        (initial jump j0 = (-Δ0, τ0/k_s), Δ0 the closure at σ_n0 - α p0, σ_n0 = -n·σ0·n and p0 the
+        initial water, self.initial_pressure) and the equilibrium checked (ValueError). behaviours: {joint tag: JointBehaviour}; joint_names: {name: tag}."""
         lp = self.load_path
         self.u.x.array[:] = 0.0
         lp.start()
         if lp.in_situ is None:
             return
         gdim = self.blocks.gdim
+        p0 = self.initial_pressure
         self.coupling.set_initial_jump(initial_jump(self.coupling.interface, lp.in_situ, behaviours, gdim,
-                                                    joint_names, vertex_rule))
+                                                    joint_names, vertex_rule, p0))
+        if p0 is not None:   # in place from the start: every stage ramps from it
+            self._pressure_target, self._pressure_applied = np.array(p0, dtype=float), np.array(p0, dtype=float)
+            self.coupling.interface.set_pore_pressure(self._pressure_applied)
         if self.smeared is not None:
             self.smeared.set_in_situ(lp.in_situ)
         self.begin_stage(hold=True)

@@ -105,8 +105,9 @@ def coupled_steady(model, transmissivity: Mapping[str, Callable], heads: Mapping
             network, state, t_point = joint_network(model, transmissivity, result)
             owner = boundary_nodes(model, network, conditions)
             joints = names_of(model.dmesh, "joints")
+            history = state["maximum_closure"]   # Δ_m before the coupling: iterates do not add to it
         else:
-            state = result.gather_joints()
+            state = dict(result.gather_joints(), maximum_closure=history)
         x = np.asarray(state["coordinates"], dtype=float).reshape(-1, model.gdim)
 
         def solve(t_point):

@@ -32,6 +32,7 @@ from typing import Callable, Mapping
 import numpy as np
 
 from ..mesh.distributed_mesh import names_of
+from .closure_history import with_closure_history
 from .network import Conditions, Network, boundary_nodes, solve_heads
 
 
@@ -82,8 +83,9 @@ class NetworkFlow:
 
     def write(self, path: str, comm=None) -> str:
         """The network as an XDMF grid for ParaView (segments in 2D, triangles in 3D; HDF5 data
-        beside it): head_m at the nodes (NaN where no head reaches), transmissivity_m3 and
-        joint_tag per element. Written by rank 0 of `comm` (default: this process). Returns path."""
+        beside it): head_m and pressure_Pa (p = ρ g (h - z)) at the nodes (NaN where no head
+        reaches), transmissivity_m3 and joint_tag per element. Written by rank 0 of `comm`
+        (default: this process). Returns path."""
         if comm is not None and comm.rank != 0:
             comm.barrier()
             return path
@@ -91,7 +93,8 @@ class NetworkFlow:
         xyz = np.zeros((self.nodes.shape[0], 3))
         xyz[:, :self.nodes.shape[1]] = self.nodes
         kind = "line" if self.elements.shape[1] == 2 else "triangle"
-        meshio.write(path, meshio.Mesh(xyz, [(kind, self.elements)], point_data={"head_m": self.head},
+        nodal = {"head_m": self.head, "pressure_Pa": self.pressure}
+        meshio.write(path, meshio.Mesh(xyz, [(kind, self.elements)], point_data=nodal,
                                        cell_data={"transmissivity_m3": [self.element_transmissivity],
                                                   "joint_tag": [self.element_tags.astype(np.int32)]}),
                      file_format="xdmf")
@@ -108,8 +111,12 @@ class NetworkFlow:
 def point_transmissivity(state: dict, transmissivity: Mapping[str, Callable], joint_names: Mapping[str, int]
                          ) -> np.ndarray:
     """T [m³] at every point of a joint state (dict of JointInterface.state, or gathered) from its
-    closure: transmissivity[joint name](closure [m]) for the joint of each point. ValueError naming
-    a joint without a transmissivity law, or one whose T is negative or not finite."""
+    closure: transmissivity[joint name](closure [m]) for the joint of each point; a law with
+    history (``has_history``: rockjoint.flow_history, given as the law or its bound
+    ``transmissivity``) also gets each point's largest closure Δ_m = max(state's
+    ``maximum_closure``, closure) (joint_network puts the running maximum of the model's stages
+    there: with_closure_history). ValueError naming a joint without a transmissivity law, or one
+    whose T is negative or not finite."""
     missing = sorted(set(joint_names) - set(transmissivity))
     if missing:
         raise ValueError(f"no transmissivity for joint(s) {missing}: give transmissivity={{joint name: "
@@ -118,12 +125,16 @@ def point_transmissivity(state: dict, transmissivity: Mapping[str, Callable], jo
     if unknown:
         raise ValueError(f"transmissivity: unknown joint(s) {unknown}; joints: {sorted(joint_names)}")
     closure = np.asarray(state["closure"], dtype=float)
+    peak = np.maximum(np.asarray(state.get("maximum_closure", closure), dtype=float), closure)
     tags = np.asarray(state["tag"])
     out = np.zeros(closure.size)
     for name, tag in joint_names.items():
         on = tags == tag
         if np.any(on):
-            values = np.asarray(transmissivity[name](closure[on]), dtype=float)
+            law = transmissivity[name]
+            history = getattr(getattr(law, "__self__", law), "has_history", False)
+            law = getattr(law, "transmissivity", law) if history else law
+            values = np.asarray(law(closure[on], peak[on]) if history else law(closure[on]), dtype=float)
             if values.shape != (int(on.sum()),) or not np.all(np.isfinite(values) & (values >= 0)):
                 raise ValueError(f"transmissivity of joint {name!r}: T(closure) must give one finite "
                                  "value >= 0 [m³] per point")
@@ -163,7 +174,7 @@ def joint_network(model, transmissivity: Mapping[str, Callable], result):
         raise ValueError("network_flow: the joint network is built from the joint points as facet "
                          "vertices: P1 with quadrature='nodal' is needed, got degree "
                          f"{model.degree}, quadrature {model.quadrature!r}")
-    state = result.gather_joints()
+    state = with_closure_history(model, result)
     t_point = point_transmissivity(state, transmissivity, names_of(model.dmesh, "joints"))
     x = np.asarray(state["coordinates"], dtype=float).reshape(-1, model.gdim)
     return Network.of_points(x), state, t_point

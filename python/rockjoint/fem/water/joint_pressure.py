@@ -14,6 +14,11 @@ and a singular system where a block is held only by that joint. `set_joint_press
 joints without k_r that the water would open (points in contact in the solved state whose total
 normal stress it reaches) and, if the next solve then finds no equilibrium (LinearSolveError),
 the error names them, the pressure and the stress, as it names an open joint for tension.
+
+Water already in place in the initial state (a water table above the rock mass: hydrostatic p0 =
+ρ g (z_table - z)) is set with `set_initial_joint_pressure` before the first solve: the in-situ
+stress is then the total stress, the joints are pre-closed at the effective stress σ_n0 - α p0
+(mechanics/joint_initial_state.py) and every later stage ramps from p0.
 """
 from __future__ import annotations
 
@@ -39,6 +44,33 @@ def set_joint_pressure(model, pressure: Pressure) -> np.ndarray:
     ρ g (h - z)), or an array of one value per joint point of this rank (the order of
     model.interface.state()). Returns the values set on this rank. ValueError for a non-finite
     pressure or a wrong size."""
+    p = _values(model, pressure)
+    model.problem().failure_hints = _jacking(model, p)
+    model.problem().set_pressure_target(p)
+    return p
+
+
+def set_initial_joint_pressure(model, pressure: Pressure) -> np.ndarray:
+    """Water p0 [Pa] in the joints from the initial state on (given as for set_joint_pressure):
+    the model's in-situ stress is the total stress, its joints are pre-closed at the effective
+    normal stress σ_n0 - α p0, and the first stage starts (and ramps) from p0. Before the first
+    solve, after set_in_situ_stress (RuntimeError otherwise: without an in-situ stress nothing holds
+    the water). Returns the values set on this rank."""
+    if model.stages:
+        raise RuntimeError("set_initial_joint_pressure: the initial water belongs to the initial state; "
+                           "set it before the first solve() (later: set_joint_pressure)")
+    if model.load_path.in_situ is None:
+        raise RuntimeError("set_initial_joint_pressure: the initial water needs the in-situ stress that holds "
+                           "it: set_in_situ_stress first")
+    p = _values(model, pressure)
+    model.problem().initial_pressure = p
+    model.load_path.stage.initial_state_set = False    # pre-close the joints again, with p0
+    model.prepare()
+    return p
+
+
+def _values(model, pressure: Pressure) -> np.ndarray:
+    """The pressure [Pa] at every joint point of this rank from one value, a callable or an array."""
     x = joint_point_coordinates(model)
     if callable(pressure):
         p = np.asarray(pressure(x.T), dtype=float).reshape(-1)
@@ -51,8 +83,6 @@ def set_joint_pressure(model, pressure: Pressure) -> np.ndarray:
     if not np.all(np.isfinite(p)):
         raise ValueError(f"set_joint_pressure: the pressure is not finite at point {int(np.argmax(~np.isfinite(p)))} "
                          f"(x = {x[int(np.argmax(~np.isfinite(p)))]} m) [Pa]")
-    model.problem().failure_hints = _jacking(model, p)
-    model.problem().set_pressure_target(p)
     return p
 
 

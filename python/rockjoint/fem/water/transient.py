@@ -112,6 +112,7 @@ def coupled_transient(model, transmissivity: Mapping[str, Callable], duration: f
     dt = duration / steps
     result = model.solution
     network, state, t_point = joint_network(model, transmissivity, result)
+    history = state["maximum_closure"]          # Δ_m for laws with history (closure_history)
     owner = boundary_nodes(model, network, conditions)
     joints = names_of(model.dmesh, "joints")
     z = network.nodes[:, -1]
@@ -153,7 +154,7 @@ def coupled_transient(model, transmissivity: Mapping[str, Callable], duration: f
             p_k = p_k + step_p
             scatter_pressure(model, result, p_k)
             result = model.solve(1, name=f"{name} t={t:.6g} s, {k}")
-            state = result.gather_joints()
+            state = dict(result.gather_joints(), maximum_closure=history)   # Δ_m of the converged steps
             t_point = point_transmissivity(state, transmissivity, joints)
         else:
             raise CouplingError(f"coupled_transient: step {step} (t = {t:g} s) has not converged in "
@@ -164,4 +165,5 @@ def coupled_transient(model, transmissivity: Mapping[str, Callable], duration: f
         out.iterations.append(k)
         p_n = node_mean(network, p_k)
         opening_n = -node_mean(network, np.asarray(state["closure"], dtype=float))
+        history = np.maximum(history, np.asarray(state["closure"], dtype=float))
     return out
