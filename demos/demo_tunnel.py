@@ -35,7 +35,6 @@ excavation: coordinates, set, normal_stress, shear_traction [Pa], shear_state, s
 print: mm, MPa, m.
 """
 import argparse
-import logging
 import math
 import os
 import time
@@ -44,7 +43,7 @@ import numpy as np
 from mpi4py import MPI
 
 import rockjoint
-from rockjoint.console import quiet_compiler_logging
+from rockjoint.console import quiet_compiler_logging, rank_logger
 from rockjoint import meshes
 from rockjoint import topography as topo
 from rockjoint import contact, flow
@@ -57,11 +56,7 @@ from rockjoint.scenes import geometry as scene_geometry, load_scene
 
 COMM = MPI.COMM_WORLD
 quiet_compiler_logging()  # DOLFINx's form compiler would log every command
-log = logging.getLogger("demo_tunnel")
-log.propagate = False
-log.addHandler(logging.StreamHandler())
-log.handlers[0].setFormatter(logging.Formatter("%(message)s"))
-log.setLevel(logging.INFO if COMM.rank == 0 else logging.WARNING)
+log = rank_logger("demo_tunnel", COMM)
 
 # %% The scene: demos/scenes/tunnel.yaml ------------------------------------------------------
 # The scene file states the set-up (`python3 -m rockjoint run demos/scenes/tunnel.yaml` runs it with

@@ -19,6 +19,23 @@ def quiet_compiler_logging() -> None:
         handler.setLevel(logging.WARNING)
 
 
+def rank_logger(name: str, comm=None) -> logging.Logger:
+    """The logger of a script run serially or under mpirun (the demos): its messages bare, on
+    standard error, at INFO on rank 0 of `comm` (default MPI.COMM_WORLD) and warnings only on
+    the others; not passed on to the root logger (quiet_compiler_logging keeps that at warnings)."""
+    if comm is None:
+        from mpi4py import MPI  # optional (the FE stack): only when no communicator is given
+        comm = MPI.COMM_WORLD
+    log = logging.getLogger(name)
+    log.propagate = False
+    if not log.handlers:
+        handler = logging.StreamHandler()
+        handler.setFormatter(logging.Formatter("%(message)s"))
+        log.addHandler(handler)
+    log.setLevel(logging.INFO if comm.rank == 0 else logging.WARNING)
+    return log
+
+
 def say(*args, comm=None) -> None:
     """``print(*args)`` on rank 0 of `comm` (default MPI.COMM_WORLD), flushed."""
     if comm is None:
