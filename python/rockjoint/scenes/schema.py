@@ -203,11 +203,18 @@ def _flow_law_rule(v, path, c):
     for key in flow.user_parameters(v["law"], required=True):
         if key not in v:
             c.fail(path, f"{v['law']} needs {key} ({record.parameters[key]})")
+    if not v.get("hydraulic_loss", 0.0) < 1.0:
+        c.fail(path + ("hydraulic_loss",), f"{v['hydraulic_loss']} is out of range: the hydraulic loss d must be in "
+                                           "[0, 1) (1 would keep no aperture on unloading)")
 
 
 FLOW_LAW = Mapping({"law": Text(), "initial_aperture": Quantity("length", required=False, **POSITIVE),
                     "jrc": Quantity("number", required=False, low=0.0, open_low=True),
-                    "component": Text(required=False)}, required=False, rule=_flow_law_rule)
+                    "component": Text(required=False),
+                    # hydraulic_history (issue 41): its loss d in [0, 1) and the virgin law's key
+                    "hydraulic_loss": Quantity("number", required=False, low=0.0),
+                    "virgin": Text(choices=("cubic_law", "barton_jrc"), required=False)},
+                   required=False, rule=_flow_law_rule)
 
 JOINT = Mapping({
     "law": LAW,
