@@ -31,11 +31,29 @@ CRACK_X = GEOMETRY.crest[0] + CRACK_BEHIND
 
 
 def slope_mesh(mesh_size=3.0, joint_mesh_size=1.0, comm=MPI.COMM_WORLD):
+    return distribute(slope_section(GEOMETRY, plane_failure_joints(), mesh_size=mesh_size,
+                                    joint_mesh_size=joint_mesh_size, comm=comm), comm)
+
+
+def block_at(point, mesh_size=3.0, joint_mesh_size=1.0) -> str:
+    """The name of the block of slope_mesh's mesh whose cells hold `point` (the serial mesh: the
+    block names are the same on every partition)."""
+    jm = slope_section(GEOMETRY, plane_failure_joints(), mesh_size=mesh_size, joint_mesh_size=joint_mesh_size)
+    x = jm.points[jm.cells]                                    # (cells, 3, 2)
+    a, b, c = x[:, 0], x[:, 1], x[:, 2]
+    det = (b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (c[:, 0] - a[:, 0]) * (b[:, 1] - a[:, 1])
+    u = ((point[0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (c[:, 0] - a[:, 0]) * (point[1] - a[:, 1])) / det
+    v = ((b[:, 0] - a[:, 0]) * (point[1] - a[:, 1]) - (point[0] - a[:, 0]) * (b[:, 1] - a[:, 1])) / det
+    inside = np.flatnonzero((u >= 0) & (v >= 0) & (u + v <= 1))
+    return jm.names["blocks"][int(jm.cell_blocks[inside[0]])]
+
+
+def plane_failure_joints():
+    """The plane through the toe and the tension crack behind the crest, each ending on the other."""
     top = GEOMETRY.base + H
     plane = meshes.Joint(point=GEOMETRY.toe, dip=PLANE, dip_direction=270.0, name="plane", bounded_by=("crack",))
     crack = meshes.Joint(point=(CRACK_X, top - 0.5), dip=90.0, dip_direction=90.0, name="crack", bounded_by=("plane",))
-    return distribute(slope_section(GEOMETRY, [plane, crack], mesh_size=mesh_size, joint_mesh_size=joint_mesh_size,
-                                    comm=comm), comm)
+    return [plane, crack]
 
 
 def crack_foot_y() -> float:

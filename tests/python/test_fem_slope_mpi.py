@@ -24,3 +24,6 @@ def test_factor_of_safety_on_two_ranks_is_the_serial_one():
     serial = factor_of_safety(trial_solver(slope_mesh(comm=MPI.COMM_SELF), phi, c), tolerance=0.01)
     assert [(f, held) for f, held, _ in parallel.trials] == [(f, held) for f, held, _ in serial.trials]
     assert parallel.factor == serial.factor
+    assert parallel.moving == serial.moving and len(parallel.moving) == 1
+    for block, motion in serial.block_motion.items():
+        assert parallel.block_motion[block] == pytest.approx(motion, rel=1e-6, abs=1e-12)

@@ -11,7 +11,9 @@ import pytest
 from fe_stack import require_fe
 require_fe()
 
-from slope_cases import GEOMETRY, H, REFERENCE, slope_mesh, trial_solver  # noqa: E402
+import numpy as np  # noqa: E402
+
+from slope_cases import CRACK_X, GEOMETRY, H, REFERENCE, block_at, crack_foot_y, slope_mesh, trial_solver  # noqa: E402
 from rockjoint.fem.mechanics.strength_reduction import factor_of_safety  # noqa: E402
 
 
@@ -36,6 +38,16 @@ def test_strength_reduction_matches_limit_equilibrium(phi_deg, cohesion, water_d
           f"{100 * (found.factor / expected - 1):+.2f} %")
     assert found.bounded
     assert found.factor == pytest.approx(expected, rel=0.03)
+    # the mechanism: the block above the plane, toe to crack, and nothing else
+    assert found.moving == [wedge_block()], found.block_motion
+
+
+def wedge_block():
+    """The name of the block holding the centroid of the limit-equilibrium block (toe, crest, the
+    crack's top and foot)."""
+    top = GEOMETRY.base + H
+    corners = np.array([GEOMETRY.toe, GEOMETRY.crest, (CRACK_X, top), (CRACK_X, crack_foot_y())])
+    return block_at(corners.mean(axis=0))
 
 
 def test_a_slope_with_nothing_to_fail_says_so():

@@ -10,6 +10,12 @@ mechanism fails, LinearSolveError). F is found by bracketing from F = 1 (×/÷ `
 trial fails / holds) and bisection until the bracket is within `tolerance` (relative) of its
 stable end. The intact rock stays elastic (the joints are what fails). Barton's strength is
 reduced through its peak angle in C++ only: refused here until it is (a ValueError names it).
+
+The mechanism: where `trial` returns its model, the displacement the last reduction before
+failure adds (the two largest stable factors, both close to F) is mostly the motion of the
+blocks that fail, which grows without bound as F nears its critical value; each block's mean
+|Δu| is kept (SafetyFactor.block_motion), and the blocks moving at least half as much as the
+fastest one are named (SafetyFactor.moving).
 """
 from __future__ import annotations
 
@@ -17,6 +23,8 @@ import logging
 import math
 from dataclasses import dataclass, field
 from typing import Callable
+
+import numpy as np
 
 from ...joint import JointStrength, StrengthModel
 from ..solvers.linear_solver import LinearSolveError
@@ -51,6 +59,14 @@ class SafetyFactor:
     failed: float | None
     tolerance: float
     trials: list = field(default_factory=list)
+    #: {block name: mean |u(F_stable) - u(F_before)| [m]} over the block's nodes (module docstring)
+    block_motion: dict = field(default_factory=dict)
+
+    @property
+    def moving(self) -> list:
+        """The blocks that move at least half as much as the fastest near failure (sorted)."""
+        top = max(self.block_motion.values(), default=0.0)
+        return sorted(b for b, v in self.block_motion.items() if top > 0.0 and v >= 0.5 * top)
 
     @property
     def bounded(self) -> bool:
@@ -69,16 +85,20 @@ def factor_of_safety(trial: Callable[[float], object], *, tolerance: float = 0.0
         raise ValueError(f"factor_of_safety: tolerance = {tolerance!r} must be in (0, 1)")
     if not growth > 1.0:
         raise ValueError(f"factor_of_safety: growth = {growth!r} must be > 1")
-    trials = []
+    trials, held = [], {}
 
     def holds(f: float) -> bool:
         try:
-            trial(f)
+            model = trial(f)
         except (ConvergenceError, LinearSolveError) as e:
             trials.append((f, False, str(e).splitlines()[0]))
             log.info("strength reduction F = %.4g: no equilibrium (%s)", f, trials[-1][2][:120])
             return False
         trials.append((f, True, ""))
+        if model is not None:
+            held[f] = model
+            for old in sorted(held)[:-2]:   # keep the two largest stable models only
+                del held[old]
         log.info("strength reduction F = %.4g: equilibrium", f)
         return True
 
@@ -111,4 +131,25 @@ def factor_of_safety(trial: Callable[[float], object], *, tolerance: float = 0.0
             stable = f
         else:
             failed = f
-    return SafetyFactor(0.5 * (stable + failed), stable, failed, tolerance, trials)
+    motion = block_motion(*(held[k] for k in sorted(held))) if len(held) == 2 else {}
+    return SafetyFactor(0.5 * (stable + failed), stable, failed, tolerance, trials, motion)
+
+
+def block_motion(before, after) -> dict:
+    """{block name: mean |u_after - u_before| [m]} over each block's displacement nodes, two models
+    on one mesh (P1: the nodes are the cells' vertices; each node counted once per block).
+    Collective; the same on every rank."""
+    du = (after.u.x.array - before.u.x.array).reshape(-1, after.gdim)
+    tags = after.dmesh.cell_blocks
+    dofmap = after.V.dofmap
+    owned = after.V.dofmap.index_map.size_local
+    comm = after.comm
+    out = {}
+    for tag, name in sorted(after.dmesh.names["blocks"].items()):
+        cells = tags.indices[tags.values == tag]
+        nodes = np.unique(np.concatenate([dofmap.cell_dofs(c) for c in cells])) if cells.size else np.zeros(0, int)
+        nodes = nodes[nodes < owned]                      # owned nodes: each counted on one rank
+        total = comm.allreduce(float(np.linalg.norm(du[nodes], axis=1).sum()))
+        count = comm.allreduce(int(nodes.size))
+        out[name] = total / count if count else 0.0
+    return out
