@@ -14,7 +14,7 @@ reduced through its peak angle in C++ only: refused here until it is (a ValueErr
 The mechanism: where `trial` returns its model, the displacement the last reduction before
 failure adds (the two largest stable factors, both close to F) is mostly the motion of the
 blocks that fail, which grows without bound as F nears its critical value; each block's mean
-|Δu| is kept (SafetyFactor.block_motion), and the blocks moving at least half as much as the
+``|Δu|`` is kept (SafetyFactor.block_motion), and the blocks moving at least half as much as the
 fastest one are named (SafetyFactor.moving).
 """
 from __future__ import annotations
@@ -59,7 +59,7 @@ class SafetyFactor:
     failed: float | None
     tolerance: float
     trials: list = field(default_factory=list)
-    #: {block name: mean |u(F_stable) - u(F_before)| [m]} over the block's nodes (module docstring)
+    #: {block name: mean ``|u(F_stable) - u(F_before)|`` [m]} over the block's nodes (module docstring)
     block_motion: dict = field(default_factory=dict)
 
     @property
@@ -136,7 +136,7 @@ def factor_of_safety(trial: Callable[[float], object], *, tolerance: float = 0.0
 
 
 def block_motion(before, after) -> dict:
-    """{block name: mean |u_after - u_before| [m]} over each block's displacement nodes, two models
+    """{block name: mean ``|u_after - u_before|`` [m]} over each block's displacement nodes, two models
     on one mesh (P1: the nodes are the cells' vertices; each node counted once per block).
     Collective; the same on every rank."""
     du = (after.u.x.array - before.u.x.array).reshape(-1, after.gdim)
