@@ -37,7 +37,7 @@ from ..calibration import calibrate, read_closure_curve
 from ..cycle_calibration import calibrate_cycles, read_load_cycles
 from ..flow import HISTORY_VIRGINS
 from ..flow_calibration import calibrate_flow
-from ..flow_cycles import ML_PER_MIN, FlowGeometry, read_flow_cycles
+from ..flow_cycles import ML_PER_MIN, FlowCycles, FlowGeometry, read_flow_cycles
 from ..laws import read_law_file
 from ..law_registry import (DEFAULT_TANG_JIAO_BASE, GPA, HEIGHT_DISTRIBUTIONS, MM, MPA, TANG_JIAO_BASES,
                             calibratable)
@@ -106,6 +106,9 @@ def add_flow_arguments(p) -> None:
         g.add_argument(f"--{name}", type=float, metavar="MM", help=f"{what} [mm]")
     g.add_argument("--pressure-drop", type=float, metavar="MPA", help="Δp [MPa] if the file has no pressure column")
     g.add_argument("--rate", type=float, metavar="ML_MIN", help="Q [mL/min] if the file has no flow-rate column")
+    g.add_argument("--flow-alone", action="store_true",
+                   help="leave the file's closure column out (a closure that is not the flow path's, e.g. a "
+                        "sensor's over a gauge length): the closure law (--law) is fitted with the flow")
     g.add_argument("--viscosity", type=float, default=1.002e-3, metavar="PA_S",
                    help="fluid viscosity [Pa s] (default water at 20 °C)")
 
@@ -122,6 +125,8 @@ def run_flow(args) -> int:
                                 flow_rate=None if args.rate is None else args.rate * ML_PER_MIN)
     closure_law = read_law_file(args.closure_law)[0].law if args.closure_law else None
     data = read_flow_cycles(args.curve, geometry)
+    if args.flow_alone:
+        data = FlowCycles(data.normal_stress, data.transmissivity, None, data.lines, data.source)
     e_star = None if args.composite_modulus is None else args.composite_modulus * GPA
     result = calibrate_flow(data, virgin=args.virgin, law=args.law, closure_law=closure_law,
                             composite_modulus=e_star,
