@@ -18,7 +18,7 @@ from mpi4py import MPI  # noqa: E402
 
 from mpi_ranks import two_ranks  # noqa: E402
 from rockjoint.scenes import load_scene, make_plan, run_scene  # noqa: E402
-from rockjoint.scenes.runner import summary_table  # noqa: E402
+from rockjoint.scenes.runner import NoEquilibrium, summary_table  # noqa: E402
 from rockjoint.scenes.slope_plan import trial_count  # noqa: E402
 from scene_cases import SCENES  # noqa: E402
 
@@ -70,3 +70,19 @@ def test_the_slope_scene_on_two_ranks_is_serial(tmp_path_factory):
     assert [(f, held) for f, held, _ in parallel.found.trials] == [(f, held) for f, held, _ in serial.found.trials]
     assert parallel.found.factor == serial.found.factor
     assert parallel.moving == serial.moving
+
+
+def test_water_that_jacks_the_back_joints_open_is_named(tmp_path):
+    """The demo's slope with the table 40 m up behind the crest (5 m below the ground): on the
+    steep back-release joints the water reaches ρ_w g × 35 m ≈ 0.34 MPa while the rock's horizontal
+    stress there is about ν/(1 - ν) ρ g z (a third of the vertical): the water opens them (jacking),
+    nothing holds what it opens whatever the strength, and the run says so by name."""
+    scene = load_scene(os.path.join(SCENES, "rock_slope.yaml")).at_reduced_size()
+    data = copy.deepcopy(scene.data)
+    data["water"]["table"] = 40.0
+    scene = dataclasses.replace(scene, data=data)
+    with pytest.raises(NoEquilibrium) as err:
+        run_scene(scene, make_plan(scene), str(tmp_path / "jacked"))
+    words = str(err.value)
+    assert "no equilibrium even with its joints' strength multiplied by 20" in words
+    assert "hydraulic jacking" in words and "back_1" in words, words

@@ -67,9 +67,10 @@ def search(scene, plan, dmesh, tables: dict, build_model, run_stages):
 
 
 def no_equilibrium_words(safety) -> str:
-    """Why a slope without any stable trial is refused, in words."""
+    """Why a slope without any stable trial is refused, in words: the model's own reason at F = 1
+    (e.g. the joints the water jacks open) and at the smallest F tried."""
     f = safety.found
+    reasons = [f"at F = {t[0]:g}: {t[2]}" for t in (f.trials[0], f.trials[-1])] if f.trials else []
     return (f"the slope has no equilibrium even with its joints' strength multiplied by {1 / f.failed:g} "
-            f"(F = {f.failed:g}): a block is free whatever the strength (held only by open joints: a joint "
-            "set or crack that frees it, or missing supports); last trial: " + (f.trials[-1][2] if f.trials else ""))
-
+            f"(F = {f.failed:g}): a block is free whatever the strength; "
+            + "; ".join(dict.fromkeys(reasons)))
