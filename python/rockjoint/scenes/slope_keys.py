@@ -132,7 +132,8 @@ def check(d: dict, c) -> None:
                        "or spacing")
     if CRACK in g:
         if g[CRACK]["ends_on"] not in names:
-            c.fail(("geometry", CRACK, "ends_on"), f"no joint set {g[CRACK]['ends_on']!r} (sets: {', '.join(names) or 'none'})")
+            c.fail(("geometry", CRACK, "ends_on"),
+                   f"no joint set {g[CRACK]['ends_on']!r} (sets: {', '.join(names) or 'none'})")
         try:
             crack_joint(g, [j for s in g.get("joint_sets", []) for j in set_joints(s)])
         except ValueError as err:

@@ -78,7 +78,8 @@ def factor_of_safety(ctx, dofs: float, steps: int):
     stages = len(ctx.scene.data["stages"]) + (1 if "water" in ctx.scene.data else 0)
     per_trial = dofs * defaults.SECONDS_PER_DOF * steps * stages * 6
     return spec, [Choice(
-        "factor of safety", f"strength reduction to {100 * t:.3g} % (bracketing x{GROWTH:g} from F = 1, then bisection)",
+        "factor of safety",
+        f"strength reduction to {100 * t:.3g} % (bracketing x{GROWTH:g} from F = 1, then bisection)",
         why="the scene asks for it (factor_of_safety); the intact rock is elastic and never fails: it is solved "
             "once, not searched",
         cost=f"{min(counts)}-{max(counts)} trial solves for F between {QUOTED[0]:g} and {QUOTED[1]:g} "

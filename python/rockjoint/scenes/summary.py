@@ -2,7 +2,8 @@
 """The summary table of a scene's run (summary.txt, printed by `rockjoint run`): per stage, the
 jointed model beside the intact one and the joints' share; the joints' state over all sets and per
 set; the water (the coupling's iterations, the largest joint pressure, the joint points opened by
-water) and the flow at every boundary with a condition."""
+water) and the flow at every boundary with a condition; a slope's factor of safety beside the
+intact rock's answer (safety_lines)."""
 from __future__ import annotations
 
 
@@ -51,7 +52,8 @@ def summary_table(result) -> str:
 
 def safety_lines(result, width: int) -> list:
     """The factor-of-safety rows of the summary table (a slope's `factor_of_safety:`, slope_run.py):
-    F, its bracket and tolerance, the trials and their time, the blocks that fail; beside it the intact rock, elastic."""
+    F, its bracket and tolerance, the trials and their time, the blocks that fail; beside it the
+    intact rock, elastic."""
     s = result.safety
     f = s.found
     rows = []
