@@ -3,7 +3,7 @@
 the opening four radii across, at a stated magnification that draws the largest displacement as a
 few per cent of the radius; joints are drawn by state (stick, slip, open) with a legend of the
 states present; a 3D tunnel gets the same view on the section through the opening. The figure
-written is captured (pictures._save) and read back: titles, axis limits, caption, legend."""
+written is captured (pictures.save) and read back: titles, axis limits, caption, legend."""
 import os
 import re
 
@@ -20,7 +20,7 @@ CAPTION = re.compile(r"displacements x (\S+): the largest, (\S+) mm,\nis drawn a
 def run_capturing(scene_path, output, monkeypatch):
     """Run a scene reduced; return (scene, result, {model: joint states}, the figure's axes)."""
     figures, states = [], {}
-    save, joint_states = pictures._save, pictures.joint_states
+    save, joint_states = pictures.save, pictures.joint_states
 
     def keep(fig, path):
         figures.append([(ax.get_title(), ax.get_xlim(), ax.get_ylim(),
@@ -34,7 +34,7 @@ def run_capturing(scene_path, output, monkeypatch):
         states[len(states)] = out
         return out
 
-    monkeypatch.setattr(pictures, "_save", keep)
+    monkeypatch.setattr(pictures, "save", keep)
     monkeypatch.setattr(pictures, "joint_states", record)
     scene = load_scene(str(scene_path)).at_reduced_size()
     result = run_scene(scene, make_plan(scene), str(output))

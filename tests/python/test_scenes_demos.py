@@ -21,7 +21,7 @@ from rockjoint.scenes.joint_laws import source_law  # noqa: E402
 from scene_cases import SCENES, cli  # noqa: E402
 
 NAMES = ["lab_closure_test", "topography_to_closure", "blocky_rock_mass", "tunnel", "direct_shear",
-         "user_model", "tunnel_below_water_table", "injection_test"]
+         "user_model", "tunnel_below_water_table", "injection_test", "rock_slope"]
 
 
 def run(name, tmp_path):

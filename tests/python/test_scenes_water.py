@@ -148,7 +148,7 @@ def test_the_picture_colours_the_joints_by_their_water(tmp_path, monkeypatch):
     """scene.png gets a row with the jointed model's joints coloured by p [MPa]: the colours are
     the joints' pressures, from the left end's ρ g (h_L - z) down to the right end's (two ways)."""
     from rockjoint.scenes import pictures
-    drawn, save = [], pictures._save
+    drawn, save = [], pictures.save
 
     def keep(fig, path):
         for ax in fig.axes:
@@ -158,7 +158,7 @@ def test_the_picture_colours_the_joints_by_their_water(tmp_path, monkeypatch):
                     drawn.append(np.asarray(lines.get_array()))
         save(fig, path)
 
-    monkeypatch.setattr(pictures, "_save", keep)
+    monkeypatch.setattr(pictures, "save", keep)
     run(tmp_path, scene_text(f"{{table: {TABLE:g} m, coupling: two_way, heads: "
                              f"{{left: {H_LEFT:g} m, right: {H_RIGHT:g} m}}}}"))
     (values,) = drawn

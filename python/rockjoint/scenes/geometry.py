@@ -11,6 +11,8 @@ import numpy as np
 
 from .. import meshes
 from ..meshes.joint_geometry import unit_normal
+from ..meshes.slope import slope_section
+from . import slope_keys
 
 
 def extent(g) -> np.ndarray:
@@ -21,6 +23,9 @@ def extent(g) -> np.ndarray:
         return np.array(g["size"])
     if g["kind"] == "column":
         return np.array([g["width"]] * (g["dimension"] - 1) + [g["height"]])
+    if g["kind"] == "slope":   # the section's width and its height above the bottom
+        geo = slope_keys.section(g)
+        return np.array([geo.width, geo.base + geo.height])
     if "length" in g:
         return np.array([g["width"], g["length"], g["height"]])
     return np.array([g["width"], g["height"]])
@@ -31,6 +36,8 @@ def joint_sets(scene) -> list:
     g = scene.data["geometry"]
     if g["kind"] == "column":
         return [{"name": "joint", "dip": 0.0, "dip_direction": math.pi / 2}]
+    if g["kind"] == "slope":
+        return slope_keys.sets(g)
     return g.get("joint_sets", [])
 
 
@@ -45,6 +52,8 @@ def joint_objects(scene, exclude=()):
     """The scene's joint sets as rockjoint.meshes.Joint lists (names <set>_<i>), without the sets
     named in `exclude` (smeared ones)."""
     g = scene.data["geometry"]
+    if g["kind"] == "slope":
+        return slope_keys.joints(g, exclude)
     # A 3D tunnel is its section (x-z plane) extruded along y: its joint sets run along y (the
     # schema checks it), so each is the section's joint through (x, z), with the same dip and
     # spacing (the normal has no y component); meshes.tunnel_section extrudes them into planes.
@@ -70,6 +79,9 @@ def jointed_mesh(scene, plan, comm):
     if g["kind"] == "block":
         return meshes.jointed_block(g["size"], joint_objects(scene, plan.smeared), dim=plan.dimension, mesh_size=h,
                                     joint_mesh_size=hj, comm=comm)
+    if g["kind"] == "slope":
+        return slope_section(slope_keys.section(g), joint_objects(scene, plan.smeared), mesh_size=h,
+                             joint_mesh_size=hj, joint_refine_distance=h if hj else None, comm=comm)
     o = g["opening"]
     opening = meshes.CircularOpening(tuple(o["centre"][:2]), o["radius"])
     return meshes.tunnel_section(g["width"], g["height"], opening, joint_objects(scene, plan.smeared), mesh_size=h,

@@ -126,7 +126,7 @@ def draw(models: dict, scene, path: str) -> list:
     gathered = {label: gather_triangles(m.u) for label, m in models.items()}
     if models["jointed"].comm.rank != 0:
         return [path]
-    plt = _pyplot()
+    plt = plt_module()
     wet = "water" in scene.data and "jointed" in joints
     rows = (2 if opening else 1) + wet
     fig, axes = plt.subplots(rows, len(models), figsize=(5.8 * len(models), 4.9 * rows), squeeze=False)
@@ -134,7 +134,7 @@ def draw(models: dict, scene, path: str) -> list:
     for k, (label, (tri, u)) in enumerate(gathered.items()):
         extent = float(np.ptp(tri.reshape(-1, 2), axis=0).max())
         scale = 0.05 * extent / top
-        _field(axes[0][k], tri, u, scale, top, joints[label])
+        field_view(axes[0][k], tri, u, scale, top, joints[label])
         axes[0][k].set_title(f"{scene.data['name']}: {label} (u x {scale:.3g})")
         if opening:
             axes[0][k].add_patch(_view_box(plt, opening))
@@ -147,23 +147,23 @@ def draw(models: dict, scene, path: str) -> list:
                                             f"{scene.data['name']}: water in the joints")
             else:
                 ax.set_axis_off()
-    _save(fig, path)
+    save(fig, path)
     return [path]
 
 
-def _pyplot():
+def plt_module():
     import matplotlib  # slow to import: only when a picture is drawn
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     return plt
 
 
-def _save(fig, path: str) -> None:
+def save(fig, path: str) -> None:
     """Write and close the figure (one place, so a test can look at the figure it writes)."""
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     fig.clf()
-    _pyplot().close(fig)
+    plt_module().close(fig)
 
 
 def _view_box(plt, opening):
@@ -171,7 +171,7 @@ def _view_box(plt, opening):
     return plt.Rectangle((cx - 2 * r, cy - 2 * r), 4 * r, 4 * r, fill=False, ec="w", ls="--", lw=0.8)
 
 
-def _field(ax, tri, u, scale, top, joints, limits=None):
+def field_view(ax, tri, u, scale, top, joints, limits=None):
     """``|u|`` on the deformed triangles, block outlines, joints by state (legend of those drawn)."""
     from matplotlib.collections import LineCollection, PolyCollection  # slow: only when drawing
     mag = np.linalg.norm(u, axis=2).mean(axis=1) * 1e3
@@ -214,7 +214,7 @@ def _opening_views(axes, gathered, joints, opening, name):
     top = max(largest.values()) or 1.0
     scale = nice_scale(OPENING_FRACTION * r / top)
     for ax, (label, (tri, u)) in zip(axes, gathered.items()):
-        _field(ax, tri, u, scale, top, joints.get(label), limits)  # the axes clip to the view
+        field_view(ax, tri, u, scale, top, joints.get(label), limits)  # the axes clip to the view
         t = np.linspace(0, 2 * np.pi, 200)
         ax.plot(cx + r * np.cos(t), cy + r * np.sin(t), "w--", lw=0.8, label="_opening before")
         ax.set_title(f"{name}: {label}, opening (4 radii across)")
@@ -241,7 +241,7 @@ def _draw_3d(models: dict, scene, path: str, sections, joints) -> list:
     gathered = {label: boundary_triangles(m.u) for label, m in models.items()}
     if models["jointed"].comm.rank != 0:
         return [path]
-    plt = _pyplot()
+    plt = plt_module()
     from matplotlib import cm, colors  # slow to import: only when drawing
     from mpl_toolkits.mplot3d.art3d import Poly3DCollection  # matplotlib's: only when drawing
     top = max(float(np.linalg.norm(u, axis=2).max()) for _, u in gathered.values()) or 1.0
@@ -275,7 +275,7 @@ def _draw_3d(models: dict, scene, path: str, sections, joints) -> list:
         for ax in axes:
             ax.set_title(ax.get_title() + f"\nsection y = {y:g} m")
             ax.set_ylabel("z [m]")
-    _save(fig, path)
+    save(fig, path)
     return [path]
 
 

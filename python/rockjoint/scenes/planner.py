@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import dataclasses
 
-from . import rules, smearing, statics
+from . import rules, slope_plan, smearing, statics
 from .rules import Choice  # noqa: F401  (re-exported: the planner's explained choice)
 
 
@@ -51,6 +51,7 @@ class Plan:
     reduced: bool = False               # planned at the scene's reduced size (Scene.at_reduced_size)
     smeared: tuple = ()                 # joint sets smeared in the rock (equivalent continuum)
     water: str | None = None            # the water's coupling (one_way, two_way), None: dry
+    safety: dict | None = None          # a slope's factor-of-safety search {tolerance, largest}, None: none
 
     def text(self) -> str:
         """The plan's choices in words, one block per choice (topic, choice, why, cost, error)."""
@@ -75,11 +76,13 @@ def make_plan(scene) -> Plan:
     bound, table_top = decide(rules.table_range)
     tolerance = decide(rules.table_tolerance)
     laws = decide(rules.laws, tolerance)
-    slip = decide(rules.slip, dim)
+    slope = ctx.geometry["kind"] == "slope"
+    slip = decide(slope_plan.slip if slope else rules.slip, dim)
     h, hj, ho, degree, quadrature = decide(rules.mesh, dim)
     steps = decide(rules.load_steps, any(slip.values()))
     intact = decide(rules.intact)
     smeared = decide(smearing.smeared_sets, dim)
-    water = decide(rules.water)
+    water = decide(slope_plan.water if slope else rules.water)
+    safety = decide(slope_plan.factor_of_safety, rules.estimate_dofs(scene, dim, h, hj, ho), steps)
     return Plan(dim, degree, quadrature, h, hj, ho, bound, table_top, tolerance, laws, slip, steps,
-                intact, choices, scene.reduced, smeared, water)
+                intact, choices, scene.reduced, smeared, water, safety)

@@ -211,7 +211,7 @@ def _joint_spacing(scene) -> float:
     return min((s["spacing"] for s in g.get("joint_sets", [])), default=float(max(geometry.extent(g))))
 
 
-def _estimate_dofs(scene, dim, h, hj, ho) -> float:
+def estimate_dofs(scene, dim, h, hj, ho) -> float:
     extent = geometry.extent(scene.data["geometry"])
     # triangles ~ 2 A/h², tetrahedra ~ 6 V/h³; vertices ~ cells/2 (2D), cells/5 (3D); the refined
     # bands near joints and openings roughly double that at h/4 - h/8.
@@ -233,7 +233,7 @@ def mesh(ctx: Context, dim: int):
         if (refine and opening) else None
     degree, _ = ctx.setting("element_degree", fe.element_degree)
     quadrature, _ = ctx.setting("quadrature", fe.quadrature)
-    dofs = _estimate_dofs(ctx.scene, dim, h, hj, ho)
+    dofs = estimate_dofs(ctx.scene, dim, h, hj, ho)
     sizes = ", ".join(f for f in (
         f"{fe.joint_size_over_spacing:.3g} x joint spacing on joints" if hj else "",
         f"{fe.opening_size_over_radius:.3g} x radius on the opening" if ho else "") if f)

@@ -23,8 +23,9 @@ from ..joint import joint_behaviours
 from ..meshes import joint_sets_of
 from ..fem import (ConvergenceError, InSituStress, JointedRockModel, LinearSolveError, NewtonOptions,
                             ShearState, distribute)
+from ..fem.water.joint_pressure import set_joint_pressure
 from . import water as scene_water
-from . import geometry, joint_laws, pictures, statics
+from . import geometry, joint_laws, pictures, slope_keys, slope_picture, slope_run, statics
 from .summary import summary_table  # noqa: F401  (re-exported: `rockjoint run` prints it)
 
 log = logging.getLogger("rockjoint.scenes")
@@ -79,6 +80,7 @@ class SceneResult:
     files: list
     seconds: float
     gdim: int = 0                  # geometric dimension of the meshes solved
+    safety: object = None          # a slope's factor of safety (slope_run.SlopeSafety), if asked for
 
     def row(self, model: str, stage: str) -> StageRow:
         """The StageRow of `model` at `stage` (StopIteration if there is none)."""
@@ -110,6 +112,8 @@ def build_model(scene, plan, dmesh, tables: dict | None):
                   strength={n: scene.strengths[of[n]] if plan.slip.get(of[n]) else None for n in names})
     if tables is not None and plan.smeared:
         kw["continuum"] = smeared_material(scene, plan, tables, rocks)
+    if d["geometry"]["kind"] == "slope":   # a slope is loaded by its own weight (ρ g, ramped in the first stage)
+        kw["density"] = {b: v.get("density", rock["density"]) for b, v in own.items()}
     model = JointedRockModel(dmesh, element_degree=plan.element_degree, rock=rocks,
                              plane="strain" if plan.dimension == 2 else None,
                              quadrature=plan.quadrature, newton=NewtonOptions(verbose=False), **kw)
@@ -238,6 +242,12 @@ def run_stages(scene, plan, model, label: str, current: list | None = None, tran
         solution = record(stage["name"], model.solve(load_steps=steps, name=stage["name"]), stage.get("water"))
         log.info("%s: stage %s, %d load step(s), %d Newton iterations (%.1f s)", label, stage["name"],
                  steps, solution.newton_iterations, time.perf_counter() - t0)
+    g, table = scene.data["geometry"], scene.data.get("water", {}).get("table")
+    if g["kind"] == "slope" and table is not None:   # the prescribed water, after the stages (docs/slopes.md)
+        current[0] = "water"
+        if jointed:
+            set_joint_pressure(model, slope_keys.phreatic(g, table))
+        record("water", model.solve(load_steps=plan.load_steps, name="water"))
     return rows
 
 
@@ -258,11 +268,17 @@ def run_scene(scene, plan, output: str, comm=None) -> SceneResult:
     os.makedirs(parent, exist_ok=True)
     tmp = comm.bcast(tempfile.mkdtemp(prefix=".rockjoint-run-", dir=parent) if comm.rank == 0 else None)
     try:
-        rows, files, models = [], [], {}
+        rows, files, models, safety = [], [], {}, None
         for label, dmesh in meshes.items():
-            model = build_model(scene, plan, dmesh, tables if label == "jointed" else None)
-            rows += _run_explained(scene, plan, model, label, jm, comm,
-                                   transmissivity if label == "jointed" else None)
+            if label == "jointed" and "factor_of_safety" in scene.data:   # a slope's strength reduction
+                model, found, safety = slope_run.search(scene, plan, dmesh, tables, build_model, run_stages)
+                if model is None:
+                    raise NoEquilibrium(slope_run.no_equilibrium_words(safety))
+                rows += found
+            else:
+                model = build_model(scene, plan, dmesh, tables if label == "jointed" else None)
+                rows += _run_explained(scene, plan, model, label, jm, comm,
+                                       transmissivity if label == "jointed" else None)
             models[label] = model
             if label == "jointed" and comm.rank == 0:
                 for words in beyond_tables(rows, tables):
@@ -273,8 +289,10 @@ def run_scene(scene, plan, output: str, comm=None) -> SceneResult:
                     files.append(rows[-1].network.write(os.path.join(tmp, f"{label}_flow.xdmf"), comm))
         if scene.data["outputs"]["pictures"]:
             files += pictures.draw(models, scene, os.path.join(tmp, "scene.png"))
+            if safety is not None:
+                files += slope_picture.draw(safety, jm, scene, os.path.join(tmp, "mechanism.png"))
         result = SceneResult(plan, rows, tables, [], time.perf_counter() - t0,
-                             meshes["jointed"].mesh.geometry.dim)
+                             meshes["jointed"].mesh.geometry.dim, safety)
         if comm.rank == 0:
             with open(os.path.join(tmp, "summary.txt"), "w", encoding="utf-8") as f:
                 f.write(summary_table(result) + "\n")

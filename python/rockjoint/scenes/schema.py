@@ -17,7 +17,7 @@ from ..joint import make_strength
 from .fields import (Anything, Checker, Flag, Integer, ListOf, Mapping, NamedMapping, Quantity,
                      Text)
 from .units import LAW_UNIT_DIMENSION, parse_quantity
-from . import water_keys
+from . import slope_keys, water_keys
 from .yamlnodes import SceneError, compose
 
 POSITIVE = dict(low=0.0, open_low=True)
@@ -29,16 +29,17 @@ _COMPONENTS = ("x", "y", "z", "xy", "xz", "yz", "xyz", "all")
 def _geometry_rule(g, path, c):
     kind = g["kind"]
     need = {"column": ("width", "height", "joint_heights"), "block": ("size",),
-            "tunnel": ("width", "height", "opening")}[kind]
+            "tunnel": ("width", "height", "opening"), "slope": ("height", "face_angle")}[kind]
     for key in need:
         if key not in g:
             c.fail(path, f"missing key {key!r} (needed for kind {kind})")
     unused = {"column": ("size", "opening", "joint_sets", "length"),
               "block": ("width", "height", "joint_heights", "opening", "length"),
-              "tunnel": ("size", "joint_heights")}[kind]
+              "tunnel": ("size", "joint_heights"), "slope": ("size", "width", "opening", "joint_heights", "length")}[kind]
     for key in unused:
         if key in g:
             c.fail(path + (key,), f"not used by kind {kind}")
+    slope_keys.geometry_rule(g, path, c)
     if kind == "column":
         g["dimension"] = g.get("dimension", 2)
     elif kind == "block":
@@ -75,7 +76,7 @@ JOINT_SET = Mapping({
     "count": Integer(low=1, high=200, required=False, default=1)})
 
 GEOMETRY = Mapping({
-    "kind": Text(choices=("column", "block", "tunnel")),
+    "kind": Text(choices=("column", "block", "tunnel", "slope")),
     "dimension": Integer(low=2, high=3, required=False),
     "width": Quantity("length", required=False, **POSITIVE),
     "height": Quantity("length", required=False, **POSITIVE),
@@ -85,6 +86,7 @@ GEOMETRY = Mapping({
     "joint_sets": ListOf(JOINT_SET, required=False),
     "opening": Mapping({"shape": Text(choices=("circle",)), "centre": _POINT,
                         "radius": Quantity("length", **POSITIVE)}, required=False),
+    **slope_keys.FIELDS,
 }, rule=_geometry_rule)
 
 ELASTIC = Mapping({"young": Quantity("stress", **POSITIVE),
@@ -270,7 +272,8 @@ SCENE = Mapping({
     "supports": NamedMapping(Text(choices=_COMPONENTS)),
     "stages": ListOf(STAGE, min_length=1),
     "error_budget": Quantity("fraction", low=0.0, high=1.0, open_low=True),
-    "mesh": MESH, "outputs": OUTPUTS, "plan": PLAN, "reduced": REDUCED, "water": water_keys.WATER})
+    "mesh": MESH, "outputs": OUTPUTS, "plan": PLAN, "reduced": REDUCED, "water": water_keys.WATER,
+    "factor_of_safety": slope_keys.FACTOR_OF_SAFETY})
 
 
 @dataclasses.dataclass
@@ -323,6 +326,7 @@ def _cross_checks(d: dict, c: Checker) -> None:
     """Relations between sections: joint sets have laws, loads name boundaries that exist."""
     g = d["geometry"]
     sets = [s["name"] for s in g.get("joint_sets", [])] if g["kind"] != "column" else ["joint"]
+    sets += [slope_keys.CRACK] if slope_keys.CRACK in g else []
     for name in d["joints"]:
         if name not in sets:
             c.fail(("joints", name), f"no joint set {name!r} in the geometry (sets: "
@@ -333,6 +337,8 @@ def _cross_checks(d: dict, c: Checker) -> None:
     faces = ["bottom", "top", "left", "right"] + (["front", "back"] if g["dimension"] == 3 else [])
     if g["kind"] == "tunnel":
         faces.append("opening")
+    faces = list(slope_keys.FACES) if g["kind"] == "slope" else faces
+    slope_keys.check(d, c)
     where = [(("supports", k), k) for k in d["supports"]]
     for i, stage in enumerate(d["stages"]):
         where += [(("stages", i, "loads", k), k) for k in stage["loads"]]
@@ -369,7 +375,9 @@ def check_scene(data, lines: dict, source: str) -> Scene:
     c = _checker(source, lines)
     d = SCENE.check(data, (), c)
     _cross_checks(d, c)
-    return Scene(d, source, lines, strengths=_strengths(d, c))
+    strengths = _strengths(d, c)
+    slope_keys.free_crack(d, strengths)
+    return Scene(d, source, lines, strengths=strengths)
 
 
 def _strengths(d: dict, c: Checker) -> dict:

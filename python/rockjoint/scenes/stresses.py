@@ -10,7 +10,7 @@ import math
 import numpy as np
 
 
-from . import defaults, geometry
+from . import defaults, geometry, slope_keys
 
 #: axis-aligned faces: (axis, outward sign); bottom/top take the last axis (y in 2D, z in 3D)
 FACE_AXIS = {"left": (0, -1), "right": (0, 1), "bottom": (1, -1), "top": (1, 1),
@@ -28,6 +28,8 @@ def stage_stresses(scene) -> list:
         sv, k = d["in_situ"]["vertical"], d["in_situ"]["horizontal_ratio"]
         s0 = -k * sv * np.eye(dim)
         s0[dim - 1, dim - 1] = -sv
+    if d["geometry"]["kind"] == "slope":   # a slope's weight, at its bottom (the largest)
+        s0 = slope_keys.weight_stress(d)
     loads, out = {}, []
     for stage in d["stages"]:
         loads.update(stage["loads"])

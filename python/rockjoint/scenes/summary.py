@@ -2,7 +2,8 @@
 """The summary table of a scene's run (summary.txt, printed by `rockjoint run`): per stage, the
 jointed model beside the intact one and the joints' share; the joints' state over all sets and per
 set; the water (the coupling's iterations, the largest joint pressure, the joint points opened by
-water) and the flow at every boundary with a condition."""
+water) and the flow at every boundary with a condition; a slope's factor of safety beside the
+intact rock's answer (safety_lines)."""
 from __future__ import annotations
 
 
@@ -44,4 +45,31 @@ def summary_table(result) -> str:
             unit = "L/min/m" if result.gdim == 2 else "L/min"
             lines.append(f"{stage:{w}}{f'flow in at {b} [{unit}]':{q}}{rate * 6e4:14.5g}"
                          + (f"{other * 6e4:14.5g}" if other is not None else f"{'-':>14}"))
+    if result.safety is not None:
+        lines += safety_lines(result, w + q)
     return "\n".join(lines)
+
+
+def safety_lines(result, width: int) -> list:
+    """The factor-of-safety rows of the summary table (a slope's `factor_of_safety:`, slope_run.py):
+    F, its bracket and tolerance, the trials and their time, the blocks that fail; beside it the
+    intact rock, elastic."""
+    s = result.safety
+    f = s.found
+    rows = []
+    if f.bounded:
+        rows += [("factor of safety F", f"{f.factor:.4g}"),
+                 ("  bracket (stable, failed)", f"{f.stable:.4g} - {f.failed:.4g}"),
+                 ("  tolerance", f"{100 * f.tolerance:.3g} %"),
+                 ("  jointed rows above at F", f"{f.stable:.4g} (the largest stable trial)")]
+    elif f.failed is None:
+        rows.append(("factor of safety F", f"> {f.factor:g}: equilibrium at every F tried"))
+    else:
+        rows.append(("factor of safety F", f"< {f.factor:g}: no equilibrium at any F tried"))
+    rows += [("  trial solves", f"{len(f.trials)}"), ("  search time [s]", f"{s.seconds:.3g}"),
+             ("  moving blocks", ", ".join(s.moving) or "-")]
+    intact = [r for r in result.rows if r.model == "intact"]
+    if intact:
+        rows += [("intact rock (elastic)", "never fails: no factor of safety"),
+                 ("  intact max |u| [mm]", f"{intact[-1].max_displacement * 1e3:.5g}")]
+    return [f"{name:{width}}{value:>28}" for name, value in rows]

@@ -67,7 +67,7 @@ def check(d: dict, c) -> None:
         if "flow" in d["outputs"]:
             c.fail(("outputs", "flow"), "the scene has water: give the flow's boundaries there (water: {heads: ...}), "
                                         "not in outputs")
-        if "table" in w and "in_situ" not in d:
+        if "table" in w and "in_situ" not in d and g["kind"] != "slope":   # a slope's table is prescribed
             c.fail(("water", "table"), "an initial water table needs the in-situ stress that holds it (in_situ:)")
         if g["kind"] != "tunnel" and "opening" in w:
             c.fail(("water", "opening"), f"a {g['kind']} has no opening")
