@@ -66,6 +66,27 @@ def richardson(values) -> tuple:
     return c + (c - b) / (2.0 ** r - 1.0), r
 
 
+def errors(values) -> tuple:
+    """(reference, observed order, relative errors of all but the finest) of a sequence on element
+    sizes halving: the reference is the Richardson extrapolation of its three finest."""
+    reference, order = richardson(values)
+    return reference, order, [abs(v - reference) / abs(reference) for v in values[:-1]]
+
+
+def convergence(levels=(4, 8, 16, 32)) -> str:
+    """The mesh-convergence table of docs/tunnel.md (K0 = 1): each quantity's relative error at
+    h = a/n against the Richardson reference of the three finest, and the observed order."""
+    lines = [f"{'shape':10}{'quantity':>10}" + "".join(f"{'a/' + str(n):>9}" for n in levels[:-1])
+             + f"{'reference':>12}{'order':>7}"]
+    for name, shape in (("horseshoe", HORSESHOE), ("D", D_SHAPE)):
+        runs = [solve(shape, 1.0 / n) for n in levels]
+        for key, unit in (("crown", 1e3), ("floor", 1e3), ("walls", 1e3), ("area", 1e4)):
+            reference, order, errs = errors([r[key] for r in runs])
+            lines.append(f"{name:10}{key:>10}" + "".join(f"{100 * e:8.2f}%" for e in errs)
+                         + f"{reference * unit:12.4f}{order:7.2f}")
+    return "\n".join(lines)
+
+
 def kirsch_closures(circle, k0=1.0) -> dict:
     """The circle's crown settlement, floor heave, wall closure and area loss, Kirsch's closed form
     (rockjoint.reference.kirsch: u_r at the wall, Brady & Brown Eq. 7.8; ΔA = ∮ -u_r ds)."""
@@ -93,5 +114,6 @@ def comparison(n: int = 32) -> str:
     return "\n".join(lines)
 
 
-if __name__ == "__main__":   # the comparison table of docs/tunnel.md
+if __name__ == "__main__":   # the tables of docs/tunnel.md
+    print(convergence())
     print(comparison())
