@@ -79,19 +79,25 @@ outputs: {pictures: false, xdmf: false, monitor: [opening]}
 """
 
 
-def test_the_extruded_horseshoe_scene_is_the_plane_strain_section(tmp_path):
-    """The horseshoe scene extruded 2 m along the axis (rollers on front and back: plane strain),
-    intact rock: the opening's mean normal displacement is the 2D scene's to the meshes' difference
-    (tetrahedra against triangles of the same sizes, 0.5 m on the opening: 5 %)."""
+@pytest.mark.parametrize("opening", [
+    "{shape: horseshoe, centre: [20 m, 20 m], span: 8 m, wall_height: 3 m, invert_depth: 1 m}",
+    "{shape: D, centre: [20 m, 20 m], span: 8 m, wall_height: 3 m, arch_radius: 5 m}"], ids=["horseshoe", "D segmental"])
+def test_the_extruded_scene_is_the_plane_strain_section(tmp_path, opening):
+    """The scene (a horseshoe; a D with a segmental crown) extruded 2 m along the axis (rollers on front
+    and back: plane strain), intact rock: the opening's mean normal displacement is the 2D scene's to
+    the meshes' difference (tetrahedra against triangles of the same sizes, 0.5 m on the opening:
+    observed -0.17 % and -0.04 %, bound 1 %)."""
     from rockjoint.scenes import load_scene, make_plan, run_scene
     from scene_cases import write
-    three = (SCENE.replace("  height: 40 m\n", "  height: 40 m\n  length: 2 m\n")
+    scene2 = SCENE.replace("{shape: horseshoe, centre: [20 m, 20 m], span: 8 m, wall_height: 3 m, invert_depth: 1 m}",
+                           opening)
+    three = (scene2.replace("  height: 40 m\n", "  height: 40 m\n  length: 2 m\n")
              .replace("{left: x, right: x, bottom: y, top: y}", "{left: x, right: x, bottom: z, top: z, front: y, back: y}"))
     runs = {}
-    for dim, body in ((2, SCENE), (3, three)):
+    for dim, body in ((2, scene2), (3, three)):
         scene = load_scene(write(tmp_path, body, f"scene{dim}.yaml"))
         plan = make_plan(scene)
         assert plan.dimension == dim
         runs[dim] = run_scene(scene, plan, str(tmp_path / f"out{dim}")).row("intact", "excavation")
     assert runs[3].monitors["opening"][-1] > 0.0
-    assert runs[3].monitors["opening"][-1] == pytest.approx(runs[2].monitors["opening"][-1], rel=0.05)
+    assert runs[3].monitors["opening"][-1] == pytest.approx(runs[2].monitors["opening"][-1], rel=0.01)
