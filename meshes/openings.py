@@ -95,16 +95,35 @@ class CircularOpening:
         return _line_circle(a, np.subtract(b, a), self.centre, self.radius)
 
 
+def _segment(half_chord: float, rise: float) -> tuple:
+    """(radius R, half angle θ) of the circular arc over a chord 2 half_chord with its middle
+    ``rise`` from the chord (0 < rise <= half_chord): R = (c² + f²) / (2 f), sin θ = c / R."""
+    R = (half_chord ** 2 + rise ** 2) / (2.0 * rise)
+    return R, math.asin(min(1.0, half_chord / R))
+
+
+def _segment_area(R: float, theta: float) -> float:
+    """Area of the circular segment of radius R and half angle θ: R² (θ - sin θ cos θ)."""
+    return R * R * (theta - math.sin(theta) * math.cos(theta))
+
+
 @dataclass(frozen=True)
 class HorseshoeOpening:
-    """A horseshoe: semicircular crown of ``radius`` [m] centred at ``centre`` (the springline's
-    middle), straight vertical walls ``wall_height`` [m] below the springline, and an invert that is
-    flat (invert_depth = 0) or a circular arc sagging ``invert_depth`` [m] below the wall feet."""
+    """The horseshoe and the D, one outline: a crown arc over the span 2 ``radius`` [m] from the
+    springline, whose middle is ``centre``; straight vertical walls ``wall_height`` [m] below the
+    springline; a floor that is flat (``invert_depth`` = 0: the **D**) or a circular invert arc sagging
+    ``invert_depth`` [m] below the wall feet (the **horseshoe**).
+
+    The crown is a semicircle of radius ``radius`` (``arch_radius`` None or equal to it, tangent to the
+    walls) or, with ``arch_radius`` R > radius, a flatter segmental arch through the wall tops: its
+    centre lies sqrt(R² - radius²) below the springline, its rise is R - sqrt(R² - radius²). An arch
+    radius below half the span cannot reach both walls and is refused."""
 
     centre: tuple
     radius: float
     wall_height: float
     invert_depth: float = 0.0
+    arch_radius: float | None = None
 
     def __post_init__(self):
         object.__setattr__(self, "centre", tuple(_point(self.centre, "HorseshoeOpening.centre")))
@@ -114,45 +133,52 @@ class HorseshoeOpening:
         if not (math.isfinite(d) and 0.0 <= d <= self.radius):
             raise ValueError(f"HorseshoeOpening.invert_depth must be in [0, radius = {self.radius}] m, got {d!r}")
         object.__setattr__(self, "invert_depth", d)
+        R = self.radius if self.arch_radius is None else _positive("HorseshoeOpening.arch_radius", self.arch_radius)
+        if R < self.radius:
+            raise ValueError(f"HorseshoeOpening.arch_radius ({R:g} m) is less than half the span ({self.radius:g} m): "
+                             "the arch cannot reach both walls")
+        object.__setattr__(self, "arch_radius", R)
 
-    def _invert_arc(self) -> tuple:
-        """(radius R, half angle θ) of the invert arc through the wall feet with sag invert_depth."""
-        a, s = self.radius, self.invert_depth
-        R = (a * a + s * s) / (2.0 * s)
-        return R, math.asin(a / R) if s <= a else math.pi - math.asin(a / R)
+    @property
+    def rise(self) -> float:
+        """Height of the crown above the springline [m]: R - sqrt(R² - a²) (a for a semicircle)."""
+        R, a = self.arch_radius, self.radius
+        return R - math.sqrt(max(R * R - a * a, 0.0))
+
+    def _arcs(self) -> list:
+        """[(centre, R, θ)] of the crown and (invert_depth > 0) the invert arc."""
+        (x, y), a, hw, s = self.centre, self.radius, self.wall_height, self.invert_depth
+        R, th = _segment(a, self.rise)
+        arcs = [((x, y + self.rise - R), R, th)]
+        if s > 0.0:
+            Ri, thi = _segment(a, s)
+            arcs.append(((x, y - hw - s + Ri), Ri, thi))
+        return arcs
 
     @property
     def area(self) -> float:
-        """Area of the opening [m²] (half disk, walls and the invert's circular segment)."""
-        a = self.radius
-        area = 0.5 * math.pi * a * a + 2.0 * a * self.wall_height
-        if self.invert_depth > 0.0:
-            R, th = self._invert_arc()
-            area += R * R * (th - math.sin(th) * math.cos(th))  # circular segment
-        return area
+        """Area of the opening [m²]: the crown's circular segment, the walls' rectangle and the
+        invert's circular segment."""
+        return 2.0 * self.radius * self.wall_height + sum(_segment_area(R, th) for _, R, th in self._arcs())
 
     @property
     def perimeter(self) -> float:
         """Length of the outline [m]."""
-        a = self.radius
-        invert = 2.0 * a
-        if self.invert_depth > 0.0:
-            R, th = self._invert_arc()
-            invert = 2.0 * R * th
-        return math.pi * a + 2.0 * self.wall_height + invert
+        floor = 0.0 if self.invert_depth > 0.0 else 2.0 * self.radius
+        return 2.0 * self.wall_height + floor + sum(2.0 * R * th for _, R, th in self._arcs())
 
     def bounds(self) -> tuple:
         """(x_min, y_min, x_max, y_max) [m]."""
         (x, y), a = self.centre, self.radius
-        return (x - a, y - self.wall_height - self.invert_depth, x + a, y + a)
+        return (x - a, y - self.wall_height - self.invert_depth, x + a, y + self.rise)
 
     def outline(self, count: int = 720) -> np.ndarray:
         """(about count, 2) points [m] along the outline, counter-clockwise from the right springline."""
         return _outline_points(self.pieces(), count)
 
     def crossing(self, a, b) -> tuple | None:
-        """(t_in, t_out): where the line a + t (b - a) enters and leaves the horseshoe, or None if
-        it misses it or only touches it. The horseshoe is convex, so the line meets its outline
+        """(t_in, t_out): where the line a + t (b - a) enters and leaves the opening, or None if
+        it misses it or only touches it. The opening is convex, so the line meets its outline
         (crown arc, walls, invert) at its first and last crossing of those pieces."""
         (x, y), r, hw, s = self.centre, self.radius, self.wall_height, self.invert_depth
         a, d = np.asarray(a, float), np.subtract(b, a)
@@ -168,12 +194,12 @@ class HorseshoeOpening:
                 if lo - tol <= (a + t * d)[1 - axis] <= hi + tol:
                     hits.append(t)
 
-        arc(np.array([x, y]), r, lambda p: p[1] >= y - tol)
+        arcs = self._arcs()
+        arc(np.array(arcs[0][0]), arcs[0][1], lambda p: p[1] >= y - tol)
         segment(0, x - r, y - hw, y)
         segment(0, x + r, y - hw, y)
         if s > 0.0:
-            R, _ = self._invert_arc()
-            arc(np.array([x, y - hw - s + R]), R, lambda p: p[1] <= y - hw + tol)
+            arc(np.array(arcs[1][0]), arcs[1][1], lambda p: p[1] <= y - hw + tol)
         else:
             segment(1, y - hw, x - r, x + r)
         if len(hits) < 2 or max(hits) - min(hits) <= tol / max(np.linalg.norm(d), 1e-300):
@@ -181,15 +207,15 @@ class HorseshoeOpening:
         return (min(hits), max(hits))
 
     def pieces(self) -> list:
-        """The outline counter-clockwise from the right springline: the crown's two quarter arcs,
-        the left wall, the invert (two arcs, or a line when flat), the right wall."""
+        """The outline counter-clockwise from the right springline: the crown's two arcs (to and
+        from its top), the left wall, the invert (two arcs, or a line when flat), the right wall."""
         (x, y), a, hw, s = self.centre, self.radius, self.wall_height, self.invert_depth
-        c, right, top, left = (x, y), (x + a, y), (x, y + a), (x - a, y)
+        arcs = self._arcs()
+        c, right, top, left = arcs[0][0], (x + a, y), (x, y + self.rise), (x - a, y)
         left_foot, right_foot = (x - a, y - hw), (x + a, y - hw)
         out = [OutlinePiece(right, top, c), OutlinePiece(top, left, c), OutlinePiece(left, left_foot)]
         if s > 0.0:
-            R, _ = self._invert_arc()
-            ci, bottom = (x, y - hw - s + R), (x, y - hw - s)
+            ci, bottom = arcs[1][0], (x, y - hw - s)
             out += [OutlinePiece(left_foot, bottom, ci), OutlinePiece(bottom, right_foot, ci)]
         else:
             out.append(OutlinePiece(left_foot, right_foot))

@@ -173,6 +173,44 @@ def test_horseshoe_area_and_perimeter(invert_depth):
     assert segment_lengths(m.points, m.joint_facets_minus[sel]).sum() == pytest.approx(W - 2 * a, rel=1e-9)
 
 
+@pytest.mark.parametrize("invert_depth", [0.0, 1.5])
+def test_segmental_arch_area_perimeter_and_extrusion(invert_depth):
+    """A flatter crown: arch radius R = 5 m over the 6 m span (a = 3 m), centre sqrt(R² - a²) = 4 m
+    below the springline, rise 1 m, half angle asin(3/5). Closed forms: crown segment R²(θ - sinθ cosθ)
+    and arc 2Rθ, the walls and the invert as before. Meshed in 2D (the mesh's hole is the inscribed
+    polygon) and extruded to 3D (volume (W H - area) L to the polygon's deficit)."""
+    shoe = HorseshoeOpening(CENTRE, 3.0, 2.5, invert_depth, arch_radius=5.0)
+    th = math.asin(0.6)
+    area, perimeter = 25.0 * (th - 0.6 * 0.8) + 2 * 3.0 * 2.5, 10.0 * th + 2 * 2.5 + 6.0
+    if invert_depth:
+        R = (9.0 + invert_depth ** 2) / (2 * invert_depth)
+        ti = math.asin(3.0 / R)
+        area += R * R * (ti - math.sin(ti) * math.cos(ti))
+        perimeter += 2 * R * ti - 6.0
+    assert shoe.rise == pytest.approx(1.0, rel=1e-14)
+    assert shoe.area == pytest.approx(area, rel=1e-14) and shoe.perimeter == pytest.approx(perimeter, rel=1e-14)
+    assert shoe.bounds() == pytest.approx((17.0, 14.0 - 2.5 - invert_depth, 23.0, 15.0), rel=1e-14)
+    m = tunnel_section(W, H, shoe, [Joint((20.0, 14.5), 0.0, 90.0, "crown")], mesh_size=3.0, opening_mesh_size=0.3)
+    check_split_invariants(m)
+    ring = boundary(m, "opening")
+    h = segment_lengths(m.points, ring).max()
+    assert polygon_area(m.points, ring) == pytest.approx(area, rel=deficit_bound(h, 3.0))
+    # the crown joint at 0.5 m above the springline: chord 2 sqrt(R² - 4.5²) of the arch
+    sel = m.joint_tags == m.tag("joints", "crown")
+    assert segment_lengths(m.points, m.joint_facets_minus[sel]).sum() == pytest.approx(
+        W - 2 * math.sqrt(25.0 - 4.5 ** 2), rel=1e-9)
+    L = 2.0
+    m3 = tunnel_section(W, H, shoe, mesh_size=3.0, opening_mesh_size=0.5, length=L)
+    assert m3.cell_type == "tetrahedron" and "opening" in m3.names["boundaries"].values()
+    volume = m3.cell_measures().sum()
+    assert (W * H - area) * L <= volume * (1 + 1e-12) and volume <= (W * H - area * (1 - deficit_bound(0.5, 3.0))) * L
+
+
+def test_arch_radius_below_half_the_span_is_refused():
+    with pytest.raises(ValueError, match=r"arch_radius \(2.9 m\) is less than half the span \(3 m\)"):
+        HorseshoeOpening(CENTRE, 3.0, 2.5, arch_radius=2.9)
+
+
 def horseshoe_chord_of_vertical(shoe, d):
     """Closed form: the length of the vertical line x = x_c + d (|d| < a) inside a horseshoe, from
     its invert (flat at y_c - h_w, or the arc of radius R = (a² + s²)/2s through the wall feet) to

@@ -69,6 +69,26 @@ def joint_objects(scene, exclude=()):
     return out
 
 
+def opening(g):
+    """The opening of a tunnel's geometry section `g` as the mesh builder's object (meshes/openings.py):
+    shape circle, a CircularOpening (centre, radius); shapes D and horseshoe, a HorseshoeOpening whose
+    centre is the springline's middle, with half the span, the wall height, the invert's sag (0 for
+    the D's flat floor) and the arch radius (None: a semicircular crown)."""
+    o = g["opening"]
+    centre = tuple(o["centre"][:2])
+    if o["shape"] == "circle":
+        return meshes.CircularOpening(centre, o["radius"])
+    return meshes.HorseshoeOpening(centre, 0.5 * o["span"], o["wall_height"], o.get("invert_depth", 0.0),
+                                   o.get("arch_radius"))
+
+
+def opening_half_size(g) -> float:
+    """Half the largest dimension of the opening [m] (a circle's radius): the length the opening's
+    mesh size, refinement distance, picture and the planner's spacing ratio s/a scale with."""
+    x0, y0, x1, y1 = opening(g).bounds()
+    return 0.5 * max(x1 - x0, y1 - y0)
+
+
 def jointed_mesh(scene, plan, comm):
     """The jointed mesh of the scene (a JointedMesh on rank 0, None elsewhere)."""
     g = scene.data["geometry"]
@@ -82,11 +102,9 @@ def jointed_mesh(scene, plan, comm):
     if g["kind"] == "slope":
         return slope_section(slope_keys.section(g), joint_objects(scene, plan.smeared), mesh_size=h,
                              joint_mesh_size=hj, joint_refine_distance=h if hj else None, comm=comm)
-    o = g["opening"]
-    opening = meshes.CircularOpening(tuple(o["centre"][:2]), o["radius"])
-    return meshes.tunnel_section(g["width"], g["height"], opening, joint_objects(scene, plan.smeared), mesh_size=h,
+    return meshes.tunnel_section(g["width"], g["height"], opening(g), joint_objects(scene, plan.smeared), mesh_size=h,
                                  opening_mesh_size=plan.opening_size,
-                                 opening_refine_distance=2 * o["radius"] if plan.opening_size else None,
+                                 opening_refine_distance=2 * opening_half_size(g) if plan.opening_size else None,
                                  joint_mesh_size=hj, joint_refine_distance=h if hj else None,
                                  length=g.get("length") if plan.dimension == 3 else None, comm=comm)
 

@@ -3,7 +3,8 @@
 joints coloured by their state (stick, slip, open) with a legend, jointed beside intact.
 
 The overview shows the whole scene (displacements magnified so that the largest is 5 % of it).
-A tunnel adds the view a rock engineer reads first: the opening, four radii across, at a
+A tunnel adds the view a rock engineer reads first: the opening, four radii (a horseshoe's or D's
+half-sizes: half its largest dimension) across, at a
 magnification chosen so that the largest displacement there is 2-5 % of the radius and stated on
 the plot (a magnification that fits the 80 m section turns a 4 m opening into a sliver). In 3D the
 same views are drawn on the section through the opening at half its length. A scene with water
@@ -16,7 +17,8 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 from .. import Status
-from . import water_picture
+from ..meshes import CircularOpening
+from . import geometry as scene_geometry, water_picture
 from .outline import block_outline
 
 #: joint point states, drawn in this order and colour; "closed" is a joint without strength in
@@ -117,7 +119,7 @@ def draw(models: dict, scene, path: str) -> list:
     if any(m.degree != 1 for m in models.values()):
         return []
     geometry = scene.data["geometry"]
-    opening = geometry.get("opening") if geometry["kind"] == "tunnel" else None
+    opening = scene_geometry.opening(geometry) if geometry["kind"] == "tunnel" else None
     joints = {label: joint_states(m) for label, m in models.items() if m.gdim == 2 or opening}
     if models["jointed"].gdim == 3:
         sections = ({label: section_triangles(m.u, 0.5 * geometry["length"])
@@ -166,8 +168,17 @@ def save(fig, path: str) -> None:
     plt_module().close(fig)
 
 
+def _view(opening) -> tuple:
+    """((cx, cy), r, word): the opening view's centre (the middle of the opening's box), its
+    half-width r (a circle's radius, else the opening's half-size: half its largest dimension) and
+    the word for r in the caption."""
+    x0, y0, x1, y1 = opening.bounds()
+    word = "radius" if isinstance(opening, CircularOpening) else "half-size"
+    return (0.5 * (x0 + x1), 0.5 * (y0 + y1)), 0.5 * max(x1 - x0, y1 - y0), word
+
+
 def _view_box(plt, opening):
-    (cx, cy), r = opening["centre"][:2], opening["radius"]
+    (cx, cy), r, _ = _view(opening)
     return plt.Rectangle((cx - 2 * r, cy - 2 * r), 4 * r, 4 * r, fill=False, ec="w", ls="--", lw=0.8)
 
 
@@ -205,7 +216,8 @@ def field_view(ax, tri, u, scale, top, joints, limits=None):
 def _opening_views(axes, gathered, joints, opening, name):
     """The opening four radii across, one magnification for all models: the largest displacement
     in the views drawn as 2-5 % of the radius (OPENING_FRACTION, rounded down to 1-2-5)."""
-    (cx, cy), r = opening["centre"][:2], opening["radius"]
+    (cx, cy), r, word = _view(opening)
+    outline = opening.outline(200)
     limits = ((cx - 2 * r, cx + 2 * r), (cy - 2 * r, cy + 2 * r))
     largest = {}
     for label, (tri, u) in gathered.items():
@@ -215,17 +227,18 @@ def _opening_views(axes, gathered, joints, opening, name):
     scale = nice_scale(OPENING_FRACTION * r / top)
     for ax, (label, (tri, u)) in zip(axes, gathered.items()):
         field_view(ax, tri, u, scale, top, joints.get(label), limits)  # the axes clip to the view
-        t = np.linspace(0, 2 * np.pi, 200)
-        ax.plot(cx + r * np.cos(t), cy + r * np.sin(t), "w--", lw=0.8, label="_opening before")
-        ax.set_title(f"{name}: {label}, opening (4 radii across)")
-        ax.text(0.02, 0.02, opening_caption(scale, largest[label], r), transform=ax.transAxes,
+        x, y = np.vstack([outline, outline[:1]]).T
+        ax.plot(x, y, "w--", lw=0.8, label="_opening before")
+        ax.set_title(f"{name}: {label}, opening (4 {'radii' if word == 'radius' else 'half-sizes'} across)")
+        ax.text(0.02, 0.02, opening_caption(scale, largest[label], r, word), transform=ax.transAxes,
                 fontsize=7.5, va="bottom", bbox=dict(fc="w", alpha=0.85, lw=0))
 
 
-def opening_caption(scale: float, largest: float, radius: float) -> str:
-    """The stated magnification of an opening view (tests read it back)."""
+def opening_caption(scale: float, largest: float, radius: float, word: str = "radius") -> str:
+    """The stated magnification of an opening view (tests read it back); `word` names `radius`
+    (a circle's radius, or a horseshoe's or D's half-size)."""
     return (f"displacements x {scale:g}: the largest, {largest * 1e3:.3g} mm,\n"
-            f"is drawn as {100 * scale * largest / radius:.2g} % of the radius ({radius:g} m);\n"
+            f"is drawn as {100 * scale * largest / radius:.2g} % of the {word} ({radius:g} m);\n"
             "dashed: the opening before deformation")
 
 
@@ -271,7 +284,7 @@ def _draw_3d(models: dict, scene, path: str, sections, joints) -> list:
         # the section's own displacement: u_x and u_z (the axial u_y is across the picture)
         in_plane = {label: (tri, u[:, :, [0, 2]]) for label, (tri, u) in sections.items()}
         near = {label: _near_section(j, y, sections[label][0]) for label, j in joints.items()}
-        _opening_views(axes, in_plane, near, scene.data["geometry"]["opening"], scene.data["name"])
+        _opening_views(axes, in_plane, near, scene_geometry.opening(scene.data["geometry"]), scene.data["name"])
         for ax in axes:
             ax.set_title(ax.get_title() + f"\nsection y = {y:g} m")
             ax.set_ylabel("z [m]")

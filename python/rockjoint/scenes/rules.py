@@ -229,14 +229,15 @@ def mesh(ctx: Context, dim: int):
     opening = "opening" in g
     hj = d["mesh"].get("joint_size", min(h, fe.joint_size_over_spacing * _joint_spacing(ctx.scene))) \
         if (refine and ctx.sets) else None
-    ho = d["mesh"].get("opening_size", min(h, fe.opening_size_over_radius * g["opening"]["radius"])) \
+    ho = d["mesh"].get("opening_size", min(h, fe.opening_size_over_radius * geometry.opening_half_size(g))) \
         if (refine and opening) else None
     degree, _ = ctx.setting("element_degree", fe.element_degree)
     quadrature, _ = ctx.setting("quadrature", fe.quadrature)
     dofs = estimate_dofs(ctx.scene, dim, h, hj, ho)
     sizes = ", ".join(f for f in (
         f"{fe.joint_size_over_spacing:.3g} x joint spacing on joints" if hj else "",
-        f"{fe.opening_size_over_radius:.3g} x radius on the opening" if ho else "") if f)
+        f"{fe.opening_size_over_radius:.3g} x radius on the opening"
+        + ("" if g["opening"]["shape"] == "circle" else " (its half-size)") if ho else "") if f)
     measured = (f"the report's tunnels got {fe.measured_error:.2g} and {fe.measured_error_second_scene:.2g} "
                 f"with these settings (bench/results/fe_speed_vs_error.md §8, budget {fe.error_budget:.0%})")
     if not ctx.fe_met:

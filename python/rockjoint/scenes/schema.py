@@ -17,7 +17,7 @@ from ..joint import make_strength
 from .fields import (Anything, Checker, Flag, Integer, ListOf, Mapping, NamedMapping, Quantity,
                      Text)
 from .units import LAW_UNIT_DIMENSION, parse_quantity
-from . import slope_keys, water_keys
+from . import opening_keys, slope_keys, water_keys
 from .yamlnodes import SceneError, compose
 
 POSITIVE = dict(low=0.0, open_low=True)
@@ -84,8 +84,7 @@ GEOMETRY = Mapping({
     "size": ListOf(_LENGTH, length=(2, 3), required=False),
     "joint_heights": ListOf(Quantity("length", **POSITIVE), required=False, min_length=1),
     "joint_sets": ListOf(JOINT_SET, required=False),
-    "opening": Mapping({"shape": Text(choices=("circle",)), "centre": _POINT,
-                        "radius": Quantity("length", **POSITIVE)}, required=False),
+    "opening": opening_keys.OPENING,
     **slope_keys.FIELDS,
 }, rule=_geometry_rule)
 
@@ -359,10 +358,7 @@ def _cross_checks(d: dict, c: Checker) -> None:
             c.fail(("geometry", "joint_heights", i), f"{h:g} m is not inside the column "
                                                      f"(height {g['height']:g} m)")
     if g["kind"] == "tunnel":
-        o = g["opening"]
-        x, y = o["centre"][:2]
-        if not (o["radius"] < x < g["width"] - o["radius"] and o["radius"] < y < g["height"] - o["radius"]):
-            c.fail(("geometry", "opening"), "the opening is not inside the section")
+        opening_keys.check_inside(g, c)
     if d["mesh"]["size"] > max(g.get("size", [g.get("width", 0), g.get("height", 0)])):
         c.fail(("mesh", "size"), "larger than the whole scene")
 

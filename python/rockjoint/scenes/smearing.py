@@ -40,7 +40,7 @@ def dominance(scene, sets, dim) -> dict:
 
 def smeared_sets(ctx, dim: int):
     """Discrete or smeared, set by set (defaults.SMEARED_EVIDENCE, the nearest measured spacing
-    ratio at or above the set's: spacing over the opening radius, or half the section's smaller
+    ratio at or above the set's: spacing over the opening radius (half-size), or half the section's smaller
     side). The dominant set (largest mobilised friction, `dominance`) is smeared only where the
     all-smeared model is within the budget and cheaper than the discrete one; any other set where
     the mixed model (dominant set discrete, the rest smeared) or the all-smeared one is. Error of
@@ -69,7 +69,7 @@ def smeared_sets(ctx, dim: int):
                                   cost="joint elements on every joint of the set",
                                   error="none from the choice: the joints are meshed"))
         return (), choices
-    size = g["opening"]["radius"] if "opening" in g else 0.5 * float(min(geometry.extent(g)))
+    size = geometry.opening_half_size(g) if "opening" in g else 0.5 * float(min(geometry.extent(g)))
     dominant = max(names, key=lambda name: mobilised[name]) if names else None
     chosen = []
     for s in sets:

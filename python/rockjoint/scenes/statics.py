@@ -23,16 +23,14 @@ _COMPONENT = {"x": 0, "y": 1, "z": 2}
 
 
 def _face_points(g, face: str, dim: int) -> np.ndarray:
-    """Corner points of a named boundary (an opening: points round its circle)."""
+    """Corner points of a named boundary (an opening: points round its outline)."""
     ext = geometry.extent(g)
     if face == "opening":
-        (cx, cy), r = g["opening"]["centre"][:2], g["opening"]["radius"]
-        a = np.linspace(0.0, 2 * math.pi, 8, endpoint=False)
-        x, y = cx + r * np.cos(a), cy + r * np.sin(a)
+        x, y = geometry.opening(g).outline(16).T
         if dim == 2:
             return np.c_[x, y]
         # 3D tunnel: the section in the x-z plane, extruded along y (meshes/tunnel.py)
-        return np.vstack([np.c_[x, np.full(8, end), y] for end in (0.0, ext[1])])
+        return np.vstack([np.c_[x, np.full(x.size, end), y] for end in (0.0, ext[1])])
     axis, side = (dim - 1, 0 if face == "bottom" else 1) if face in ("bottom", "top") else _FACE_AXIS[face]
     corners = np.array(np.meshgrid(*[[0.0, e] for e in ext], indexing="ij")).reshape(dim, -1).T
     return corners[np.isclose(corners[:, axis], side * ext[axis])]

@@ -76,10 +76,16 @@ def wall_mobilised_friction(strength, hoop: float) -> float:
 
 def concentration(scene) -> tuple:
     """(factor, words): the stress-concentration bound of the scene's geometry: Kirsch's 3 at an
-    opening, block corners where joint sets of different orientation cross, else 1."""
+    opening, block corners where joint sets of different orientation cross, else 1. A D's or a
+    horseshoe's corners (wall to floor or invert, a segmental crown to its walls) have no finite
+    elastic bound (the stress is singular at a corner): the planner keeps Kirsch's 3 and says so,
+    and the run names any joint that leaves its table (runner.beyond_tables)."""
     g = scene.data["geometry"]
     if "opening" in g:
-        return defaults.OPENING_CONCENTRATION, "x 3 Kirsch concentration at the opening"
+        if g["opening"]["shape"] == "circle":
+            return defaults.OPENING_CONCENTRATION, "x 3 Kirsch concentration at the opening"
+        return (defaults.OPENING_CONCENTRATION, f"x 3 Kirsch concentration at the opening (a circle's: the "
+                f"{g['opening']['shape']}'s corners concentrate more, the run names any joint past its table)")
     orientations = {(round(s["dip"], 6), round(s["dip_direction"], 6)) for s in g.get("joint_sets", [])}
     if len(orientations) > 1:
         return (defaults.BLOCK_CORNER_CONCENTRATION,
