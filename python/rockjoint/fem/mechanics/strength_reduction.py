@@ -18,10 +18,11 @@ blocks that fail, which grows without bound as F nears its critical value; each 
 fastest one are named (SafetyFactor.moving).
 
 A factor the strength does not decide is not reported as one (SafetyFactor.reason, docs/slopes.md,
-"Mesh dependence"): no equilibrium at any F down to `smallest`, every failed trial stopping at the
-same load factor whatever F, or the failure at the bracket's unstable end being Newton's
-iterates cycling at joint points (contact_cycling.py: a strength that jumps where the joint opens)
-rather than a mechanism. The reason names the failure, the joints and the blocks.
+"Mesh dependence"): no equilibrium at any F down to `smallest`, or every failed trial stopping at
+the same load factor whatever F; the reason gives the failure, which names the joints and the
+blocks where Newton's iterates cycle (contact_cycling.py). What stopped the trial at the bracket's
+unstable end is kept (SafetyFactor.failure): near a real mechanism the iterates cycle too (the
+plane failure's toe), so only the user can tell from it whether that F is a strength's.
 """
 from __future__ import annotations
 
@@ -91,6 +92,8 @@ class SafetyFactor:
     block_motion: dict = field(default_factory=dict)
     #: why `factor` is not the joints' strength's factor of safety ("" if it is): the module docstring
     reason: str = ""
+    #: what stopped the trial at `failed` (its error's first line; "" if none failed)
+    failure: str = ""
 
     @property
     def decided_by_strength(self) -> bool:
@@ -160,7 +163,8 @@ def factor_of_safety(trial: Callable[[float], object], *, tolerance: float = 0.0
         limit = largest if failed is None else smallest
         log.info("strength reduction: %s at every F tried up to %g: no factor of safety in [%g, %g]",
                     "equilibrium" if failed is None else "no equilibrium", limit, smallest, largest)
-        return SafetyFactor(limit, stable, failed, tolerance, trials, reason=_not_the_strength(errors, stable))
+        return SafetyFactor(limit, stable, failed, tolerance, trials, reason=_not_the_strength(errors, stable),
+                            failure=str(errors[failed]).splitlines()[0] if failed is not None else "")
     while failed - stable > tolerance * stable:
         f = 0.5 * (stable + failed)
         if holds(f):
@@ -168,16 +172,18 @@ def factor_of_safety(trial: Callable[[float], object], *, tolerance: float = 0.0
         else:
             failed = f
     motion = block_motion(*(held[k] for k in sorted(held))) if len(held) == 2 else {}
-    reason = _not_the_strength(errors, stable, failed)
+    reason = _not_the_strength(errors, stable)
     if reason:
         log.warning("strength reduction: F = %.4g is not a factor of safety: %s", 0.5 * (stable + failed), reason)
-    return SafetyFactor(0.5 * (stable + failed), stable, failed, tolerance, trials, motion, reason)
+    failure = str(errors[failed]).splitlines()[0]
+    if getattr(errors[failed], "hint", ""):
+        log.warning("strength reduction: the trial at F = %.4g failed where %s", failed, errors[failed].hint)
+    return SafetyFactor(0.5 * (stable + failed), stable, failed, tolerance, trials, motion, reason, failure)
 
 
-def _not_the_strength(errors: dict, stable: float | None, failed: float | None = None) -> str:
+def _not_the_strength(errors: dict, stable: float | None) -> str:
     """Why the failures of the trials ({F: error}) do not make a factor of safety, or "" if they
-    do (module docstring): none held, all stopped at one load factor, or the failure at the
-    unstable end is Newton's iterates cycling (ConvergenceError.hint)."""
+    may (module docstring): none held, or all stopped at one load factor."""
     if not errors:
         return ""
     if stable is None:
@@ -190,9 +196,6 @@ def _not_the_strength(errors: dict, stable: float | None, failed: float | None =
         return (f"every failed trial ({len(errors)}, F = {min(errors):g} to {max(errors):g}) stopped at the same load "
                 f"factor {stops.pop():.6g}: the failure does not depend on the strength. At F = {f:g}: "
                 f"{str(errors[f]).splitlines()[0]}")
-    hint = getattr(errors.get(failed), "hint", "")
-    if hint:
-        return f"the trial at F = {failed:g} failed because {hint}"
     return ""
 
 
