@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: MIT
 """The extruded slope (issue 40, item 1: slopes in 2D and extruded 3D): the plane failure of
-slope_cases.py extruded 3 m along the strike (meshes.slope_section(length=3), tetrahedra, the
+slope_cases.py extruded 3 m along the strike (meshes.slope_section(length=3), tetrahedra of 3 m,
+1.5 m on the joints, the section meshed alike for the comparison; the
 strike held at the front and back faces: plane strain), dry, φ = 40°, c = 0. Its factor of safety
 by strength reduction must be the section's (within 1 %: two 1 % brackets, on one F) and Hoek & Bray's
 limit equilibrium (3 %, as in 2D); on 2 ranks the serial trials and F."""
@@ -20,6 +21,7 @@ from rockjoint.meshes.slope import slope_section  # noqa: E402
 
 PHI = math.radians(40.0)
 LENGTH = 3.0
+SIZES = (3.0, 1.5)   # element size, and on the joints [m] (3.6k tetrahedra)
 
 
 def test_the_extruded_slope_has_the_sections_groups_and_blocks():
@@ -34,8 +36,8 @@ def test_the_extruded_slope_has_the_sections_groups_and_blocks():
 
 
 def test_the_extruded_plane_failure_has_the_sections_factor_of_safety():
-    section = factor_of_safety(trial_solver(slope_mesh(), PHI, 0.0), tolerance=0.01)
-    block = factor_of_safety(trial_solver(slope_mesh(length=LENGTH), PHI, 0.0), tolerance=0.01)
+    section = factor_of_safety(trial_solver(slope_mesh(*SIZES), PHI, 0.0), tolerance=0.01)
+    block = factor_of_safety(trial_solver(slope_mesh(*SIZES, length=LENGTH), PHI, 0.0), tolerance=0.01)
     expected = REFERENCE.factor_of_safety(PHI)
     print(f"plane failure, φ = 40°, dry: F = {block.factor:.4f} (3D, {len(block.trials)} trials), "
           f"{section.factor:.4f} (2D), limit equilibrium {expected:.4f}")
@@ -48,7 +50,8 @@ def test_the_extruded_plane_failure_has_the_sections_factor_of_safety():
 @pytest.mark.mpi
 def test_the_extruded_slope_on_two_ranks_is_the_serial_one():
     comm = two_ranks()
-    parallel = factor_of_safety(trial_solver(slope_mesh(comm=comm, length=LENGTH), PHI, 0.0), tolerance=0.02)
-    serial = factor_of_safety(trial_solver(slope_mesh(comm=MPI.COMM_SELF, length=LENGTH), PHI, 0.0), tolerance=0.02)
+    parallel = factor_of_safety(trial_solver(slope_mesh(*SIZES, comm=comm, length=LENGTH), PHI, 0.0), tolerance=0.02)
+    serial = factor_of_safety(trial_solver(slope_mesh(*SIZES, comm=MPI.COMM_SELF, length=LENGTH), PHI, 0.0),
+                              tolerance=0.02)
     assert [(f, held) for f, held, _ in parallel.trials] == [(f, held) for f, held, _ in serial.trials]
     assert parallel.factor == serial.factor and parallel.moving == serial.moving

@@ -30,6 +30,8 @@ from rockjoint.meshes.slope import SlopeGeometry, slope_section, slope_traces  #
 GEOMETRY = SlopeGeometry(height=30.0, face_angle=65.0, base=15.0, toe_distance=20.0, crest_distance=40.0)
 #: (dip [deg], dip direction, spacing [m], φ [deg], c [Pa]); 270: dipping out of the face (toward -x)
 SETS = {"bedding": (35.0, 270.0, 6.0, 38.0, 30e3), "cross": (60.0, 270.0, 9.0, 40.0, 60e3)}
+#: a failing trial gives up once the load step is below 1e-3 of the load (10 halvings, not 20)
+NEWTON = NewtonOptions(verbose=False, max_iterations=60, min_load_increment=1e-3)
 
 
 def joints():
@@ -62,7 +64,7 @@ def trials(mesh_size, joint_mesh_size, bonded: bool, comm=MPI.COMM_WORLD):
 
     def trial(factor):
         model = JointedRockModel(dmesh, rock=(20e9, 0.25), joints={j: law for j in sets}, shear_stiffness=1e9,
-                                 density=2650.0, plane="strain", newton=NewtonOptions(verbose=False, max_iterations=60),
+                                 density=2650.0, plane="strain", newton=NEWTON,
                                  strength={j: reduced_strength(strength[s], factor) for j, s in sets.items()})
         for side, component in (("bottom", "x"), ("bottom", "y"), ("left", "x"), ("right", "x")):
             model.fix(side, component)
