@@ -4,7 +4,7 @@ slope_cases.py extruded 3 m along the strike (meshes.slope_section(length=3), te
 1.5 m on the joints, the section meshed alike for the comparison; the
 strike held at the front and back faces: plane strain), dry, φ = 40°, c = 0. Its factor of safety
 by strength reduction must be the section's (within 1 %: two 1 % brackets, on one F) and Hoek & Bray's
-limit equilibrium (3 %, as in 2D); on 2 ranks the serial trials and F."""
+limit equilibrium (3 %, as in 2D). On 2 ranks: test_fem_slope_mpi.py."""
 import math
 
 import pytest
@@ -12,9 +12,6 @@ import pytest
 from fe_stack import require_fe
 require_fe()
 
-from mpi4py import MPI  # noqa: E402
-
-from mpi_ranks import two_ranks  # noqa: E402
 from slope_cases import GEOMETRY, REFERENCE, plane_failure_joints, slope_mesh, trial_solver  # noqa: E402
 from rockjoint.fem.mechanics.strength_reduction import factor_of_safety  # noqa: E402
 from rockjoint.meshes.slope import slope_section  # noqa: E402
@@ -28,7 +25,8 @@ def test_the_extruded_slope_has_the_sections_groups_and_blocks():
     section = slope_section(GEOMETRY, plane_failure_joints(), mesh_size=3.0, joint_mesh_size=1.0)
     block = slope_section(GEOMETRY, plane_failure_joints(), mesh_size=3.0, joint_mesh_size=1.0, length=LENGTH)
     assert block.points.shape[1] == 3 and block.cells.shape[1] == 4
-    assert sorted(block.names["boundaries"].values()) == sorted([*section.names["boundaries"].values(), "front", "back"])
+    groups = [*section.names["boundaries"].values(), "front", "back"]
+    assert sorted(block.names["boundaries"].values()) == sorted(groups)
     assert sorted(block.names["joints"].values()) == ["crack", "plane"]
     assert len(block.names["blocks"]) == len(section.names["blocks"]) == 3
     with pytest.raises(ValueError, match="length"):
@@ -45,13 +43,3 @@ def test_the_extruded_plane_failure_has_the_sections_factor_of_safety():
     assert block.factor == pytest.approx(section.factor, rel=0.01)
     assert block.factor == pytest.approx(expected, rel=0.03)
     assert len(block.moving) == 1
-
-
-@pytest.mark.mpi
-def test_the_extruded_slope_on_two_ranks_is_the_serial_one():
-    comm = two_ranks()
-    parallel = factor_of_safety(trial_solver(slope_mesh(*SIZES, comm=comm, length=LENGTH), PHI, 0.0), tolerance=0.02)
-    serial = factor_of_safety(trial_solver(slope_mesh(*SIZES, comm=MPI.COMM_SELF, length=LENGTH), PHI, 0.0),
-                              tolerance=0.02)
-    assert [(f, held) for f, held, _ in parallel.trials] == [(f, held) for f, held, _ in serial.trials]
-    assert parallel.factor == serial.factor and parallel.moving == serial.moving

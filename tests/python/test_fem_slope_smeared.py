@@ -42,7 +42,8 @@ def test_a_smeared_set_under_uniform_stress_fails_at_its_closed_form_factor():
     sxx = -P * NU / (1 - NU)
 
     def trial(factor):
-        model = JointedRockModel(dmesh, rock=(E, NU), plane="strain", continuum={"block_1": reduced_continuum(material, factor)},
+        model = JointedRockModel(dmesh, rock=(E, NU), plane="strain",
+                                 continuum={"block_1": reduced_continuum(material, factor)},
                                  newton=NewtonOptions(verbose=False, relaxation_max_steps=40))
         model.fix("bottom", "x")
         model.fix("bottom", "y")
