@@ -35,6 +35,7 @@ from .builders import (BOUNDARY_TAGS, _distance_threshold, _generate, _gmsh_mode
 from .joint_geometry import _positive, unit_normal
 from .jointed_mesh import JointedMesh
 from .planar_section import OutlinePiece
+from .slope_extruded import extruded_slope
 
 FACE, TOE = "face", "toe"
 #: boundary tags: builders' bottom, top, left, right; the face and the toe floor after the opening's 7
@@ -146,11 +147,13 @@ def slope_traces(geometry: SlopeGeometry, joints: list) -> list:
 
 def slope_section(geometry: SlopeGeometry, joints: Iterable = (), *, mesh_size: float,
                   joint_mesh_size: float | None = None, joint_refine_distance: float | None = None,
-                  intact: bool = False, comm=None) -> JointedMesh | None:
+                  intact: bool = False, length: float | None = None, comm=None) -> JointedMesh | None:
     """The slope section of `geometry` cut by `joints` (meshes.Joint objects or lists of them),
     meshed with `mesh_size` [m] (joint_mesh_size on the joints, growing to mesh_size over
     joint_refine_distance, default 2 mesh_size) and split along the joints; intact: the same mesh
-    lines, one block. comm: ranks != 0 return None (gmsh runs on rank 0)."""
+    lines, one block. length: the section extruded along the strike by `length` [m]
+    (slope_extruded.py: x stays x, the section's y becomes z, the strike is y from "front" (y = 0)
+    to "back"; joints become planes). comm: ranks != 0 return None (gmsh runs on rank 0)."""
     if comm is not None and comm.rank != 0:
         return None
     mesh_size = _positive("mesh_size", mesh_size)
@@ -158,12 +161,18 @@ def slope_section(geometry: SlopeGeometry, joints: Iterable = (), *, mesh_size: 
         raise ValueError(f"mesh_size ({mesh_size:g} m) exceeds half the slope's height or base")
     if joint_mesh_size is not None and _positive("joint_mesh_size", joint_mesh_size) > mesh_size:
         raise ValueError(f"joint_mesh_size ({joint_mesh_size:g} m) must not exceed mesh_size ({mesh_size:g} m)")
+    length = None if length is None else _positive("slope length", length)
     refine = 2.0 * mesh_size if joint_refine_distance is None else _positive("joint_refine_distance",
                                                                                joint_refine_distance)
     joints = _normalise_joints(joints)
     if set(j.name for j in joints) & set(SLOPE_BOUNDARY_TAGS):
         raise ValueError(f"joint names must differ from the boundary names {sorted(SLOPE_BOUNDARY_TAGS)}")
     segments = slope_traces(geometry, joints)
+    if length is not None:
+        with _gmsh_model("rockjoint_slope_extruded") as gmsh:
+            return extruded_slope(gmsh, geometry, joints, segments, GROUPS, SLOPE_BOUNDARY_TAGS, length=length,
+                                  mesh_size=mesh_size, joint_mesh_size=joint_mesh_size, refine=refine, intact=intact,
+                                  dangling=_DANGLING)
     extent = max(geometry.width, geometry.base + geometry.height)
     tol = 1e-9 * extent
     owner = np.array([i for i, s in enumerate(segments) for _ in s], dtype=np.int64)

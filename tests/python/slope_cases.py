@@ -30,9 +30,16 @@ REFERENCE = PlaneFailure(H, FACE, PLANE, CRACK_BEHIND, DENSITY * G, water_unit_w
 CRACK_X = GEOMETRY.crest[0] + CRACK_BEHIND
 
 
-def slope_mesh(mesh_size=3.0, joint_mesh_size=1.0, comm=MPI.COMM_WORLD):
+#: the supports of a slope section (2D) and of its extrusion (3D: the strike y held at front and back)
+SUPPORTS = {2: (("bottom", "x"), ("bottom", "y"), ("left", "x"), ("right", "x")),
+            3: (("bottom", "x"), ("bottom", "y"), ("bottom", "z"), ("left", "x"), ("right", "x"), ("front", "y"),
+                ("back", "y"))}
+
+
+def slope_mesh(mesh_size=3.0, joint_mesh_size=1.0, comm=MPI.COMM_WORLD, length=None):
+    """The plane failure slope meshed (length: extruded by `length` [m] along the strike, 3D)."""
     return distribute(slope_section(GEOMETRY, plane_failure_joints(), mesh_size=mesh_size,
-                                    joint_mesh_size=joint_mesh_size, comm=comm), comm)
+                                    joint_mesh_size=joint_mesh_size, length=length, comm=comm), comm)
 
 
 def block_at(point, mesh_size=3.0, joint_mesh_size=1.0) -> str:
@@ -61,13 +68,14 @@ def crack_foot_y() -> float:
 
 
 def water(x, depth):
-    """p [Pa] at joint points x (gdim, n): z_w = `depth` of water in the crack (hydrostatic), on
-    the plane falling linearly from the crack's foot to 0 at the toe (Hoek & Bray's assumption)."""
+    """p [Pa] at joint points x (gdim, n; the last coordinate up): z_w = `depth` of water in the
+    crack (hydrostatic), on the plane falling linearly from the crack's foot to 0 at the toe (Hoek &
+    Bray's assumption)."""
     rg = 998.2 * G
     on_crack = np.abs(x[0] - CRACK_X) < 1e-6
     level = crack_foot_y() + depth
     along = np.clip((x[0] - GEOMETRY.toe[0]) / (CRACK_X - GEOMETRY.toe[0]), 0.0, 1.0)
-    return np.where(on_crack, rg * np.maximum(level - x[1], 0.0), rg * depth * along)
+    return np.where(on_crack, rg * np.maximum(level - x[-1], 0.0), rg * depth * along)
 
 
 def trial_solver(dmesh, friction_angle, cohesion, water_depth=0.0):
@@ -84,6 +92,7 @@ def slope_trials(dmesh, strengths: dict, pressure=None):
     `pressure` (a callable of the joint points, or None); raises ConvergenceError /
     LinearSolveError where there is no equilibrium."""
     law = rockjoint.BartonBandis(1e10, 5e-3)
+    gdim = dmesh.mesh.geometry.dim
     free = JointStrength(StrengthModel.coulomb, friction_angle=0.0, cohesion=0.0)
     joints = list(dmesh.names["joints"].values())
 
@@ -91,11 +100,10 @@ def slope_trials(dmesh, strengths: dict, pressure=None):
         model = JointedRockModel(dmesh, rock=(10e9, 0.25), joints={j: law for j in joints},
                                  shear_stiffness=1e9, density=DENSITY,
                                  strength={j: reduced_strength(strengths.get(j, free), factor) for j in joints},
-                                 plane="strain", newton=NewtonOptions(verbose=False, max_iterations=40))
-        model.fix("bottom", "x")
-        model.fix("bottom", "y")
-        model.fix("left", "x")
-        model.fix("right", "x")
+                                 plane="strain" if gdim == 2 else None, linear_solver="direct",
+                                 newton=NewtonOptions(verbose=False, max_iterations=40))
+        for side, component in SUPPORTS[gdim]:
+            model.fix(side, component)
         model.solve(load_steps=2, name="gravity")
         if pressure is not None:
             set_joint_pressure(model, pressure)

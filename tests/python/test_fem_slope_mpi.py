@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: MIT
-"""The strength-reduction factor of safety on 2 ranks (ctest pytest_mpi2_fem) = serial: every
+"""The strength-reduction factor of safety on 2 ranks (ctest pytest_mpi2_fem) = serial, in 2D and on
+the extruded slope of test_fem_slope_3d.py: every
 trial holds or fails alike (the failure is collective: Newton's norms and MUMPS' null pivots are
 global), so the search takes the same steps to the same F."""
 import math
@@ -13,6 +14,7 @@ from mpi4py import MPI  # noqa: E402
 
 from mpi_ranks import two_ranks  # noqa: E402
 from slope_cases import slope_mesh, trial_solver  # noqa: E402
+from test_fem_slope_3d import LENGTH, PHI, SIZES  # noqa: E402
 from rockjoint.fem.mechanics.strength_reduction import factor_of_safety  # noqa: E402
 
 
@@ -27,3 +29,13 @@ def test_factor_of_safety_on_two_ranks_is_the_serial_one():
     assert parallel.moving == serial.moving and len(parallel.moving) == 1
     for block, motion in serial.block_motion.items():
         assert parallel.block_motion[block] == pytest.approx(motion, rel=1e-6, abs=1e-12)
+
+
+@pytest.mark.mpi
+def test_the_extruded_slope_on_two_ranks_is_the_serial_one():
+    comm = two_ranks()
+    parallel = factor_of_safety(trial_solver(slope_mesh(*SIZES, comm=comm, length=LENGTH), PHI, 0.0), tolerance=0.02)
+    serial = factor_of_safety(trial_solver(slope_mesh(*SIZES, comm=MPI.COMM_SELF, length=LENGTH), PHI, 0.0),
+                              tolerance=0.02)
+    assert [(f, held) for f, held, _ in parallel.trials] == [(f, held) for f, held, _ in serial.trials]
+    assert parallel.factor == serial.factor and parallel.moving == serial.moving

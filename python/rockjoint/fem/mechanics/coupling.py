@@ -128,6 +128,8 @@ class JointCoupling:
             raise ValueError("quadrature='gauss' is for P1 only; use 'nodal' with P2")
         self.V = V
         self.joint_tags = names
+        #: the DistributedJointMesh (block names in failure messages), None for bare JointPairs
+        self.dmesh = joints if isinstance(joints, DistributedJointMesh) else None
         self.behaviours = joint_behaviours(names, laws, shear_stiffness=shear_stiffness,
                                            shear_stiffness_ratio=shear_stiffness_ratio,
                                            residual_stiffness=residual_stiffness, strength=strength)

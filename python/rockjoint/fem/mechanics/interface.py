@@ -244,6 +244,10 @@ class JointInterface:
         """Refresh the trial point state at the local displacement `u_local` [m] without assembling."""
         self._cpp.update_state(u_local)
 
+    def shear_states(self) -> np.ndarray:
+        """rockjoint.fem.ShearState value (stick, slip, open) of every point on this rank."""
+        return self._cpp.shear_state
+
     def state(self) -> dict:
         """Point state on this rank: coordinates, tag, closure [m], normal_stress [Pa, compression +],
         shear_traction [Pa] (points, gdim-1) along t1[, t2], status (rockjoint.Status values),

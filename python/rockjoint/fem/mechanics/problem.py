@@ -21,6 +21,7 @@ from dolfinx.fem import petsc as fem_petsc
 from petsc4py import PETSc
 
 from ..compat import la_petsc
+from .contact_cycling import ContactCycling
 from .joint_initial_state import initial_jump
 from ..solvers.linear_solver import LinearSolveError, LinearSolver, resolve_kind, rigid_body_modes
 from ..solvers.newton import NewtonProblem
@@ -76,6 +77,8 @@ class JointedProblem(JointedSNESProblem, NewtonProblem):
         self.initial_pressure = None
         #: what a singular solve should add to its error (e.g. the joints the water opens)
         self.failure_hints: list = []
+        #: the joints' contact at each residual of the load step (why Newton stagnates: contact_cycling.py)
+        self.cycling = ContactCycling()
         self.step_iterations = 0      #: Newton iterations of the load step being solved
         self.clock = None             #: progress clock (stages.StageClock) of the stage being solved
         #: wall-clock seconds on this rank: bulk_assembly (K), interface_residual and
@@ -196,6 +199,7 @@ class JointedProblem(JointedSNESProblem, NewtonProblem):
             r.set(np.inf)
             self.counts["nonfinite_residuals"] += 1
             return np.inf
+        self.cycling.record(self.coupling.interface)
         self.K.mult(self.u.x.petsc_vec, r)
         lp.add_external(r)
         r.axpy(1.0, self._r_joint)
@@ -278,6 +282,11 @@ class JointedProblem(JointedSNESProblem, NewtonProblem):
     def save_state(self) -> None:
         """Remember u and the load factor of the converged step (restore_state goes back to them)."""
         self._saved = (self.u.x.array.copy(), self.load_factor)
+        self.cycling.clear()
+
+    def stagnation_hint(self) -> str:
+        """Why the load step's Newton stagnates, if its joints' contact cycles (collective)."""
+        return self.cycling.hint(self.coupling, self.comm)
 
     def restore_state(self) -> None:
         """Back to the last saved (converged) step: u, load factor and the joints' trial state."""

@@ -16,6 +16,13 @@ failure adds (the two largest stable factors, both close to F) is mostly the mot
 blocks that fail, which grows without bound as F nears its critical value; each block's mean
 ``|Δu|`` is kept (SafetyFactor.block_motion), and the blocks moving at least half as much as the
 fastest one are named (SafetyFactor.moving).
+
+A factor the strength does not decide is not reported as one (SafetyFactor.reason, docs/slopes.md,
+"Mesh dependence"): no equilibrium at any F down to `smallest`, or every failed trial stopping at
+the same load factor whatever F; the reason gives the failure, which names the joints and the
+blocks where Newton's iterates cycle (contact_cycling.py). What stopped the trial at the bracket's
+unstable end is kept (SafetyFactor.failure): near a real mechanism the iterates cycle too (the
+plane failure's toe), so only the user can tell from it whether that F is a strength's.
 """
 from __future__ import annotations
 
@@ -26,7 +33,8 @@ from typing import Callable
 
 import numpy as np
 
-from ...joint import JointStrength, StrengthModel
+from ...continuum import EquivalentContinuum, JointSet
+from ...joint import JointBehaviour, JointStrength, StrengthModel
 from ..solvers.linear_solver import LinearSolveError
 from ..solvers.newton import ConvergenceError
 
@@ -48,6 +56,27 @@ def reduced_strength(strength: JointStrength, factor: float) -> JointStrength:
                          dilation_angle=min(strength.dilation_angle, phi), dilation_limit=strength.dilation_limit)
 
 
+def reduced_behaviour(behaviour: JointBehaviour, factor: float) -> JointBehaviour:
+    """The joint behaviour with its strength reduced by `factor` (reduced_strength); the law and
+    the stiffnesses unchanged."""
+    return JointBehaviour(behaviour.law, behaviour.shear_model, shear_stiffness=behaviour.shear_stiffness,
+                          shear_stiffness_ratio=behaviour.shear_stiffness_ratio,
+                          residual_stiffness=behaviour.residual_stiffness,
+                          strength=reduced_strength(behaviour.strength, factor),
+                          effective_stress_coefficient=behaviour.effective_stress_coefficient)
+
+
+def reduced_continuum(material: EquivalentContinuum, factor: float) -> EquivalentContinuum:
+    """The equivalent-continuum material with every smeared set's strength reduced by `factor`,
+    as the discrete joints' (issue 40: the smeared sets reduce their strength the same way); the
+    rock, the sets' normals, spacings and stiffnesses unchanged. For a trial's
+    JointedRockModel(continuum={block: reduced_continuum(material, F)})."""
+    gdim = material.gdim
+    sets = [JointSet(list(js.normal)[:gdim], js.spacing, reduced_behaviour(js.behaviour, factor), label=js.label)
+            for js in material.sets]
+    return EquivalentContinuum(gdim, material.young, material.poisson, sets)
+
+
 @dataclass
 class SafetyFactor:
     """The strength-reduction factor of safety: F (the middle of the last bracket), the bracket
@@ -61,6 +90,15 @@ class SafetyFactor:
     trials: list = field(default_factory=list)
     #: {block name: mean ``|u(F_stable) - u(F_before)|`` [m]} over the block's nodes (module docstring)
     block_motion: dict = field(default_factory=dict)
+    #: why `factor` is not the joints' strength's factor of safety ("" if it is): the module docstring
+    reason: str = ""
+    #: what stopped the trial at `failed` (its error's first line; "" if none failed)
+    failure: str = ""
+
+    @property
+    def decided_by_strength(self) -> bool:
+        """True if F is a factor of safety: bounded, and the failure is the strength's (no reason)."""
+        return self.bounded and not self.reason
 
     @property
     def moving(self) -> list:
@@ -85,12 +123,13 @@ def factor_of_safety(trial: Callable[[float], object], *, tolerance: float = 0.0
         raise ValueError(f"factor_of_safety: tolerance = {tolerance!r} must be in (0, 1)")
     if not growth > 1.0:
         raise ValueError(f"factor_of_safety: growth = {growth!r} must be > 1")
-    trials, held = [], {}
+    trials, held, errors = [], {}, {}
 
     def holds(f: float) -> bool:
         try:
             model = trial(f)
         except (ConvergenceError, LinearSolveError) as e:
+            errors[f] = e
             trials.append((f, False, str(e).splitlines()[0]))
             log.info("strength reduction F = %.4g: no equilibrium (%s)", f, trials[-1][2][:120])
             return False
@@ -124,7 +163,8 @@ def factor_of_safety(trial: Callable[[float], object], *, tolerance: float = 0.0
         limit = largest if failed is None else smallest
         log.info("strength reduction: %s at every F tried up to %g: no factor of safety in [%g, %g]",
                     "equilibrium" if failed is None else "no equilibrium", limit, smallest, largest)
-        return SafetyFactor(limit, stable, failed, tolerance, trials)
+        return SafetyFactor(limit, stable, failed, tolerance, trials, reason=_not_the_strength(errors, stable),
+                            failure=str(errors[failed]).splitlines()[0] if failed is not None else "")
     while failed - stable > tolerance * stable:
         f = 0.5 * (stable + failed)
         if holds(f):
@@ -132,7 +172,31 @@ def factor_of_safety(trial: Callable[[float], object], *, tolerance: float = 0.0
         else:
             failed = f
     motion = block_motion(*(held[k] for k in sorted(held))) if len(held) == 2 else {}
-    return SafetyFactor(0.5 * (stable + failed), stable, failed, tolerance, trials, motion)
+    reason = _not_the_strength(errors, stable)
+    if reason:
+        log.warning("strength reduction: F = %.4g is not a factor of safety: %s", 0.5 * (stable + failed), reason)
+    failure = str(errors[failed]).splitlines()[0]
+    if getattr(errors[failed], "hint", ""):
+        log.warning("strength reduction: the trial at F = %.4g failed where %s", failed, errors[failed].hint)
+    return SafetyFactor(0.5 * (stable + failed), stable, failed, tolerance, trials, motion, reason, failure)
+
+
+def _not_the_strength(errors: dict, stable: float | None) -> str:
+    """Why the failures of the trials ({F: error}) do not make a factor of safety, or "" if they
+    may (module docstring): none held, or all stopped at one load factor."""
+    if not errors:
+        return ""
+    if stable is None:
+        f = min(errors)
+        return (f"no equilibrium at any F down to {f:g}: the model fails whatever its joints' strength (not a "
+                f"factor of safety). At F = {f:g}: {str(errors[f]).splitlines()[0]}")
+    stops = {getattr(e, "load_factor", None) for e in errors.values()}
+    if len(errors) > 1 and len(stops) == 1 and None not in stops:
+        f = min(errors)
+        return (f"every failed trial ({len(errors)}, F = {min(errors):g} to {max(errors):g}) stopped at the same load "
+                f"factor {stops.pop():.6g}: the failure does not depend on the strength. At F = {f:g}: "
+                f"{str(errors[f]).splitlines()[0]}")
+    return ""
 
 
 def block_motion(before, after) -> dict:

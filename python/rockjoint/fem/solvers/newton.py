@@ -44,7 +44,13 @@ log = logging.getLogger(__name__)
 
 
 class ConvergenceError(RuntimeError):
-    """Newton or the load stepping could not reach the requested load."""
+    """Newton or the load stepping could not reach the requested load. `load_factor`: the last
+    converged one (None where not known); `hint`: why the last step failed, if the problem could
+    say (NewtonProblem.stagnation_hint), else ""."""
+
+    def __init__(self, message: str, load_factor: float | None = None, hint: str = ""):
+        super().__init__(message)
+        self.load_factor, self.hint = load_factor, hint
 
 
 class NewtonProblem(abc.ABC):
@@ -106,6 +112,20 @@ class NewtonProblem(abc.ABC):
     def increment_norms(self) -> tuple | None:
         """(||du||, ||u||) of the last increment, or None (no round-off stop)."""
         return None
+
+    def stagnation_hint(self) -> str:
+        """Words on why Newton fails to converge at this load step (e.g. points whose state
+        cycles between iterates), added to the failure's reason; "" (the default): nothing known.
+        Collective."""
+        return ""
+
+
+def _with_hint(problem, report: StepReport) -> StepReport:
+    """The failed step's report with the problem's stagnation_hint() in `hint` and its reason."""
+    report.hint = problem.stagnation_hint()
+    if report.hint:
+        report.reason += "; " + report.hint
+    return report
 
 
 def _check_problem(problem) -> None:
@@ -198,6 +218,7 @@ class StepReport:
     linear_iterations: list = field(default_factory=list)  #: Krylov iterations of each step
     converged: bool = False
     reason: str = ""
+    hint: str = ""   #: the problem's stagnation_hint() when the step stagnated or ran out of iterations
 
     @property
     def iterations(self) -> int:
@@ -245,7 +266,7 @@ def solve_load_path(problem, load_steps: int, options: NewtonOptions, *, target:
         problem.restore_state()
         if not adaptive:
             raise ConvergenceError(f"the load step to λ = {step_to:.6g} failed ({report.reason}); the "
-                                   f"state is kept at the last converged λ = {lam:.6g}")
+                                   f"state is kept at the last converged λ = {lam:.6g}", lam, report.hint)
         increment *= 0.5
         if options.verbose and _rank(problem) == 0:
             log.info("load step %d to λ = %.6g failed (%s); cutting the increment to %.3g",
@@ -253,7 +274,8 @@ def solve_load_path(problem, load_steps: int, options: NewtonOptions, *, target:
         if abs(increment) < options.min_load_increment:
             raise ConvergenceError(
                 f"load stepping failed: increment {abs(increment):.3g} below min_load_increment "
-                f"{options.min_load_increment:g} at load factor {lam:.6g} (last failure: {report.reason})")
+                f"{options.min_load_increment:g} at load factor {lam:.6g} (last failure: {report.reason})",
+                lam, report.hint)
     return reports
 
 
@@ -305,7 +327,7 @@ def newton(problem, load_factor: float, options: NewtonOptions, step: int = 1,
         if it >= window and not rnorm < options.stagnation_factor * report.residual_norms[-1 - window]:
             report.reason = (f"stagnation: ||r|| = {rnorm:.3e} has not fallen below "
                              f"{options.stagnation_factor:g} × its value {window} iterations ago")
-            return report
+            return _with_hint(problem, report)
         problem.update_jacobian()
         eta = _forcing(report, options, tol) if inexact else None
         its = problem.solve_increment(rtol=eta)
@@ -331,6 +353,7 @@ def newton(problem, load_factor: float, options: NewtonOptions, step: int = 1,
                                  f"{rnorm:.3e} at round-off)")
                 return report
     report.reason = f"no convergence in {options.max_iterations} iterations"
+    _with_hint(problem, report)
     return report
 
 
