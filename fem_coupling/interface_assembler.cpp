@@ -12,6 +12,25 @@
 namespace rockjoint::fem_coupling
 {
 
+namespace
+{
+/// Throw std::invalid_argument (naming the method `who`, the argument and the entry) unless
+/// `values` has one finite entry per joint point (`points`).
+void check_point_values(const char* who, const char* name, std::span<const double> values,
+                        std::size_t points, const char* unit)
+{
+  const std::string where = std::string("InterfaceAssembler::") + who + ": ";
+  if (values.size() != points)
+    throw std::invalid_argument(where + "'" + name + "' has " + std::to_string(values.size())
+                                + " entries; expected " + std::to_string(points)
+                                + " (one per joint point)");
+  for (std::size_t i = 0; i < values.size(); ++i)
+    if (!std::isfinite(values[i]))
+      throw std::invalid_argument(where + "entry " + std::to_string(i) + " is "
+                                  + std::to_string(values[i]) + "; it must be finite [" + unit + "]");
+}
+} // namespace
+
 InterfaceAssembler::InterfaceAssembler(int gdim, int degree, QuadratureRule rule,
                                        std::span<const std::int32_t> pair_dofs,
                                        std::span<const double> vertex_coordinates,
@@ -323,14 +342,7 @@ void InterfaceAssembler::set_reference_directions(
 
 void InterfaceAssembler::set_pore_pressure(std::span<const double> pressure)
 {
-  if (pressure.size() != _pore_pressure.size())
-    throw std::invalid_argument("InterfaceAssembler::set_pore_pressure: 'pressure' has "
-                                + std::to_string(pressure.size()) + " entries; expected "
-                                + std::to_string(_pore_pressure.size()) + " (one per joint point)");
-  for (std::size_t i = 0; i < pressure.size(); ++i)
-    if (!std::isfinite(pressure[i]))
-      throw std::invalid_argument("InterfaceAssembler::set_pore_pressure: entry " + std::to_string(i)
-                                  + " is " + std::to_string(pressure[i]) + "; it must be finite [Pa]");
+  check_point_values("set_pore_pressure", "pressure", pressure, _pore_pressure.size(), "Pa");
   std::copy(pressure.begin(), pressure.end(), _pore_pressure.begin());
   _cache_valid = false;
 }
@@ -358,6 +370,14 @@ void InterfaceAssembler::set_initial_jump(std::span<const double> initial_jump)
     _converged[p].maximum_closure = std::max(_converged[p].maximum_closure, closure);
     _trial[p].maximum_closure = std::max(_trial[p].maximum_closure, closure);
   }
+  _cache_valid = false;
+}
+
+void InterfaceAssembler::set_maximum_closure(std::span<const double> maximum_closure)
+{
+  check_point_values("set_maximum_closure", "maximum_closure", maximum_closure, _converged.size(), "m");
+  for (std::size_t p = 0; p < maximum_closure.size(); ++p)
+    _converged[p].maximum_closure = _trial[p].maximum_closure = maximum_closure[p];
   _cache_valid = false;
 }
 

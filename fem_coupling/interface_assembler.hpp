@@ -126,6 +126,11 @@ public:
   /// Back to the virgin state (no slip, no dilation, bonds intact) at every point: a new
   /// analysis from zero displacement.
   void reset_state();
+  /// Set the largest closure reached Δ_m [m] of every point (num_points, pair-major), converged
+  /// and trial: a staggered coupling puts back the Δ_m of its last accepted state before each
+  /// iterate, so that only the accepted iterate adds to it (fem.water.coupled). Throws
+  /// std::invalid_argument for a wrong size or a non-finite entry. Invalidates the cached responses.
+  void set_maximum_closure(std::span<const double> maximum_closure);
   /// Point states (num_points), pair-major.
   const std::vector<joint::JointPointState>& converged_state() const { return _converged; }
   const std::vector<joint::JointPointState>& trial_state() const { return _trial; }

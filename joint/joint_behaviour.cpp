@@ -85,12 +85,12 @@ NormalResponse normal_response(const JointBehaviour& b, double closure, bool bon
     // step of a column held by its joints would face a singular matrix.
     r.stiffness = contact_side_stiffness(b);
   }
-  else if (virgin && closure < 0.0 && bonded && b.strength.tensile_strength > 0.0)
+  else if (virgin && closure < 0.0 && bonded && reduced_tensile_strength(b.strength) > 0.0)
   {
     // Bonded joint in tension: the contact-side spring continued into tension (continuous
     // traction and tangent at Δ = 0) while its tension stays within T (tension cut-off).
     const double k0 = contact_side_stiffness(b);
-    if (-k0 * closure <= b.strength.tensile_strength)
+    if (-k0 * closure <= reduced_tensile_strength(b.strength))
     {
       r.stress = k0 * closure;
       r.stiffness = k0;

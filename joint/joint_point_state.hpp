@@ -17,7 +17,11 @@ struct JointPointState
   double dilation = 0.0;         ///< normal opening produced by slip (dilatancy) [m]
   double accumulated_slip = 0.0; ///< path length of the slip, ∫|d slip| [m]
   bool bond_broken = false;      ///< tensile strength exceeded once: bond (c, T) lost for good
-  double maximum_closure = 0.0;  ///< largest elastic closure reached, Δ_m [m] (hysteretic normal law)
+  /// Largest elastic closure Δ_e reached in a converged state, Δ_m [m], for every closure law:
+  /// a law with history (NormalHysteresis) unloads on branches set by it, and a transmissivity
+  /// law with history reads it (docs/flow.md). Starts at the in-situ pre-closure; the trial copy
+  /// follows every evaluation, so Δ_m grows only when a converged load step is committed.
+  double maximum_closure = 0.0;
 };
 
 } // namespace rockjoint::joint

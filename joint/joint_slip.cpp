@@ -77,9 +77,9 @@ LocalResponse effective_response(const JointBehaviour& b, int gdim, const std::a
   bool bonded = !converged.bond_broken;
   const double trial_closure = r.closure + converged.dilation;
   NormalResponse normal = normal_response(b, trial_closure, bonded, converged.maximum_closure);
-  // Δ_m of a normal law with history follows the closure (the slip branch below updates it again).
-  if (b.law->has_history())
-    trial.maximum_closure = std::max(converged.maximum_closure, trial_closure);
+  // Δ_m follows the elastic closure, for every law (the slip branch below updates it again):
+  // the law's history if it has one, the transmissivity's in any case (joint_point_state.hpp).
+  trial.maximum_closure = std::max(converged.maximum_closure, trial_closure);
   if (normal.bond_fails)
   {
     trial.bond_broken = true; // tension cut-off: the bond (c, T) is lost for good
@@ -179,8 +179,7 @@ LocalResponse effective_response(const JointBehaviour& b, int gdim, const std::a
     r.traction[i + 1] = shear * m[i];
   }
   trial.dilation = converged.dilation + s.dilation.opening;
-  if (b.law->has_history())
-    trial.maximum_closure = std::max(converged.maximum_closure, s.closure);
+  trial.maximum_closure = std::max(converged.maximum_closure, s.closure);
   trial.accumulated_slip = converged.accumulated_slip + increment;
 
   // Consistent tangent by implicit differentiation of G(Δλ; j_n, e) = 0:

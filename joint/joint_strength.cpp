@@ -64,6 +64,8 @@ void validate(const JointStrength& s, const std::string& owner)
   if (!(s.dilation_angle >= 0.0 && s.dilation_angle <= largest_angle))
     v::fail(owner, "dilation_angle", s.dilation_angle, "rad",
             "in [0, " + std::to_string(largest_angle) + "] (0 <= psi <= the friction angle)");
+  if (!(std::isfinite(s.reduction_factor) && s.reduction_factor > 0.0))
+    v::fail(owner, "reduction_factor", s.reduction_factor, "", "finite and > 0 (1: no reduction)");
   if (!(s.dilation_limit > 0.0)) // NaN fails too; +inf (no limit) passes
     v::fail(owner, "dilation_limit", s.dilation_limit, "m", "> 0 (inf: dilation never stops)");
   // Tension cut-off inside the cone: at σ_n = -T the strength c - T tan φ must stay >= 0.
@@ -72,6 +74,11 @@ void validate(const JointStrength& s, const std::string& owner)
             "<= cohesion / tan(friction angle) = "
                 + std::to_string(s.cohesion / std::tan(largest_angle))
                 + " Pa (the apex of the Coulomb cone)");
+}
+
+double reduced_tensile_strength(const JointStrength& s)
+{
+  return s.tensile_strength / s.reduction_factor;
 }
 
 ShearStrength shear_strength(const JointStrength& s, double normal_stress, bool bonded)
@@ -87,11 +94,13 @@ ShearStrength shear_strength(const JointStrength& s, double normal_stress, bool 
     stress_times_rate = a.stress_times_rate;
   }
   const double tan_angle = std::tan(angle);
-  const double strength = cohesion + normal_stress * tan_angle;
+  // Reduced by F at every σ_n (header): c / F + σ_n tan a(σ_n) / F.
+  const double factor = s.reduction_factor;
+  const double strength = (cohesion + normal_stress * tan_angle) / factor;
   if (!(strength > 0.0))
     return {0.0, 0.0};
   // d/dσ_n [σ_n tan a(σ_n)] = tan a + σ_n sec²a da/dσ_n.
-  return {strength, tan_angle + (1.0 + tan_angle * tan_angle) * stress_times_rate};
+  return {strength, (tan_angle + (1.0 + tan_angle * tan_angle) * stress_times_rate) / factor};
 }
 
 DilationIncrement dilation_increment(const JointStrength& s, double accumulated_slip,
@@ -99,7 +108,9 @@ DilationIncrement dilation_increment(const JointStrength& s, double accumulated_
 {
   if (s.model == StrengthModel::none || s.dilation_angle == 0.0)
     return {};
-  const double tan_psi = std::tan(s.dilation_angle);
+  // ψ_F within the reduced friction: tan ψ_F = min(tan ψ, tan φ_max / F) (header).
+  const double largest = s.model == StrengthModel::barton ? s.maximum_friction_angle : s.friction_angle;
+  const double tan_psi = std::min(std::tan(s.dilation_angle), std::tan(largest) / s.reduction_factor);
   const double limit = s.dilation_limit;
   const double before = std::min(accumulated_slip, limit);
   const double after = std::min(accumulated_slip + slip_increment, limit);

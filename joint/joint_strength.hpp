@@ -14,6 +14,16 @@
 /// joint by tan ψ per unit slip while the accumulated slip is below `dilation_limit`).
 /// Tension cut-off: a joint carries tension only while bonded (tensile_strength T > 0, never
 /// exceeded); T = 0 (default): an open joint transmits no traction.
+///
+/// Strength reduction (factor of safety, docs/slopes.md): with `reduction_factor` F (default 1)
+/// the strength is divided by F at every normal stress,
+///   τ_y,F(σ_n) = c / F + σ_n tan φ_m(σ_n) / F,   T_F = T / F,   tan ψ_F = min(tan ψ, tan φ_max / F),
+/// φ_m the mobilised angle above (Coulomb: φ; Barton: φ_r + JRC log10(JCS/σ_n), capped), φ_max its
+/// largest value (φ; Barton: the cap). For Barton this is the reduction of a non-linear criterion
+/// through its instantaneous friction, tan φ_m(σ_n) / F at each σ_n, as discontinuum codes do
+/// (Itasca UDEC manual, "Factor-of-Safety Calculation": the strength reduction of non-linear
+/// criteria, after Dawson et al. 2000 and Hammah et al. 2005); ψ_F keeps the dilation within the
+/// reduced friction, as tan ψ_F = min(tan ψ, tan φ / F) does for Coulomb.
 
 #include <limits>
 #include <string>
@@ -43,6 +53,8 @@ struct JointStrength
   double jcs = 0.0;              ///< joint wall compressive strength [Pa], > 0 (Barton)
   /// Cap of Barton's mobilised friction angle [rad] (70°: Barton & Choubey 1977).
   double maximum_friction_angle = 70.0 * 3.14159265358979323846 / 180.0;
+  /// Strength reduction factor F [-], > 0 (1: the strength itself): c, tan φ_m and T divided by it.
+  double reduction_factor = 1.0;
 };
 
 /// Throw std::invalid_argument naming `owner`, the parameter, its value and valid range.
@@ -58,6 +70,9 @@ struct ShearStrength
 };
 /// τ_y and dτ_y/dσ_n at normal stress σ_n [Pa] (compression +).
 ShearStrength shear_strength(const JointStrength& strength, double normal_stress, bool bonded);
+
+/// The tensile strength in force, T / F [Pa] (F the reduction factor).
+double reduced_tensile_strength(const JointStrength& strength);
 
 /// Dilation produced by increasing the accumulated slip from κ0 to κ0 + dλ [m], and its rate
 /// d(dilation)/d(dλ) at that end (tan ψ before the dilation limit, 0 after it).

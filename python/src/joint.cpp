@@ -49,9 +49,9 @@ void declare_joint(py::module_& m)
                             "angles in radians")
       .def(py::init(
                [](StrengthModel model, double phi, double c, double t, double psi,
-                  double limit, double jrc, double jcs, double cap)
+                  double limit, double jrc, double jcs, double cap, double factor)
                {
-                 JointStrength s{model, phi, c, t, psi, limit, jrc, jcs, cap};
+                 JointStrength s{model, phi, c, t, psi, limit, jrc, jcs, cap, factor};
                  validate(s, "JointStrength");
                  return s;
                }),
@@ -61,10 +61,12 @@ void declare_joint(py::module_& m)
            py::arg("dilation_limit") = std::numeric_limits<double>::infinity(),
            py::arg("jrc") = 0.0, py::arg("jcs") = 0.0,
            py::arg("maximum_friction_angle") = JointStrength{}.maximum_friction_angle,
+           py::arg("reduction_factor") = 1.0,
            "model: StrengthModel; friction_angle φ (Barton: φ_r) [rad]; cohesion c [Pa]; "
            "tensile_strength T [Pa] (bonded joint, <= c / tan φ); dilation_angle ψ [rad] "
            "(<= φ); dilation_limit: slip after which dilation stops [m]; jrc [-], jcs [Pa] "
-           "(Barton); maximum_friction_angle: cap of Barton's angle [rad]")
+           "(Barton); maximum_friction_angle: cap of Barton's angle [rad]; reduction_factor F "
+           "(> 0): c, tan of the mobilised angle and T divided by F (strength reduction)")
       .def_readonly("model", &JointStrength::model, "none, Coulomb or Barton")
       .def_readonly("friction_angle", &JointStrength::friction_angle, "φ (Coulomb) or the residual angle φ_r (Barton) [rad], [0, π/2)")
       .def_readonly("cohesion", &JointStrength::cohesion, "c [Pa], >= 0")
@@ -74,6 +76,8 @@ void declare_joint(py::module_& m)
       .def_readonly("jrc", &JointStrength::jrc, "joint roughness coefficient [-], [0, 20] (Barton)")
       .def_readonly("jcs", &JointStrength::jcs, "joint wall compressive strength [Pa], > 0 (Barton)")
       .def_readonly("maximum_friction_angle", &JointStrength::maximum_friction_angle, "Cap of Barton's mobilised friction angle [rad] (70°: Barton & Choubey 1977).")
+      .def_readonly("reduction_factor", &JointStrength::reduction_factor,
+                    "strength reduction factor F [-] (1: none): c, tan φ_m and T divided by it")
       .def("shear_strength",
            [](const JointStrength& s, double normal_stress)
            { return shear_strength(s, normal_stress, true).strength; },
@@ -104,7 +108,8 @@ void declare_joint(py::module_& m)
       .def_readonly("dilation", &JointPointState::dilation, "normal opening produced by slip (dilatancy) [m]")
       .def_readonly("accumulated_slip", &JointPointState::accumulated_slip, "path length of the slip, ∫|d slip| [m]")
       .def_readonly("bond_broken", &JointPointState::bond_broken, "tensile strength exceeded once: bond (c, T) lost for good")
-      .def_readonly("maximum_closure", &JointPointState::maximum_closure, "largest elastic closure reached, Δ_m [m] (hysteretic normal law)");
+      .def_readonly("maximum_closure", &JointPointState::maximum_closure,
+                    "largest elastic closure of the converged states, Δ_m [m] (every closure law)");
 
   py::class_<JointBehaviour>(m, "JointBehaviour",
                              "Closure law + shear stiffness + residual stiffness + strength of "

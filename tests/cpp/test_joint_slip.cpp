@@ -586,3 +586,91 @@ TEST(JointSlip, WaterPressureActsThroughTheEffectiveStress)
   b.effective_stress_coefficient = 1.5;
   rockjoint::testing::expect_error([&] { validate(b, "fault"); }, "effective_stress_coefficient");
 }
+
+// Strength reduction (joint_strength.hpp): Barton's peak divided by F at every σ'_n, i.e.
+// τ_F = σ'_n tan(φ_r + JRC log10(JCS/σ'_n)) / F (the angle capped before the division), c and T
+// divided by F, the dilation kept within the reduced friction. Closed forms of the linear test law.
+TEST(JointSlip, StrengthReductionDividesBartonsPeakByTheFactorAtEveryNormalStress)
+{
+  const double factor = 1.6, jrc = 12.0, jcs = 80e6, phi_r = 27 * deg;
+  JointBehaviour b = coulomb(phi_r, 0.0);
+  b.strength.model = StrengthModel::barton;
+  b.strength.jrc = jrc;
+  b.strength.jcs = jcs;
+  b.strength.reduction_factor = factor;
+  EXPECT_NO_THROW(validate(b, "reduced"));
+  // σ'_n from 0.05 MPa (angle 27 + 12 log10(1600) = 65.5°) to 50 MPa (29.4°), and 100 MPa past
+  // JCS (φ_r alone); at 1 kPa the 70° cap acts before the division.
+  for (double sigma : {1e3, 5e4, 3e5, 2e6, 1e7, 5e7, 1e8})
+  {
+    const double closure = sigma / kn;
+    double angle = sigma >= jcs ? phi_r : phi_r + jrc * std::log10(jcs / sigma) * deg;
+    angle = std::min(angle, 70 * deg);
+    const double expected = sigma * std::tan(angle) / factor;
+    JointPointState trial;
+    const double js = 10.0 * expected / ks + 1e-6;  // well past the strength: sliding
+    const LocalResponse r = joint_response(b, 2, {-closure, js, 0.0}, {}, trial);
+    EXPECT_EQ(r.shear_state, ShearState::slip) << "σ'_n = " << sigma;
+    EXPECT_NEAR(r.traction[1], expected, 1e-9 * expected) << "σ'_n = " << sigma;
+    EXPECT_NEAR(shear_strength(b.strength, sigma, true).strength, expected, 1e-12 * expected);
+  }
+  expect_tangent_matches_fd(b, 2, {-2e6 / kn, 2e-3, 0.0}, {}, ShearState::slip);
+  expect_tangent_matches_fd(b, 3, {-2e6 / kn, 2e-3, -1e-3}, {}, ShearState::slip);
+  // F = 1 is the strength itself; F <= 0 or not finite is refused by name.
+  b.strength.reduction_factor = 1.0;
+  EXPECT_NEAR(shear_strength(b.strength, 2e6, true).strength,
+              2e6 * std::tan(phi_r + jrc * std::log10(jcs / 2e6) * deg), 1e-6);
+  for (double bad : {0.0, -1.0, std::numeric_limits<double>::infinity()})
+  {
+    b.strength.reduction_factor = bad;
+    rockjoint::testing::expect_error([&] { validate(b, "set B"); }, {"set B", "reduction_factor"});
+  }
+}
+
+TEST(JointSlip, StrengthReductionDividesCohesionTensionAndBoundsTheDilation)
+{
+  // Coulomb with F = 2: c/F + σ tanφ/F; a bond of T holds to T/F; ψ = 30° on φ = 35°:
+  // tan ψ_F = min(tan 30°, tan 35° / 2) = 0.350 (ψ_F = 19.3°), the closed-form increment of the
+  // linear law with it (as DilationGivesTheClosedFormSlipIncrementAndNormalStress).
+  const double phi = 35 * deg, psi = 30 * deg, c = 2e5, closure = 2e-4, js = 1e-3, factor = 2.0;
+  JointBehaviour b = coulomb(phi, c, psi);
+  b.strength.reduction_factor = factor;
+  JointPointState trial;
+  const LocalResponse r = joint_response(b, 2, {-closure, js, 0.0}, {}, trial);
+  const double mu = std::tan(phi) / factor, tan_psi = std::min(std::tan(psi), mu);
+  const double f = ks * js - c / factor - kn * closure * mu;
+  const double dl = f / (ks + kn * mu * tan_psi);
+  EXPECT_EQ(r.shear_state, ShearState::slip);
+  EXPECT_NEAR(trial.dilation, tan_psi * dl, 1e-12 * js);
+  EXPECT_NEAR(r.traction[1], c / factor + kn * (closure + tan_psi * dl) * mu, 1e-9 * c);
+  // Tension: T = 1e5 Pa reduced to T/F = 0.5e5: a tension of 0.4e5 Pa holds, 0.6e5 Pa breaks it.
+  JointBehaviour bond = coulomb(phi, c);
+  bond.strength.tensile_strength = 1e5;
+  bond.strength.reduction_factor = factor;
+  const LocalResponse holds = joint_response(bond, 2, {0.4e5 / kn, 0.0, 0.0}, {}, trial);
+  EXPECT_FALSE(trial.bond_broken);
+  EXPECT_NEAR(holds.traction[0], 0.4e5, 1e-6);
+  joint_response(bond, 2, {0.6e5 / kn, 0.0, 0.0}, {}, trial);
+  EXPECT_TRUE(trial.bond_broken);
+}
+
+// Δ_m (JointPointState::maximum_closure) is kept for every closure law, not only hysteretic
+// ones: the trial follows the elastic closure Δ_e = -j_n + d, the converged one only by commit.
+TEST(JointSlip, EveryLawKeepsTheLargestElasticClosureInItsTrialState)
+{
+  const JointBehaviour b = coulomb(30 * deg, 0.0, 10 * deg);  // linear law: no history
+  ASSERT_FALSE(b.law->has_history());
+  JointPointState converged, trial;
+  converged.maximum_closure = 3e-4;
+  joint_response(b, 2, {-1e-4, 0.0, 0.0}, converged, trial);  // unloaded: Δ_m stays
+  EXPECT_EQ(trial.maximum_closure, 3e-4);
+  joint_response(b, 2, {-5e-4, 0.0, 0.0}, converged, trial);  // past it: Δ_m = Δ
+  EXPECT_EQ(trial.maximum_closure, 5e-4);
+  EXPECT_EQ(converged.maximum_closure, 3e-4);                  // the converged copy is untouched
+  // Sliding with dilation: Δ_m is the elastic closure after the return, -j_n + dilation.
+  const LocalResponse s = joint_response(b, 2, {-5e-4, 5e-3, 0.0}, converged, trial);
+  ASSERT_EQ(s.shear_state, ShearState::slip);
+  ASSERT_GT(trial.dilation, 0.0);
+  EXPECT_NEAR(trial.maximum_closure, 5e-4 + trial.dilation, 1e-18);
+  EXPECT_NEAR(-s.traction[0], kn * trial.maximum_closure, 1e-6);
+}

@@ -34,8 +34,10 @@ def test_factor_of_safety_on_two_ranks_is_the_serial_one():
 @pytest.mark.mpi
 def test_the_extruded_slope_on_two_ranks_is_the_serial_one():
     comm = two_ranks()
-    parallel = factor_of_safety(trial_solver(slope_mesh(*SIZES, comm=comm, length=LENGTH), PHI, 0.0), tolerance=0.02)
+    # a loose bracket (10 %: fewer trials, each a 3D solve on both ranks and serially on each): the
+    # search's steps are compared, not F against limit equilibrium (test_fem_slope_3d.py does that)
+    parallel = factor_of_safety(trial_solver(slope_mesh(*SIZES, comm=comm, length=LENGTH), PHI, 0.0), tolerance=0.1)
     serial = factor_of_safety(trial_solver(slope_mesh(*SIZES, comm=MPI.COMM_SELF, length=LENGTH), PHI, 0.0),
-                              tolerance=0.02)
+                              tolerance=0.1)
     assert [(f, held) for f, held, _ in parallel.trials] == [(f, held) for f, held, _ in serial.trials]
     assert parallel.factor == serial.factor and parallel.moving == serial.moving

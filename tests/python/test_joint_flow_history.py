@@ -17,8 +17,8 @@ from rockjoint.fem import network_flow  # noqa: E402
 from rockjoint.fem.mesh.distributed_mesh import names_of  # noqa: E402
 from rockjoint.fem.water.joint_flow import Fluid  # noqa: E402
 from joint_flow_cases import APERTURE, HEADS, LOAD, WIDTH  # noqa: E402
-from flow_history_cases import (LOSS, bb_closure, branch_transmissivity, cycled_column,  # noqa: E402
-                                unloaded_closures)
+from flow_history_cases import (LOSS, bb_closure, branch_transmissivity, check_coupled_twice,  # noqa: E402
+                                coupled_twice, cycled_column, unloaded_closures)
 
 
 def test_unloaded_network_against_the_closed_form_of_the_law_with_history():
@@ -72,3 +72,17 @@ def test_coupled_water_keeps_the_largest_closure_of_the_stages_before_it(solve):
     np.testing.assert_allclose(network.point_transmissivity, branch_transmissivity(closure, bb_closure(LOAD)),
                                rtol=1e-9)
     assert np.all(closure < bb_closure(LOAD))            # unloaded: below the peak, on the branch
+
+
+def test_coupling_iterates_do_not_enter_the_largest_closure():
+    """Two successive two-way coupled solves: Δ_m of every point (C++ point state, gathered) and
+    T of the second solve's network are those of the accepted states' closures."""
+    model, network, accepted = coupled_twice()
+    overshoot = check_coupled_twice(model, network, accepted)
+    print(f"overshoot of the first iterate over the accepted closures: {overshoot * 1e6:.3f} µm")
+    # Δ_m is set only whole and finite, named
+    n = model.interface.num_points
+    with pytest.raises(ValueError, match="set_maximum_closure"):
+        model.interface.set_maximum_closure(np.zeros(n + 1))
+    with pytest.raises(ValueError, match="entry 0 is nan"):
+        model.interface.set_maximum_closure(np.full(n, np.nan))

@@ -231,7 +231,7 @@ PYBIND11_MODULE(_rockjoint_fem_coupling, m)
           {
             const auto& s = converged ? a.converged_state() : a.trial_state();
             const py::ssize_t n = static_cast<py::ssize_t>(s.size()), g = a.gdim();
-            py::array_t<double> slip({n, g - 1}), dilation(n), accumulated(n);
+            py::array_t<double> slip({n, g - 1}), dilation(n), accumulated(n), peak(n);
             py::array_t<bool> broken(n);
             for (py::ssize_t i = 0; i < n; ++i)
             {
@@ -240,17 +240,25 @@ PYBIND11_MODULE(_rockjoint_fem_coupling, m)
                 slip.mutable_at(i, k) = s[i].slip[k];
               dilation.mutable_at(i) = s[i].dilation;
               accumulated.mutable_at(i) = s[i].accumulated_slip;
+              peak.mutable_at(i) = s[i].maximum_closure;
             }
             py::dict out;
             out["slip"] = slip;
             out["dilation"] = dilation;
             out["accumulated_slip"] = accumulated;
             out["bond_broken"] = broken;
+            out["maximum_closure"] = peak;
             return out;
           },
           py::arg("converged") = false,
-          "{slip (points, gdim-1), dilation, accumulated_slip} [m], bond_broken (bool) of the "
-          "trial (default) or converged point state")
+          "{slip (points, gdim-1), dilation, accumulated_slip, maximum_closure (largest elastic "
+          "closure of the converged states, Δ_m)} [m], bond_broken (bool) of the trial (default) "
+          "or converged point state")
+      .def(
+          "set_maximum_closure",
+          [](InterfaceAssembler& a, const Array<double>& peak) { a.set_maximum_closure(span_of(peak)); },
+          py::arg("maximum_closure"),
+          "(num_points,) largest closure reached Δ_m [m] of every point, converged and trial")
       .def_property_readonly("closure", [](const InterfaceAssembler& a) { return to_numpy(a.closure()); })
       .def_property_readonly("normal_stress",
                              [](const InterfaceAssembler& a) { return to_numpy(a.normal_stress()); })

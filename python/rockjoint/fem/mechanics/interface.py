@@ -240,6 +240,20 @@ class JointInterface:
         """Virgin point state everywhere (no slip, no dilation, bonds intact): a new analysis."""
         self._cpp.reset_state()
 
+    def maximum_closure(self) -> np.ndarray:
+        """Δ_m [m] of every point of this rank in the converged state: the largest elastic closure
+        of the committed load steps (every closure law; joint/joint_point_state.hpp)."""
+        return np.asarray(self._cpp.point_state(True)["maximum_closure"], dtype=float)
+
+    def set_maximum_closure(self, values) -> None:
+        """Set Δ_m [m] of every point of this rank (converged and trial): a staggered coupling
+        puts back the Δ_m of its last accepted state before each iterate (fem.water.closure_history)."""
+        v = np.asarray(values, dtype=float).reshape(-1)
+        if v.shape != (self.num_points,):
+            raise ValueError(f"set_maximum_closure: {v.size} values for the {self.num_points} joint points "
+                             "on this rank")
+        self._cpp.set_maximum_closure(np.ascontiguousarray(v))
+
     def update_state(self, u_local: np.ndarray) -> None:
         """Refresh the trial point state at the local displacement `u_local` [m] without assembling."""
         self._cpp.update_state(u_local)
@@ -253,7 +267,8 @@ class JointInterface:
         shear_traction [Pa] (points, gdim-1) along t1[, t2], status (rockjoint.Status values),
         shear_state (rockjoint.fem.ShearState values: stick, slip, open), normal (of the pair), and
         the trial path-dependent state: slip [m] (points, gdim-1), dilation [m],
-        accumulated_slip [m], bond_broken."""
+        accumulated_slip [m], bond_broken, maximum_closure Δ_m [m] (the largest elastic closure
+        of the converged states and this trial, every closure law)."""
         c = self._cpp
         npp = c.num_points_per_pair
         out = {

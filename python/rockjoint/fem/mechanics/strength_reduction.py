@@ -9,7 +9,8 @@ no equilibrium (Newton's load stepping gives up, ConvergenceError, or the linear
 mechanism fails, LinearSolveError). F is found by bracketing from F = 1 (×/÷ `growth` until a
 trial fails / holds) and bisection until the bracket is within `tolerance` (relative) of its
 stable end. The intact rock stays elastic (the joints are what fails). Barton's strength is
-reduced through its peak angle in C++ only: refused here until it is (a ValueError names it).
+reduced through its peak angle, tan(φ_r + JRC log10(JCS/σ'_n)) / F at every σ'_n, by the C++
+strength's reduction factor (joint/joint_strength.hpp).
 
 The mechanism: where `trial` returns its model, the displacement the last reduction before
 failure adds (the two largest stable factors, both close to F) is mostly the motion of the
@@ -42,18 +43,25 @@ log = logging.getLogger(__name__)
 
 
 def reduced_strength(strength: JointStrength, factor: float) -> JointStrength:
-    """The Coulomb strength with tan φ, c and T divided by `factor` (> 0); no strength stays none."""
+    """The strength with tan φ, c and T divided by `factor` (> 0); no strength stays none. Barton's
+    is reduced at every normal stress in C++, tan(φ_r + JRC log10(JCS/σ'_n)) / F (the strength's
+    ``reduction_factor``, joint/joint_strength.hpp), its dilation kept within the reduced cap."""
     if not (math.isfinite(factor) and factor > 0.0):
         raise ValueError(f"strength reduction factor = {factor!r} must be finite and > 0")
     if strength.model == StrengthModel.none:
         return strength
-    if strength.model != StrengthModel.coulomb:
-        raise ValueError("strength reduction: only the Coulomb strength is reduced (Barton's peak angle needs its "
-                         "reduction in the C++ strength; not available yet)")
+    if strength.model == StrengthModel.barton:
+        return JointStrength(StrengthModel.barton, friction_angle=strength.friction_angle,
+                             cohesion=strength.cohesion, tensile_strength=strength.tensile_strength,
+                             dilation_angle=strength.dilation_angle, dilation_limit=strength.dilation_limit,
+                             jrc=strength.jrc, jcs=strength.jcs,
+                             maximum_friction_angle=strength.maximum_friction_angle,
+                             reduction_factor=strength.reduction_factor * factor)
     phi = math.atan(math.tan(strength.friction_angle) / factor)
     return JointStrength(StrengthModel.coulomb, friction_angle=phi, cohesion=strength.cohesion / factor,
                          tensile_strength=strength.tensile_strength / factor,
-                         dilation_angle=min(strength.dilation_angle, phi), dilation_limit=strength.dilation_limit)
+                         dilation_angle=min(strength.dilation_angle, phi), dilation_limit=strength.dilation_limit,
+                         reduction_factor=strength.reduction_factor)
 
 
 def reduced_behaviour(behaviour: JointBehaviour, factor: float) -> JointBehaviour:

@@ -15,8 +15,10 @@ bench/results/coupled_water.md. Iterated until::
 
 Δh the spread of the heads given. Each mechanical solve is a stage of the model (the pressure
 ramps over it from the last value, see joint_pressure), so the model's stages record the
-iterations. The network is gathered (the same on every rank) and so are the iterates: every rank
-takes the same step and the answer does not depend on the partition.
+iterations; each starts from the largest closures Δ_m of the state before the coupling
+(closure_history.keep_accepted_history), so that only the accepted iterate adds to them. The
+network is gathered (the same on every rank) and so are the iterates: every rank takes the same
+step and the answer does not depend on the partition.
 """
 from __future__ import annotations
 
@@ -28,6 +30,7 @@ import numpy as np
 
 from ..mesh.distributed_mesh import names_of
 from .acceleration import accelerator
+from .closure_history import converged_maximum_closure, history_state, keep_accepted_history
 from .joint_flow import Fluid, NetworkFlow, joint_network, point_transmissivity, steady_network
 from .joint_pressure import set_joint_pressure
 from .local_response import LocalResponse, local_network
@@ -97,17 +100,17 @@ def coupled_steady(model, transmissivity: Mapping[str, Callable], heads: Mapping
     rise = pressure_scale(fluid, heads, pressures)
     accelerate = accelerator(acceleration)
     p = gathered_pressure(model)
+    accepted, history = converged_maximum_closure(model)   # Δ_m before the coupling (this rank's, all)
     network = owner = None
     increments = []
     for k in range(1, max_iterations + 1):
+        keep_accepted_history(model, accepted)              # iterates do not add to Δ_m
         result = model.solve(load_steps, name=f"{name} {k}")
         if network is None:       # the network's geometry and its conditions, once
             network, state, t_point = joint_network(model, transmissivity, result)
             owner = boundary_nodes(model, network, conditions)
             joints = names_of(model.dmesh, "joints")
-            history = state["maximum_closure"]   # Δ_m before the coupling: iterates do not add to it
-        else:
-            state = dict(result.gather_joints(), maximum_closure=history)
+        state = history_state(result.gather_joints(), history)
         x = np.asarray(state["coordinates"], dtype=float).reshape(-1, model.gdim)
 
         def solve(t_point):

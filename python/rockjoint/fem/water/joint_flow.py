@@ -114,9 +114,9 @@ def point_transmissivity(state: dict, transmissivity: Mapping[str, Callable], jo
     closure: transmissivity[joint name](closure [m]) for the joint of each point; a law with
     history (``has_history``: rockjoint.flow_history, given as the law or its bound
     ``transmissivity``) also gets each point's largest closure Δ_m = max(state's
-    ``maximum_closure``, closure) (joint_network puts the running maximum of the model's stages
-    there: with_closure_history). ValueError naming a joint without a transmissivity law, or one
-    whose T is negative or not finite."""
+    ``maximum_closure``, closure) (joint_network puts the C++ point state's Δ_m there, in the
+    closure's measure: with_closure_history). ValueError naming a joint without a transmissivity
+    law, or one whose T is negative or not finite."""
     missing = sorted(set(joint_names) - set(transmissivity))
     if missing:
         raise ValueError(f"no transmissivity for joint(s) {missing}: give transmissivity={{joint name: "
@@ -174,7 +174,7 @@ def joint_network(model, transmissivity: Mapping[str, Callable], result):
         raise ValueError("network_flow: the joint network is built from the joint points as facet "
                          "vertices: P1 with quadrature='nodal' is needed, got degree "
                          f"{model.degree}, quadrature {model.quadrature!r}")
-    state = with_closure_history(model, result)
+    state = with_closure_history(result)
     t_point = point_transmissivity(state, transmissivity, names_of(model.dmesh, "joints"))
     x = np.asarray(state["coordinates"], dtype=float).reshape(-1, model.gdim)
     return Network.of_points(x), state, t_point

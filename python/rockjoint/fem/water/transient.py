@@ -24,7 +24,8 @@ mechanics' last opening o^k with the storage (F3) as its stabilisation::
 
     S (p^{k+1} - p^k)/Δt + (o^k - o^n)/Δt + e c_w (p^{k+1} - p^n)/Δt + ∇·q^{k+1} = 0,
 
-then the mechanics at p^{k+1} (a stage of the model, the pressure ramped over it), accelerated
+then the mechanics at p^{k+1} (a stage of the model, the pressure ramped over it, from the
+largest closures Δ_m of the last accepted step: closure_history.keep_accepted_history), accelerated
 as the steady coupling (acceleration.py), until p stops changing; at convergence the terms in S
 cancel and (F2) holds with the mechanics' opening. Backward Euler in time, lumped storage on the
 P1 network (network.py), the same on every rank.
@@ -41,6 +42,7 @@ from typing import Callable, Mapping
 import numpy as np
 
 from .acceleration import accelerator
+from .closure_history import converged_maximum_closure, history_state, keep_accepted_history
 from .coupled import CouplingError, gathered_pressure, pressure_at_points, pressure_scale, scatter_pressure
 from .joint_flow import Fluid, joint_network, network_result, point_transmissivity
 from ..mesh.distributed_mesh import names_of
@@ -112,7 +114,6 @@ def coupled_transient(model, transmissivity: Mapping[str, Callable], duration: f
     dt = duration / steps
     result = model.solution
     network, state, t_point = joint_network(model, transmissivity, result)
-    history = state["maximum_closure"]          # Δ_m for laws with history (closure_history)
     owner = boundary_nodes(model, network, conditions)
     joints = names_of(model.dmesh, "joints")
     z = network.nodes[:, -1]
@@ -125,6 +126,7 @@ def coupled_transient(model, transmissivity: Mapping[str, Callable], duration: f
         t = step * dt
         accelerate = accelerator(acceleration)
         p_k = gathered_pressure(model)
+        accepted, history = converged_maximum_closure(model)  # Δ_m of the last accepted step
         for k in range(1, (max_iterations if coupling == "two_way" else 1) + 1):
             compliance, water = storage(model, state, t_point, compressibility)
             s_fs, s_w = node_mean(network, compliance), node_mean(network, water)
@@ -153,8 +155,9 @@ def coupled_transient(model, transmissivity: Mapping[str, Callable], duration: f
                 break
             p_k = p_k + step_p
             scatter_pressure(model, result, p_k)
+            keep_accepted_history(model, accepted)           # iterates do not add to Δ_m
             result = model.solve(1, name=f"{name} t={t:.6g} s, {k}")
-            state = dict(result.gather_joints(), maximum_closure=history)   # Δ_m of the converged steps
+            state = history_state(result.gather_joints(), history)
             t_point = point_transmissivity(state, transmissivity, joints)
         else:
             raise CouplingError(f"coupled_transient: step {step} (t = {t:g} s) has not converged in "
@@ -165,5 +168,4 @@ def coupled_transient(model, transmissivity: Mapping[str, Callable], duration: f
         out.iterations.append(k)
         p_n = node_mean(network, p_k)
         opening_n = -node_mean(network, np.asarray(state["closure"], dtype=float))
-        history = np.maximum(history, np.asarray(state["closure"], dtype=float))
     return out
