@@ -59,6 +59,8 @@ def numbers(result) -> dict:
     """The search's answer of one run: F, its bracket, the trials, their time, the moving blocks;
     the intact rock's largest displacement [mm]."""
     f = result.safety.found
+    if not f.decided_by_strength:   # never print a factor the strength does not decide
+        raise RuntimeError(f"the rock slope's search found no factor of safety: {f.reason or 'not bounded'}")
     intact = [r for r in result.rows if r.model == "intact"][-1]
     return {"F": f.factor, "stable": f.stable, "failed": f.failed, "trials": len(f.trials),
             "seconds": result.safety.seconds, "moving": result.safety.moving,

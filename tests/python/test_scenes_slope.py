@@ -106,3 +106,19 @@ def test_the_plan_gives_the_search_cost_and_error(tmp_path):
     assert "F to within 2 %" in choice.error
     assert plan.safety["tolerance"] == pytest.approx(0.02)
     assert plan.slip == {"bedding": True, "tension_crack": True}
+
+
+def test_the_summary_says_when_the_strength_does_not_decide_f():
+    """A search whose failures do not depend on F (SafetyFactor.reason, strength_reduction) gives no
+    F in the summary, and its reason and failure in words; a decided one gives F and no such words."""
+    from types import SimpleNamespace
+    from rockjoint.fem.mechanics.strength_reduction import SafetyFactor
+    from rockjoint.scenes.summary import safety_lines
+    reason = "every failed trial stopped at load factor 0.42: the failure does not depend on the strength"
+    failure = "load stepping failed: joint cross_13 cycles between open and stuck"
+    for found, decided in ((SafetyFactor(1.25, 1.2, 1.3, 0.01, reason=reason, failure=failure), False),
+                           (SafetyFactor(1.25, 1.2, 1.3, 0.01, failure=failure), True)):
+        text = "\n".join(safety_lines(SimpleNamespace(safety=SimpleNamespace(found=found, seconds=1.0, moving=[]),
+                                                      rows=[]), 30))
+        assert ("1.25" in text) == decided and ("does not depend on the strength" in text) != decided
+        assert failure in text

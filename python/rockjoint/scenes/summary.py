@@ -57,7 +57,9 @@ def safety_lines(result, width: int) -> list:
     s = result.safety
     f = s.found
     rows = []
-    if f.bounded:
+    if f.bounded and f.reason:   # bounded, but not by the strength (SafetyFactor.reason)
+        rows.append(("factor of safety F", "none: the failure does not depend on the strength"))
+    elif f.bounded:
         rows += [("factor of safety F", f"{f.factor:.4g}"),
                  ("  bracket (stable, failed)", f"{f.stable:.4g} - {f.failed:.4g}"),
                  ("  tolerance", f"{100 * f.tolerance:.3g} %"),
@@ -68,8 +70,14 @@ def safety_lines(result, width: int) -> list:
         rows.append(("factor of safety F", f"< {f.factor:g}: no equilibrium at any F tried"))
     rows += [("  trial solves", f"{len(f.trials)}"), ("  search time [s]", f"{s.seconds:.3g}"),
              ("  moving blocks", ", ".join(s.moving) or "-")]
+    lines = [f"{name:{width}}{value:>28}" for name, value in rows]
+    # why F is not the strength's, or what stopped the first trial without equilibrium: words, below
+    # the table (the failure names the joints, blocks and points where the search stopped)
+    lines += [f"  {label}: {text}" for label, text in (("not a factor of safety", f.reason),
+                                                        ("what failed at the unstable end", f.failure)) if text]
+    rows = []
     intact = [r for r in result.rows if r.model == "intact"]
     if intact:
         rows += [("intact rock (elastic)", "never fails: no factor of safety"),
                  ("  intact max |u| [mm]", f"{intact[-1].max_displacement * 1e3:.5g}")]
-    return [f"{name:{width}}{value:>28}" for name, value in rows]
+    return lines + [f"{name:{width}}{value:>28}" for name, value in rows]
