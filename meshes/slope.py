@@ -15,7 +15,9 @@ The section, x along the slope (toe side at x = 0), y up::
     |_____________________________________| bottom  (W, 0)
 
 Boundary groups: bottom, right, top (the ground behind the crest), face, toe (the floor in front
-of the toe), left. A joint is a line (meshes.Joint: a point and its dip, 2D dip direction 90 or
+of the toe), left. Benches (``benches``: (elevation above the toe, width) pairs) break the face into
+faces at ψ_f between horizontal bench floors; the face group is all of them (the slope's free
+surface between toe and crest), and the overall slope angle is then below ψ_f. A joint is a line (meshes.Joint: a point and its dip, 2D dip direction 90 or
 270) clipped to the section, which is not convex (the toe is a re-entrant corner), and to the
 joints it is ``bounded_by``: a tension crack is a vertical joint bounded by the sliding plane, the
 plane one bounded by the crack. Every joint must separate blocks completely (no dangling tip).
@@ -54,23 +56,50 @@ class SlopeGeometry:
     base: float
     toe_distance: float
     crest_distance: float
+    #: horizontal benches, ((elevation above the toe [m], width [m]), ...), elevations rising
+    benches: tuple = ()
 
     def __post_init__(self):
         for name in ("height", "base", "toe_distance", "crest_distance"):
             _positive(f"slope {name}", getattr(self, name))
         if not (math.isfinite(self.face_angle) and 0.0 < self.face_angle <= 90.0):
             raise ValueError(f"slope face_angle = {self.face_angle!r} must be in (0, 90] degrees")
+        benches = tuple((float(e), float(w)) for e, w in self.benches)
+        below = 0.0
+        for k, (e, w) in enumerate(benches):
+            if not (math.isfinite(e) and below < e < self.height):
+                raise ValueError(f"slope bench {k + 1}: elevation {e!r} m must be above the toe and the bench "
+                                 f"below ({below:g} m) and below the crest ({self.height:g} m)")
+            _positive(f"slope bench {k + 1} width", w)
+            below = e
+        object.__setattr__(self, "benches", benches)
 
     @property
     def toe(self) -> tuple:
         """The toe (x, y) [m]."""
         return (self.toe_distance, self.base)
 
+    def face_points(self) -> list:
+        """The face's corners from the toe up to the crest [(x, y), ...] (m): faces at ψ_f rising
+        between the benches' horizontal floors."""
+        cot = 1.0 / math.tan(math.radians(self.face_angle)) if self.face_angle < 90.0 else 0.0
+        x, y0 = self.toe_distance, self.base
+        out, below = [self.toe], 0.0
+        for e, w in self.benches:
+            x += (e - below) * cot
+            out += [(x, y0 + e), (x + w, y0 + e)]
+            x, below = x + w, e
+        return out + [(x + (self.height - below) * cot, y0 + self.height)]
+
     @property
     def crest(self) -> tuple:
         """The crest (x, y) [m]."""
-        run = self.height / math.tan(math.radians(self.face_angle)) if self.face_angle < 90.0 else 0.0
-        return (self.toe_distance + run, self.base + self.height)
+        return self.face_points()[-1]
+
+    def piece_groups(self) -> list:
+        """The boundary group of each outline piece (pieces()): bottom, right, top, the face's
+        pieces (faces and bench floors: all ``face``), toe, left."""
+        return ["bottom", "right", "top"] + [FACE] * (len(self.face_points()) - 1) + [TOE, "left"]
 
     @property
     def width(self) -> float:
@@ -78,11 +107,11 @@ class SlopeGeometry:
         return self.crest[0] + self.crest_distance
 
     def pieces(self) -> list:
-        """The outline counter-clockwise from the origin, one piece per boundary group, in the
-        order bottom, right, top, face, toe, left."""
+        """The outline counter-clockwise from the origin: bottom, right, top, the face's pieces
+        (crest down to the toe), toe, left (their groups: piece_groups())."""
         w, top = self.width, self.base + self.height
-        corners = [(0.0, 0.0), (w, 0.0), (w, top), self.crest, self.toe, (0.0, self.base)]
-        return [OutlinePiece(corners[k], corners[(k + 1) % 6]) for k in range(6)]
+        corners = [(0.0, 0.0), (w, 0.0), (w, top), *self.face_points()[::-1], (0.0, self.base)]
+        return [OutlinePiece(corners[k], corners[(k + 1) % len(corners)]) for k in range(len(corners))]
 
     def contains(self, points: np.ndarray) -> np.ndarray:
         """Whether each point (n, 2) lies inside the section (even-odd rule on the outline)."""
@@ -97,6 +126,7 @@ class SlopeGeometry:
         return inside
 
 
+#: the boundary groups of a slope section (SlopeGeometry.piece_groups: the group of each piece)
 GROUPS = ("bottom", "right", "top", FACE, TOE, "left")
 
 
@@ -170,7 +200,8 @@ def slope_section(geometry: SlopeGeometry, joints: Iterable = (), *, mesh_size: 
     segments = slope_traces(geometry, joints)
     if length is not None:
         with _gmsh_model("rockjoint_slope_extruded") as gmsh:
-            return extruded_slope(gmsh, geometry, joints, segments, GROUPS, SLOPE_BOUNDARY_TAGS, length=length,
+            return extruded_slope(gmsh, geometry, joints, segments, geometry.piece_groups(), SLOPE_BOUNDARY_TAGS,
+                                  length=length,
                                   mesh_size=mesh_size, joint_mesh_size=joint_mesh_size, refine=refine, intact=intact,
                                   dangling=_DANGLING)
     extent = max(geometry.width, geometry.base + geometry.height)
@@ -187,7 +218,7 @@ def slope_section(geometry: SlopeGeometry, joints: Iterable = (), *, mesh_size: 
 
         splits = planar_section.split_outline(outline, nodes, tips, tol)
         groups, curves = {}, []
-        for j, name in enumerate(GROUPS):
+        for j, name in enumerate(geometry.piece_groups()):
             seq = [vertex[j], *splits[j], vertex[(j + 1) % len(outline)]]
             for a, b in zip(seq[:-1], seq[1:]):
                 curves.append(geo.addLine(point(a), point(b)))

@@ -20,7 +20,7 @@ def extruded_slope(gmsh, geometry, joints: list, segments: list, groups_2d: tupl
                    dangling: str) -> JointedMesh:
     """The 3D mesh of the slope section `geometry` cut by `joints` (their clipped `segments`, one
     list per joint: slope.slope_traces), extruded by `length` [m]; groups_2d: the names of the
-    outline's pieces in order (slope.GROUPS); boundary_tags: the section's tags (front and back
+    outline's pieces in order (SlopeGeometry.piece_groups()); boundary_tags: the section's tags (front and back
     are added). ValueError naming a joint that ends inside a block (`dangling`: what to do)."""
     occ = gmsh.model.occ
     pieces = geometry.pieces()

@@ -46,8 +46,13 @@ def test_a_slope_loads_with_its_defaults_and_a_free_crack(tmp_path):
 
 # (what, old text, new text, key path the message names, words of the message)
 MALFORMED = [
-    ("benches", "  face_angle: 65 deg", "  face_angle: 65 deg\n  benches: [{width: 5 m}]", "geometry.benches",
-     "benches are not modelled"),
+    ("a bench without its elevation", "  face_angle: 65 deg", "  face_angle: 65 deg\n  benches: [{width: 5 m}]",
+     "geometry.benches[0]", "missing key 'elevation'"),
+    ("benches out of order", "  face_angle: 65 deg",
+     "  face_angle: 65 deg\n  benches: [{elevation: 20 m, width: 4 m}, {elevation: 10 m, width: 4 m}]",
+     "geometry.benches[1].elevation", "must lie above the toe and the bench below"),
+    ("a bench above the crest", "  face_angle: 65 deg", "  face_angle: 65 deg\n  benches: [{elevation: 30 m, width: 4 m}]",
+     "geometry.benches[0].elevation", "below the crest"),
     ("a set that misses the slope", "spacing: 6 m, count: 2}", "spacing: 6 m, count: 9}", "geometry.joint_sets[0]",
      "misses the slope section"),
     ("a point outside", "point: [40 m, 30 m]", "point: [5 m, 30 m]", "geometry.joint_sets[0].point",
@@ -122,3 +127,16 @@ def test_the_summary_says_when_the_strength_does_not_decide_f():
                                                       rows=[]), 30))
         assert ("1.25" in text) == decided and ("does not depend on the strength" in text) != decided
         assert failure in text
+
+
+def test_a_benched_slope_moves_its_crest_back(tmp_path):
+    """Two benches 3 m wide: the section's crest 6 m further from the toe than without them (the
+    faces still rise 30 m at 65°), the ground behind it as long."""
+    import math
+    from rockjoint.scenes import slope_keys
+    text = SLOPE.replace("  face_angle: 65 deg", "  face_angle: 65 deg\n  benches: [{elevation: 10 m, width: 3 m}, "
+                                                 "{elevation: 20 m, width: 3 m}]")
+    g = load_scene(write(tmp_path, text))["geometry"]
+    crest = slope_keys.section(g).crest
+    assert crest[0] == pytest.approx(30.0 + 30.0 / math.tan(math.radians(65.0)) + 6.0, rel=1e-12)
+    assert crest[1] == pytest.approx(15.0 + 30.0)

@@ -11,11 +11,13 @@ plan` reads it too.
       toe_distance: 20 m      # floor in front of the toe (default H)
       crest_distance: 40 m    # ground behind the crest (default H)
       joint_sets: [...]       # as every kind writes them, in the section's (x, y)
+      benches: [{elevation: 15 m, width: 4 m}]               # optional: horizontal benches up the face
       tension_crack: {behind_crest: 8 m, ends_on: bedding}   # a vertical joint down to the set's highest joint
     water: {table: 40 m}      # the water table behind the crest, drawn down straight to the toe
     factor_of_safety: {tolerance: 1 %}
 
-Benches are not modelled (meshes.slope_section draws one face): `benches` is refused by name.
+A bench is a horizontal floor `width` wide at `elevation` above the toe; the faces between the
+benches rise at face_angle (the overall slope is flatter: the crest moves back by the widths).
 """
 from __future__ import annotations
 
@@ -26,7 +28,7 @@ import numpy as np
 from .. import meshes
 from ..joint import JointStrength, StrengthModel
 from ..meshes.slope import SlopeGeometry, slope_traces
-from .fields import Anything, Mapping, Quantity, Text
+from .fields import ListOf, Mapping, Quantity, Text
 
 CRACK = "tension_crack"
 FACES = ("bottom", "top", "left", "right", "face", "toe")
@@ -37,7 +39,8 @@ FIELDS = {
     "base": Quantity("length", required=False, **_LENGTH),
     "toe_distance": Quantity("length", required=False, **_LENGTH),
     "crest_distance": Quantity("length", required=False, **_LENGTH),
-    "benches": Anything(required=False),
+    "benches": ListOf(Mapping({"elevation": Quantity("length", **_LENGTH), "width": Quantity("length", **_LENGTH)}),
+                      required=False, min_length=1),
     CRACK: Mapping({"behind_crest": Quantity("length", **_LENGTH), "ends_on": Text()}, required=False)}
 
 FACTOR_OF_SAFETY = Mapping({
@@ -52,10 +55,13 @@ def geometry_rule(g: dict, path: tuple, c) -> None:
             if key in g:
                 c.fail(path + (key,), f"not used by kind {g['kind']} (a slope's key)")
         return
-    if "benches" in g:
-        c.fail(path + ("benches",), "benches are not modelled yet: meshes.slope_section draws a single face "
-                                    "(model the overall slope, or one bench as its own slope)")
     h = g["height"]
+    below = 0.0
+    for k, bench in enumerate(g.get("benches", [])):
+        if not below < bench["elevation"] < h:
+            c.fail(path + ("benches", k, "elevation"), f"{bench['elevation']:g} m must lie above the toe and the "
+                   f"bench below ({below:g} m) and below the crest ({h:g} m)")
+        below = bench["elevation"]
     g.setdefault("base", 0.5 * h)
     g.setdefault("toe_distance", h)
     g.setdefault("crest_distance", h)
@@ -67,7 +73,7 @@ def geometry_rule(g: dict, path: tuple, c) -> None:
 def section(g: dict) -> SlopeGeometry:
     """The SlopeGeometry of a checked slope geometry section."""
     return SlopeGeometry(g["height"], math.degrees(g["face_angle"]), g["base"], g["toe_distance"],
-                         g["crest_distance"])
+                         g["crest_distance"], tuple((b["elevation"], b["width"]) for b in g.get("benches", [])))
 
 
 def set_joints(s: dict) -> list:
