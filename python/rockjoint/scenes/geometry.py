@@ -23,9 +23,9 @@ def extent(g) -> np.ndarray:
         return np.array(g["size"])
     if g["kind"] == "column":
         return np.array([g["width"]] * (g["dimension"] - 1) + [g["height"]])
-    if g["kind"] == "slope":   # the section's width and its height above the bottom
+    if g["kind"] == "slope":   # the section's width and its height above the bottom (3D: the length between)
         geo = slope_keys.section(g)
-        return np.array([geo.width, geo.base + geo.height])
+        return np.array([geo.width, *([g["length"]] if "length" in g else []), geo.base + geo.height])
     if "length" in g:
         return np.array([g["width"], g["length"], g["height"]])
     return np.array([g["width"], g["height"]])
@@ -101,7 +101,8 @@ def jointed_mesh(scene, plan, comm):
                                     joint_mesh_size=hj, comm=comm)
     if g["kind"] == "slope":
         return slope_section(slope_keys.section(g), joint_objects(scene, plan.smeared), mesh_size=h,
-                             joint_mesh_size=hj, joint_refine_distance=h if hj else None, comm=comm)
+                             joint_mesh_size=hj, joint_refine_distance=h if hj else None,
+                             length=g.get("length") if plan.dimension == 3 else None, comm=comm)
     return meshes.tunnel_section(g["width"], g["height"], opening(g), joint_objects(scene, plan.smeared), mesh_size=h,
                                  opening_mesh_size=plan.opening_size,
                                  opening_refine_distance=2 * opening_half_size(g) if plan.opening_size else None,

@@ -93,7 +93,13 @@ def tables(scene, plan) -> dict:
             continue
         # laws over measured summits: a kink per summit, tabulated no tighter than the bench could
         tolerance = max(plan.table_tolerance, rung.tightest_tolerance if rung else 0.0)
-        out[name] = rockjoint.tabulate(law, max_stress=plan.table_max_stress, tolerance=tolerance)
+        # A factor-of-safety search finds a mechanism by its singular system: the table's default
+        # opening stiffness (1e-6 σ_max/Δ_max) would hold a freed block at a large displacement
+        # instead (a cohesive plane failure held to F = 1.371 against 1.284 by limit equilibrium,
+        # tests/python/test_fem_slope_scene_cohesive.py); open joints carry nothing there (k_res = 0)
+        opening = 0.0 if "factor_of_safety" in scene.data else None
+        out[name] = rockjoint.tabulate(law, max_stress=plan.table_max_stress, tolerance=tolerance,
+                                       residual_stiffness=opening)
         log.info("joint set %s: table of %d knots up to %.3g MPa", name, rockjoint.curve_table(out[name]).knot_count,
                  plan.table_max_stress * 1e-6)
     return out

@@ -35,7 +35,7 @@ def _geometry_rule(g, path, c):
             c.fail(path, f"missing key {key!r} (needed for kind {kind})")
     unused = {"column": ("size", "opening", "joint_sets", "length"),
               "block": ("width", "height", "joint_heights", "opening", "length"),
-              "tunnel": ("size", "joint_heights"), "slope": ("size", "width", "opening", "joint_heights", "length")}[kind]
+              "tunnel": ("size", "joint_heights"), "slope": ("size", "width", "opening", "joint_heights")}[kind]
     for key in unused:
         if key in g:
             c.fail(path + (key,), f"not used by kind {kind}")
@@ -61,9 +61,9 @@ def _geometry_rule(g, path, c):
         if g["dimension"] == 2 and not along_x:
             c.fail(path + ("joint_sets", i, "dip_direction"), "in 2D a joint dips toward +x "
                    "(90 deg) or -x (270 deg)")
-        elif kind == "tunnel" and g["dimension"] == 3 and not along_x:
-            c.fail(path + ("joint_sets", i, "dip_direction"), "in a 3D tunnel a joint set runs along "
-                   "the tunnel axis y (the section is extruded along y): dip 0, or dip_direction "
+        elif kind in ("tunnel", "slope") and g["dimension"] == 3 and not along_x:
+            c.fail(path + ("joint_sets", i, "dip_direction"), f"in a 3D {kind} a joint set runs along "
+                   f"{'the tunnel axis ' if kind == 'tunnel' else ''}y (the section is extruded along y): dip 0, or dip_direction "
                    "90 deg (dipping toward +x) or 270 deg (toward -x)")
 
 
@@ -113,6 +113,8 @@ STRENGTH = Mapping({
     "model": Text(choices=("coulomb", "barton")),
     "friction_angle": Quantity("angle", low=0.0, high=math.radians(89.0)),
     "cohesion": Quantity("stress", low=0.0, required=False, default=0.0),
+    # T (default 0: no tension); at most c / tan φ, the apex of the Coulomb line (C++ checks it)
+    "tensile_strength": Quantity("stress", low=0.0, required=False),
     "jrc": Quantity("number", low=0.0, high=20.0, required=False),
     "jcs": Quantity("stress", required=False, **POSITIVE),
     "dilation_angle": Quantity("angle", low=0.0, high=math.radians(60.0), required=False),
@@ -336,7 +338,7 @@ def _cross_checks(d: dict, c: Checker) -> None:
     faces = ["bottom", "top", "left", "right"] + (["front", "back"] if g["dimension"] == 3 else [])
     if g["kind"] == "tunnel":
         faces.append("opening")
-    faces = list(slope_keys.FACES) if g["kind"] == "slope" else faces
+    faces = list(slope_keys.FACES) + faces[4:6] if g["kind"] == "slope" else faces
     slope_keys.check(d, c)
     where = [(("supports", k), k) for k in d["supports"]]
     for i, stage in enumerate(d["stages"]):

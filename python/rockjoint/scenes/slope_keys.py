@@ -77,9 +77,13 @@ def section(g: dict) -> SlopeGeometry:
 
 
 def set_joints(s: dict) -> list:
-    """One joint set of the scene as meshes.Joint objects (names <set>_<i>)."""
-    return meshes.joint_set(s["spacing"], math.degrees(s["dip"]), math.degrees(s["dip_direction"]),
-                            origin=tuple(s["point"]), count=s["count"], name=s["name"])
+    """One joint set of the scene as meshes.Joint objects of the section (names <set>_<i>): a 3D
+    slope is its section extruded along y, so a 3D set (which runs along y, the schema checks it)
+    is the section's joint through (x, z)."""
+    point = (s["point"][0], s["point"][-1])
+    dip_direction = 90.0 if s["dip"] == 0.0 else math.degrees(s["dip_direction"])
+    return meshes.joint_set(s["spacing"], math.degrees(s["dip"]), dip_direction, origin=point, count=s["count"],
+                            name=s["name"])
 
 
 def crack_joint(g: dict, joints: list):
@@ -108,6 +112,10 @@ def crack_joint(g: dict, joints: list):
 def joints(g: dict, exclude=()) -> list:
     """Every joint of the slope: its sets (without those in `exclude`) and its tension crack."""
     out = [j for s in g.get("joint_sets", []) if s["name"] not in exclude for j in set_joints(s)]
+    if CRACK in g and g[CRACK]["ends_on"] in exclude:
+        raise ValueError(f"the tension crack ends on set {g[CRACK]['ends_on']!r}, which the plan smears (an "
+                         "equivalent continuum, `rockjoint plan` says why): a crack ends on discrete joints; "
+                         "give that set a spacing the planner keeps discrete, or end the crack on another set")
     if CRACK in g:
         out.append(crack_joint(g, [j for s in g.get("joint_sets", []) for j in set_joints(s)]))
     return out
@@ -127,7 +135,8 @@ def check(d: dict, c) -> None:
         c.fail(("geometry", "joint_sets"), f"{CRACK!r} is the tension crack's name: give the set another")
     geo = section(g)
     for i, s in enumerate(g.get("joint_sets", [])):
-        if not geo.contains(np.array([s["point"][:2]]))[0]:
+        inside = geo.contains(np.array([[s["point"][0], s["point"][-1]]]))[0]
+        if not inside or (len(s["point"]) == 3 and not 0.0 < s["point"][1] < g["length"]):
             c.fail(("geometry", "joint_sets", i, "point"), "the point is not inside the slope section")
         for joint in set_joints(s):
             try:
@@ -169,11 +178,12 @@ def sets(g: dict) -> list:
 
 def weight_stress(d: dict) -> np.ndarray:
     """The slope's largest homogeneous stress [Pa] (tension positive): its weight at the bottom,
-    σ_v = ρ g (H + base), σ_h = ν/(1 - ν) σ_v (laterally confined elastic rock)."""
+    σ_v = ρ g (H + base), σ_h = ν/(1 - ν) σ_v (laterally confined elastic rock; 3D: both
+    horizontal axes, the vertical is z)."""
     rock, g = d["rock"], d["geometry"]
     sv = rock["density"] * 9.80665 * (g["height"] + g["base"])
     k = rock["poisson"] / (1.0 - rock["poisson"])
-    return -np.diag([k * sv, sv])
+    return -np.diag([k * sv] * (g["dimension"] - 1) + [sv])
 
 
 def free_crack(d: dict, strengths: dict) -> None:
@@ -195,7 +205,7 @@ def phreatic(g: dict, table: float):
     geo, fluid = section(g), Fluid()
     (x0, y0), x1 = geo.toe, geo.crest[0]
 
-    def pressure(x):
+    def pressure(x):   # x: (gdim, n); the vertical is the last coordinate (3D: z, the section's y)
         z_w = y0 + (table - y0) * np.clip((np.asarray(x)[0] - x0) / max(x1 - x0, 1e-12), 0.0, 1.0)
-        return fluid.density * fluid.gravity * np.maximum(z_w - np.asarray(x)[1], 0.0)
+        return fluid.density * fluid.gravity * np.maximum(z_w - np.asarray(x)[-1], 0.0)
     return pressure

@@ -14,23 +14,30 @@ from . import pictures
 def draw(safety, jm, scene, path: str) -> list:
     """The mechanism picture of `safety` (slope_run.SlopeSafety) on the serial mesh `jm` (rank 0);
     [] when the search found no stable F. Collective; rank 0 writes `path`."""
-    from ..fem.output.fields import gather_triangles  # FE stack: optional
+    from ..fem.output.fields import gather_triangles, section_triangles  # FE stack: optional
     if not safety.stable_models or safety.found.stable is None:
         return []
     model = safety.stable_models[safety.found.stable]
     if model.degree != 1:
         return []
-    tri, u = gather_triangles(model.u)
-    joints = pictures.joint_states(model)
+    length = scene.data["geometry"].get("length") if model.gdim == 3 else None
+    # 3D: the section through the middle of the length (x, z), its joints' points within half an
+    # element of it; the blocks' outlines are the section's (the extrusion keeps them)
+    tri, u = section_triangles(model.u, 0.5 * length) if length else gather_triangles(model.u)
     state = model.solution.gather_joints()
+    joints = pictures.joint_states(model) if not length else None
+    if length:
+        state = _on_section(state, 0.5 * length, model)
     if model.comm.rank != 0:
         return [path]
+    if length:
+        u = u[..., :2]   # the section's in-plane displacement (x, z)
     plt = pictures.plt_module()
     fig, (ax, bx) = plt.subplots(1, 2, figsize=(13.0, 5.2))
     top = float(np.linalg.norm(u, axis=2).max()) or 1.0
     scale = 0.05 * float(np.ptp(tri.reshape(-1, 2), axis=0).max()) / top
     pictures.field_view(ax, tri, u, scale, top, joints)
-    _mark_moving(ax, jm, safety.moving)
+    _mark_moving(ax, jm, safety.moving, 0.5 * length if length else None)
     f = safety.found
     ax.set_title(f"{scene.data['name']}: F = {f.factor:.3g}; at F = {f.stable:.4g} (u x {scale:.3g})\n"
                  f"hatched: the moving blocks ({', '.join(safety.moving) or 'none'})", fontsize=9)
@@ -39,13 +46,32 @@ def draw(safety, jm, scene, path: str) -> list:
     return [path]
 
 
-def _mark_moving(ax, jm, moving: list) -> None:
-    """Hatch the moving blocks' cells (undeformed) and write each name at its centroid."""
+def _on_section(state: dict, y: float, model) -> dict:
+    """The gathered joint state of a 3D slope on the section y (the points within the slab
+    |y' - y| <= 5 % of the extent across), coordinates in the section's (x, z)."""
+    x = np.asarray(state["coordinates"], float).reshape(-1, 3)
+    width = 0.05 * float(np.ptp(x[:, 1])) if len(x) else 0.0
+    near = np.abs(x[:, 1] - y) <= width
+    out = {k: np.asarray(state[k]).reshape(len(x), -1)[near].squeeze(axis=1) if k != "slip"
+           else np.asarray(state[k]).reshape(len(x), -1)[near] for k in ("tag", "slip", "closure")}
+    out["coordinates"] = x[near][:, [0, 2]]
+    return out
+
+
+def _mark_moving(ax, jm, moving: list, y: float | None = None) -> None:
+    """Hatch the moving blocks' cells (undeformed) and write each name at its centroid; 3D (the
+    section y): the faces, in (x, z), of the tetrahedra the section cuts."""
     from matplotlib.collections import PolyCollection  # slow: only when drawing
     tags = {name: tag for tag, name in jm.names["blocks"].items()}
     for name in moving:
         cells = jm.cells[jm.cell_blocks == tags[name]]
-        tri = jm.points[cells][:, :, :2]
+        if y is None:
+            tri = jm.points[cells][:, :, :2]
+        else:
+            tet = jm.points[cells]
+            cut = tet[:, :, 1]
+            tet = tet[(cut.min(axis=1) <= y) & (cut.max(axis=1) >= y)][:, :, [0, 2]]
+            tri = tet[:, [[0, 1, 2], [0, 1, 3], [0, 2, 3], [1, 2, 3]]].reshape(-1, 3, 2)
         ax.add_collection(PolyCollection(tri, facecolors=(0.69, 0.0, 0.13, 0.1), edgecolors="#b00020",
                                          linewidths=0.0, hatch="//"))
         a, b = tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]
