@@ -67,6 +67,9 @@ MALFORMED = [
     ("water with heads", "error_budget:", "water: {table: 30 m, heads: {left: 30 m}}\nerror_budget:", "water.heads",
      "prescribed hydrostatic table"),
     ("a slope's key on a block", None, None, "geometry.face_angle", "not used by kind block"),
+    ("a tensile strength past the apex", "strength: {model: coulomb, friction_angle: 40 deg}",
+     "strength: {model: coulomb, friction_angle: 40 deg, cohesion: 10 kPa, tensile_strength: 1 MPa}",
+     "joints.bedding.strength", "the apex of the Coulomb cone"),
     ("a tolerance out of range", "tolerance: 2 %", "tolerance: 80 %", "factor_of_safety.tolerance", "out of range"),
 ]
 
