@@ -80,6 +80,10 @@ def test_reduced_strength_divides_tan_phi_c_and_t():
     assert reduced_strength(s, 10.0).dilation_angle == pytest.approx(math.atan(math.tan(math.radians(40)) / 10))
     with pytest.raises(ValueError, match="factor"):
         reduced_strength(s, 0.0)
+    # F < 1 raises the strength, but T stays within the apex c / tan φ (the same for every F)
+    apex = 1e5 / math.tan(math.radians(40))
+    assert reduced_strength(s, 0.5).tensile_strength == pytest.approx(1e5)           # 5e4 / 0.5, below the apex
+    assert reduced_strength(s, 0.25).tensile_strength == pytest.approx(apex, rel=1e-14)  # 2e5 capped at 1.19e5
     # Barton's is reduced in C++ at every normal stress (test_fem_barton_reduction.py)
     barton = reduced_strength(JointStrength(StrengthModel.barton, friction_angle=0.5, jrc=10.0, jcs=50e6), 1.5)
     assert barton.reduction_factor == 1.5 and barton.friction_angle == 0.5

@@ -80,3 +80,29 @@ def test_a_3d_slope_set_runs_along_the_strike(tmp_path):
     bad = extruded(SCENE).replace("dip_direction: 270 deg", "dip_direction: 180 deg")
     with pytest.raises(SceneError, match="in a 3D slope a joint set runs along y"):
         load_scene(write(tmp_path, bad))
+
+
+def wet(text: str) -> str:
+    """The scene with its water computed: the ground saturated (head 45 m on the top, p = 0 there),
+    the face and the toe drained; the crack far more open (50 mm) than the plane (10 mm), both wide
+    against their closures, so the crack stands full and the plane's water falls linearly to the
+    toe: Hoek & Bray's 'crack full' distribution, from the flow."""
+    flow = {"plane": "10 mm", "tension_crack": "50 mm"}
+    for name, aperture in flow.items():
+        law = ("law: {{model: barton_bandis, parameters: {{initial_normal_stiffness: 10 MPa/mm, "
+               "maximum_closure: 5 mm}}}}").format()
+        text = text.replace(f"  {name}:\n    {law}", f"  {name}:\n    {law}\n    flow: {{law: cubic_law, "
+                            f"initial_aperture: {aperture}}}", 1)
+    return text.replace("error_budget:", "water: {heads: {top: 45 m}, pressures: {face: 0 MPa, toe: 0 MPa}, "
+                                         "coupling: two_way}\nerror_budget:")
+
+
+def test_the_slopes_coupled_water_gives_the_full_crack_of_limit_equilibrium(tmp_path):
+    expected = PlaneFailure(30.0, 60.0, 35.0, 6.0, 2650.0 * 9.80665, water_unit_weight=998.2 * 9.80665)
+    expected = expected.factor_of_safety(math.radians(30.0), 60e3, expected.crack_depth)
+    text = wet(SCENE)
+    assert text.count("cubic_law") == 2 and "two_way" in text
+    found = factor(tmp_path, text)
+    print(f"cohesive plane failure with its coupled water: F = {found.factor:.4f}, LE (crack full) {expected:.4f}")
+    assert found.decided_by_strength
+    assert found.factor == pytest.approx(expected, rel=0.03)

@@ -271,7 +271,8 @@ def run_scene(scene, plan, output: str, comm=None) -> SceneResult:
         rows, files, models, safety = [], [], {}, None
         for label, dmesh in meshes.items():
             if label == "jointed" and "factor_of_safety" in scene.data:   # a slope's strength reduction
-                model, found, safety = slope_run.search(scene, plan, dmesh, tables, build_model, run_stages)
+                model, found, safety = slope_run.search(scene, plan, dmesh, tables, build_model, run_stages,
+                                                        transmissivity)
                 if model is None:
                     raise NoEquilibrium(slope_run.no_equilibrium_words(safety))
                 rows += found

@@ -13,7 +13,8 @@ plan` reads it too.
       joint_sets: [...]       # as every kind writes them, in the section's (x, y)
       benches: [{elevation: 15 m, width: 4 m}]               # optional: horizontal benches up the face
       tension_crack: {behind_crest: 8 m, ends_on: bedding}   # a vertical joint down to the set's highest joint
-    water: {table: 40 m}      # the water table behind the crest, drawn down straight to the toe
+    water: {table: 40 m}      # the water table behind the crest, drawn down straight to the toe, or
+    # water: {heads: {top: 45 m}, pressures: {face: 0 MPa}, coupling: two_way}: the flow, coupled
     factor_of_safety: {tolerance: 1 %}
 
 A bench is a horizontal floor `width` wide at `elevation` above the toe; the faces between the
@@ -124,7 +125,7 @@ def joints(g: dict, exclude=()) -> list:
 def check(d: dict, c) -> None:
     """The slope's relations: 2D sets that cross the section, a crack that ends on a set, the
     rock's weight (its density: the slope's only load besides the water), no uniform in-situ
-    stress, the water a prescribed table; and a factor of safety asked of slopes only."""
+    stress, the water a prescribed table or coupled flow; and a factor of safety asked of slopes only."""
     g = d["geometry"]
     if g["kind"] != "slope":
         if "factor_of_safety" in d:
@@ -158,15 +159,20 @@ def check(d: dict, c) -> None:
     if "in_situ" in d:
         c.fail(("in_situ",), "a slope's initial stress is its own weight (rock.density), not a uniform in-situ stress")
     w = d.get("water")
-    if w is not None:
-        for key in ("heads", "pressures"):
-            if key in w:
-                c.fail(("water", key), "a slope's water is the prescribed hydrostatic table (water.table); "
-                                       "flow between boundaries is not modelled in slopes yet")
-        if w["coupling"] != "one_way":
-            c.fail(("water", "coupling"), "a slope's water is prescribed (water.table): no coupling")
-        if "table" not in w:
-            c.fail(("water",), "missing key 'table': the water table's elevation behind the crest")
+    if w is not None:   # prescribed (a table) or computed (flow between heads/pressures, coupled both ways)
+        flowing = bool(w.get("heads") or w.get("pressures"))
+        if flowing and "table" in w:
+            c.fail(("water", "table"), "a slope's water is either the prescribed table (water.table) or the flow "
+                                       "between heads and pressures (coupling: two_way), not both")
+        elif flowing and w["coupling"] != "two_way":
+            c.fail(("water", "coupling"), "a slope's flowing water must act on its joints: coupling: two_way "
+                                          "(one way, the flow would not load the slope)")
+        elif not flowing and w["coupling"] != "one_way":
+            c.fail(("water", "coupling"), "a slope's prescribed table (water.table) is not coupled: coupling is "
+                                          "for the flow between heads and pressures")
+        elif not flowing and "table" not in w:
+            c.fail(("water",), "missing key 'table' (the water table's elevation behind the crest), or the flow's "
+                               "heads and pressures with coupling: two_way")
 
 
 def sets(g: dict) -> list:

@@ -15,8 +15,7 @@ import math
 
 import numpy as np
 
-from . import defaults, slope_keys
-from . import rules
+from . import defaults, rules, slope_keys
 from .rules import Choice
 
 #: the search's growth factor (strength_reduction.factor_of_safety's default)
@@ -53,10 +52,13 @@ def slip(ctx, dim: int):
 
 
 def water(ctx):
-    """(None, [Choice]) of a slope's water: the prescribed hydrostatic table."""
+    """(coupling or None, [Choice]) of a slope's water: the prescribed hydrostatic table, or the flow
+    between heads and pressures coupled both ways (the scenes' water, rules.water)."""
     w = ctx.scene.data.get("water")
     if w is None:
         return None, []
+    if "table" not in w:   # computed: the coupled steady state after every stage (rules.water says its cost)
+        return rules.water(ctx)
     return None, [Choice(
         "water", f"prescribed: the water table at z = {w['table']:g} m behind the crest, drawn down straight to "
                  "the toe; "

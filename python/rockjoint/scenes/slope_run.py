@@ -36,10 +36,11 @@ class SlopeSafety:
         return self.found.moving
 
 
-def search(scene, plan, dmesh, tables: dict, build_model, run_stages):
+def search(scene, plan, dmesh, tables: dict, build_model, run_stages, transmissivity=None):
     """(the jointed model at the largest stable F, its StageRows, SlopeSafety); the model and
     rows are None when no F down to the search's smallest holds. `build_model` and `run_stages`
-    are runner's (one way to build and run a scene's model)."""
+    are runner's (one way to build and run a scene's model); `transmissivity`: {set: law} of a
+    slope whose water flows (coupled both ways in every trial)."""
     spec = scene.data["factor_of_safety"]
     kept = {}
 
@@ -47,7 +48,7 @@ def search(scene, plan, dmesh, tables: dict, build_model, run_stages):
         reduced = dataclasses.replace(scene, strengths={k: None if v is None else reduced_strength(v, factor)
                                                         for k, v in scene.strengths.items()})
         model = build_model(reduced, plan, dmesh, tables)
-        rows = run_stages(reduced, plan, model, "jointed")
+        rows = run_stages(reduced, plan, model, "jointed", transmissivity=transmissivity)
         kept[factor] = (model, rows)
         for old in sorted(kept)[:-2]:   # the two largest stable trials only
             del kept[old]

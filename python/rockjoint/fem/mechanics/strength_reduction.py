@@ -58,8 +58,11 @@ def reduced_strength(strength: JointStrength, factor: float) -> JointStrength:
                              maximum_friction_angle=strength.maximum_friction_angle,
                              reduction_factor=strength.reduction_factor * factor)
     phi = math.atan(math.tan(strength.friction_angle) / factor)
+    # T/F, but never past the reduced line's apex c_F / tan φ_F = c / tan φ (F < 1 raises T above it)
+    # (computed from the reduced c and φ as the C++ check computes it: equal to the last bit)
+    apex = (strength.cohesion / factor) / math.tan(phi) if phi > 0.0 else math.inf
     return JointStrength(StrengthModel.coulomb, friction_angle=phi, cohesion=strength.cohesion / factor,
-                         tensile_strength=strength.tensile_strength / factor,
+                         tensile_strength=min(strength.tensile_strength / factor, apex),
                          dilation_angle=min(strength.dilation_angle, phi), dilation_limit=strength.dilation_limit,
                          reduction_factor=strength.reduction_factor)
 
