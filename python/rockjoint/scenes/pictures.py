@@ -154,6 +154,7 @@ def draw(models: dict, scene, path: str) -> list:
 
 
 def plt_module():
+    """matplotlib.pyplot with the Agg backend (imported on first use: it is slow to import)."""
     import matplotlib  # slow to import: only when a picture is drawn
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt

@@ -212,6 +212,8 @@ def _joint_spacing(scene) -> float:
 
 
 def estimate_dofs(scene, dim, h, hj, ho) -> float:
+    """The displacement dofs a mesh of the scene's geometry would have at element size h (hj on
+    the joints, ho at an opening; None: h), from cell and vertex counts (below): the planner's cost."""
     extent = geometry.extent(scene.data["geometry"])
     # triangles ~ 2 A/h², tetrahedra ~ 6 V/h³; vertices ~ cells/2 (2D), cells/5 (3D); the refined
     # bands near joints and openings roughly double that at h/4 - h/8.
