@@ -6,6 +6,7 @@
 #include <rockjoint/constitutive/validation.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -18,9 +19,15 @@ namespace validation = rockjoint::constitutive::validation;
 
 namespace
 {
-/// K t on the contact set by direct summation while |S|² <= this × N: on the 512² benchmark
-/// joint factors 2-4 gave the lowest time (8 was slower, and FFT-only 16 % slower).
-constexpr double direct_sum_factor = 4.0;
+/// K t on the contact set by direct summation while |S|² <= min(4 N, this × M log2 M), M the
+/// transform size (a transform pair costs about c M log2 M). 4 N was tuned on the 512² bench
+/// joint (factors 2-4 gave the lowest time, 8 was slower, FFT-only 16 % slower). At 1024² a
+/// term (HalfSpace::displacement_on, read from an 8 MB periodic or 32 MB zero-padded kernel)
+/// cost 5-35 ns as the machine was loaded or not, and 4 N summed for up to 4 times longer than
+/// the transform it replaced; at the break-even of bench/bench_contact.py's profile (issue 43:
+/// zero-padded, 27 ms per direct sum at |S|² = 4 N against 18.6 ms per transform pair) the
+/// factor is 0.03: |S| <= 790 at 1024² periodic, 1660 zero-padded.
+constexpr double direct_sum_factor = 0.03;
 
 /// Fraction of the grid that carries the first load's initial pressure (see solve()): on the
 /// 512² and 1024² benchmark joints 0.1 % gave the fewest iterations (0.1 %, 1 %, 5 % and the
@@ -46,6 +53,38 @@ constexpr double direct_update_factor = 0.25;
 
 /// u is recomputed by FFT after this many carried updates (round-off does not accumulate).
 constexpr int carried_updates_limit = 50;
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start)
+{
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+/// Consecutive laps of one clock, each added to a phase of ContactProfile; off, it reads no
+/// clock (ContactOptions::profile).
+class PhaseClock
+{
+public:
+  explicit PhaseClock(bool on) : _on(on)
+  {
+    if (on)
+      _last = Clock::now();
+  }
+  /// Adds the time since the previous lap to `phase`.
+  void lap(double& phase)
+  {
+    if (!_on)
+      return;
+    const Clock::time_point now = Clock::now();
+    phase += std::chrono::duration<double>(now - _last).count();
+    _last = now;
+  }
+
+private:
+  bool _on;
+  Clock::time_point _last;
+};
 
 } // namespace
 
@@ -80,6 +119,7 @@ ElasticContact::ElasticContact(const topography::Surface& aperture, double compo
       _options(options), _rows(static_cast<std::size_t>(aperture.rows())),
       _cols(static_cast<std::size_t>(aperture.cols()))
 {
+  const Clock::time_point setup_start = Clock::now(); // the planning is timed by _half_space
   validation::positive("ElasticContact", "tolerance", options.tolerance, "");
   if (options.maximum_iterations < 1)
     validation::fail("ElasticContact", "maximum_iterations", options.maximum_iterations, "",
@@ -111,11 +151,31 @@ ElasticContact::ElasticContact(const topography::Surface& aperture, double compo
         sum += _u[k];
     _bulk_compliance = sum / double(_valid_count);
   }
+  _setup_seconds = seconds_since(setup_start) + _half_space.planning_seconds();
+}
+
+double ElasticContact::transform_pair_seconds(int repeats)
+{
+  if (repeats < 1)
+    validation::fail("ElasticContact::transform_pair_seconds", "repeats", repeats, "", ">= 1");
+  // Scratch output of the solver's own layout (a std::vector like _u); _r is free between loads.
+  double best = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < repeats; ++k)
+  {
+    const Clock::time_point start = Clock::now();
+    _half_space.displacement(_pressure, _r);
+    best = std::min(best, seconds_since(start));
+  }
+  return best;
 }
 
 ContactState ElasticContact::solve(double mean_pressure, bool keep_fields)
 {
   validation::positive("ElasticContact::solve", "mean_pressure", mean_pressure, "Pa");
+  const Clock::time_point solve_start = _options.profile ? Clock::now() : Clock::time_point{};
+  PhaseClock clock(_options.profile);
+  ContactState st;
+  ContactProfile& prof = st.profile;
   const std::size_t n = _rows * _cols;
   std::vector<double>& p = _pressure;
   const double total = mean_pressure * double(_valid_count); // Σ p over the scanned points
@@ -150,7 +210,6 @@ ContactState ElasticContact::solve(double mean_pressure, bool keep_fields)
   // Everything but the transforms and one scan for interpenetration works on the list of S
   // (a few per cent of the grid): on large grids the full-grid passes, not the FFTs, would
   // otherwise dominate (the arrays no longer fit the caches).
-  ContactState st;
   st.mean_pressure = mean_pressure;
   std::fill(_t.begin(), _t.end(), 0.0);
   _contact.clear();
@@ -168,13 +227,18 @@ ContactState ElasticContact::solve(double mean_pressure, bool keep_fields)
   const double transform_size = double(_half_space.transform_size());
   const double update_limit
       = direct_update_factor * transform_size * std::log2(transform_size) / double(n);
+  const double direct_sum_limit
+      = std::min(4.0 * double(n), direct_sum_factor * transform_size * std::log2(transform_size));
+  clock.lap(prof.start);
   int it = 0;
   for (; it < _options.maximum_iterations; ++it)
   {
     if (!u_current)
     {
       _half_space.displacement(p, _u); // u = K p
+      ++prof.transform_pairs;
       carried = 0;
+      clock.lap(prof.transforms);
     }
     const std::size_t m = _contact.size();
     double approach = 0.0;
@@ -210,14 +274,20 @@ ContactState ElasticContact::solve(double mean_pressure, bool keep_fields)
       _t[k] = _gap_contact[a] + beta * _t[k];
       _t_contact[a] = _t[k];
     }
-    // r = K t is needed on S only: direct summation while S is small (|S|² below a few N),
+    // r = K t is needed on S only: direct summation while S is small (direct_sum_factor),
     // one FFT convolution otherwise.
-    const bool r_everywhere = double(m) * double(m) > direct_sum_factor * double(n);
+    const bool r_everywhere = double(m) * double(m) > direct_sum_limit;
+    clock.lap(prof.contact_set);
     if (!r_everywhere)
+    {
       _half_space.displacement_on(_contact, _t_contact, _r_contact);
+      clock.lap(prof.direct_sums);
+    }
     else
     {
       _half_space.displacement(_t, _r);
+      ++prof.transform_pairs;
+      clock.lap(prof.transforms);
       for (std::size_t a = 0; a < m; ++a)
         _r_contact[a] = _r[_contact[a]];
     }
@@ -249,6 +319,9 @@ ContactState ElasticContact::solve(double mean_pressure, bool keep_fields)
       if (stepped <= 0.0) // 0 too: such a point may re-enter below and then has a correction
         _clamped.push_back({a, stepped});
     }
+    clock.lap(prof.contact_set);
+    // Serial: a pass this short (a few ms at 1024²) lost more waiting for a second core of the
+    // shared bench machine than it gained on two threads (bench/bench_contact.py, issue 43).
     _entering.clear();
     bool overlap = false;
     for (std::size_t k = 0; k < n; ++k)
@@ -259,6 +332,7 @@ ContactState ElasticContact::solve(double mean_pressure, bool keep_fields)
         if (!_member[k]) // a point of S clamped to 0 this iteration stays on the list
           _entering.push_back(k);
       }
+    clock.lap(prof.grid_passes);
     // CG restarts (δ = 0) when more than a few points re-enter (restart_entering_fraction).
     conjugate = !overlap || double(_entering.size()) <= restart_entering_fraction * double(m);
     double load = 0.0;
@@ -279,6 +353,7 @@ ContactState ElasticContact::solve(double mean_pressure, bool keep_fields)
           _contact.push_back(k);
       }
       conjugate = false;
+      clock.lap(prof.grid_passes);
       continue;
     }
     // Rescale to the load, measure the change, and form the next contact set.
@@ -300,10 +375,11 @@ ContactState ElasticContact::solve(double mean_pressure, bool keep_fields)
         _correction_nodes.push_back(k);
         _correction_values.push_back(scale * p[k]);
       }
-      for (std::size_t k = 0; k < n; ++k)
-        _u[k] = scale * (_u[k] - tau * _r[k]);
-      _half_space.add_point_loads(_correction_nodes, _correction_values, _u);
+      clock.lap(prof.contact_set);
+      _half_space.carry_displacement(scale, tau, _r, _correction_nodes, _correction_values, _u);
+      clock.lap(prof.grid_passes);
       ++carried;
+      ++prof.carried_updates;
     }
     double change = 0.0;
     std::size_t kept = 0;
@@ -329,6 +405,7 @@ ContactState ElasticContact::solve(double mean_pressure, bool keep_fields)
       _member[k] = 1;
     }
     st.relative_change = change / total;
+    clock.lap(prof.contact_set);
     if (st.relative_change <= _options.tolerance)
     {
       st.converged = true;
@@ -341,6 +418,8 @@ ContactState ElasticContact::solve(double mean_pressure, bool keep_fields)
 
   // Final state from the final pressure: d, gap, complementarity.
   _half_space.displacement(p, _u);
+  ++prof.transform_pairs;
+  clock.lap(prof.transforms);
   double approach = 0.0, sum = 0.0, mean_u = 0.0;
   std::size_t in_contact = 0;
   for (std::size_t k = 0; k < n; ++k)
@@ -386,6 +465,9 @@ ContactState ElasticContact::solve(double mean_pressure, bool keep_fields)
       st.pressure[k] = _valid[k] ? p[k] : std::numeric_limits<double>::quiet_NaN();
     st.gap = gap_field(g, contact, _valid);
   }
+  clock.lap(prof.final_state);
+  if (_options.profile)
+    prof.wall = seconds_since(solve_start);
   return st;
 }
 

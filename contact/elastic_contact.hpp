@@ -34,6 +34,27 @@ struct ContactOptions
   /// Σ|p - p_prev| / Σ p between iterations at which a load is converged (Polonsky-Keer).
   double tolerance = 1e-8;
   int maximum_iterations = 2000; ///< iterations per load, > 0
+  /// Time the phases of every load (ContactState::profile). Off, no clock is read: the timers
+  /// are a branch per phase, nothing measurable against a transform of milliseconds.
+  bool profile = false;
+};
+
+/// Where one load's wall time went, in seconds (ContactOptions::profile; zeros otherwise, but
+/// the two counts, which are always kept). The phases are consecutive laps of one clock, so
+/// they add up to `wall`.
+struct ContactProfile
+{
+  double wall = 0.0;        ///< the whole ElasticContact::solve call
+  double start = 0.0;       ///< warm or cold start, the first contact set (full-grid passes)
+  double transforms = 0.0;  ///< u = K p and K t by FFT (HalfSpace::displacement), final u included
+  double direct_sums = 0.0; ///< K t on a small contact set, summed directly
+  /// per iteration: the interpenetration scan and the carried update of u (K c of the few points
+  /// that clamping and entering changed included)
+  double grid_passes = 0.0;
+  double contact_set = 0.0; ///< per iteration: the CG algebra on the contact set's list
+  double final_state = 0.0; ///< after convergence: gap, complementarity, contact set, spots, fields
+  int transform_pairs = 0;  ///< HalfSpace::displacement calls (one forward + inverse pair each)
+  int carried_updates = 0;  ///< iterations whose u = K p was carried without a transform
 };
 
 /// The contact at one nominal stress.
@@ -55,6 +76,7 @@ struct ContactState
   std::vector<double> pressure;   ///< p [Pa], row-major (NaN where masked)
   /// g [m] under load: the mechanical aperture, exactly 0 on the contact set (NaN where masked)
   std::vector<double> gap;
+  ContactProfile profile; ///< where the time went (ContactOptions::profile)
 };
 
 /// The scanned points of an aperture field: `aperture` = e - min e over the valid (non-NaN)
@@ -92,6 +114,16 @@ public:
   /// Number of scanned (non-NaN) points.
   std::size_t valid_count() const { return _valid_count; }
 
+  /// The solver's limit per iteration: the shortest of `repeats` (>= 1) calls of u = K p on the
+  /// last pressure (one forward + inverse transform pair with the kernel product, the plans,
+  /// buffers and copies every iteration uses) [s]. Changes no state of the solver.
+  double transform_pair_seconds(int repeats);
+  /// Wall time of the constructor [s]: FFTW's planning (half_space().planning_seconds()), the
+  /// kernel's transform, the bulk and self compliances.
+  double setup_seconds() const { return _setup_seconds; }
+  /// The influence operator.
+  const HalfSpace& half_space() const { return _half_space; }
+
 private:
   HalfSpace _half_space;
   ContactOptions _options;
@@ -102,6 +134,7 @@ private:
   double _last_stress = 0.0;
   double _bulk_compliance = 0.0;
   double _self_compliance = 0.0; ///< K_kk [m/Pa]: the step when the CG step is degenerate
+  double _setup_seconds = 0.0;
   std::vector<double> _u, _t, _r, _previous; // work arrays
   std::vector<std::size_t> _contact;  // the contact set S of an iteration
   std::vector<std::size_t> _entering; // points re-entering contact in an iteration

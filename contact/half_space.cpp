@@ -6,6 +6,7 @@
 #include <fftw3.h>
 
 #include <array>
+#include <chrono>
 #include <cstdlib>
 #include <mutex>
 #include <map>
@@ -100,6 +101,7 @@ void in_parallel(std::size_t count, int workers, const Work& work)
     t.join();
 }
 
+
 /// Columns per block of the fused column pass of the zero-padded transform (forward FFT,
 /// × kernel, backward FFT on a block that stays in the core's cache): 32 was the fastest of
 /// 4, 8, 16, 32 at 1024² (16.0 against 17.5-22.7 ms per transform pair on two threads;
@@ -129,6 +131,7 @@ struct HalfSpace::Fft
   fftw_plan block_forward = nullptr, block_backward = nullptr; // column_block columns
   fftw_plan tail_forward = nullptr, tail_backward = nullptr;   // the last half % column_block
   std::vector<fftw_complex*> buffers;                        // one column block per worker
+  double planning_seconds = 0.0;                             // wall time of the planning
 
   Fft(std::size_t data_rows, std::size_t m0_, std::size_t m1_)
       : m0(m0_), m1(m1_), half(m1_ / 2 + 1), rows(data_rows), workers(worker_threads(m0_ * m1_))
@@ -141,6 +144,7 @@ struct HalfSpace::Fft
     const int n0 = static_cast<int>(m0), n1 = static_cast<int>(m1);
     const int nh = static_cast<int>(half), nrows = static_cast<int>(rows);
     const unsigned flag = planning_flag(rows, m0, m1);
+    const auto planning_start = std::chrono::steady_clock::now();
     bool planned = true;
     if (rows == m0)
     {
@@ -178,6 +182,8 @@ struct HalfSpace::Fft
     if (!planned)
       throw std::runtime_error("HalfSpace: FFTW could not plan the " + std::to_string(m0) + " x "
                                + std::to_string(m1) + " transforms");
+    planning_seconds
+        = std::chrono::duration<double>(std::chrono::steady_clock::now() - planning_start).count();
     kernel.resize(m0 * half);
   }
   ~Fft()
@@ -335,6 +341,8 @@ HalfSpace::~HalfSpace() = default;
 
 std::size_t HalfSpace::transform_size() const { return _fft->m0 * _fft->m1; }
 
+double HalfSpace::planning_seconds() const { return _fft->planning_seconds; }
+
 double HalfSpace::influence(double dx, double dy) const
 {
   // Uniform unit pressure on [-a, a] × [-b, b]: u = (1/(π E*)) ∫∫ dA/ρ (Boussinesq), the
@@ -348,46 +356,84 @@ double HalfSpace::influence(double dx, double dy) const
 void HalfSpace::displacement_on(std::span<const std::size_t> nodes, std::span<const double> values,
                                 std::span<double> out) const
 {
+  // The nodes in grid order, grouped by row: for a pair of rows (ra, rb) every offset
+  // K(ra - rb, ca - cb) lies in one kernel row of m1 values, which stays in the cache while the
+  // pair is summed. Taken in the caller's order, consecutive reads jumped across the whole
+  // kernel (8 MB periodic, 32 MB zero-padded at 1024²), and those misses were the cost: on the
+  // 1024² bench joint the direct sums took longer than the transform they replace.
   const std::ptrdiff_t m0 = std::ptrdiff_t(_fft->m0), m1 = std::ptrdiff_t(_fft->m1);
   const std::size_t m = nodes.size();
+  thread_local std::vector<std::size_t> order, group_start;
   thread_local std::vector<std::ptrdiff_t> row, col;
+  thread_local std::vector<double> value;
+  order.resize(m);
+  for (std::size_t a = 0; a < m; ++a)
+    order[a] = a;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return nodes[a] < nodes[b]; });
   row.resize(m);
   col.resize(m);
-  for (std::size_t b = 0; b < m; ++b)
+  value.resize(m);
+  group_start.clear();
+  for (std::size_t s = 0; s < m; ++s)
   {
-    row[b] = std::ptrdiff_t(nodes[b] / _cols);
-    col[b] = std::ptrdiff_t(nodes[b] % _cols);
+    row[s] = std::ptrdiff_t(nodes[order[s]] / _cols);
+    col[s] = std::ptrdiff_t(nodes[order[s]] % _cols);
+    value[s] = values[order[s]];
+    if (s == 0 || row[s] != row[s - 1])
+      group_start.push_back(s);
   }
+  group_start.push_back(m);
+  const std::size_t groups = group_start.size() - 1;
   const double* kernel = _kernel_real.data();
-  for (std::size_t a = 0; a < m; ++a)
-  {
-    double sum = 0.0;
-    for (std::size_t b = 0; b < m; ++b)
-    {
-      std::ptrdiff_t di = row[a] - row[b], dj = col[a] - col[b]; // wrapped offset
-      di += di < 0 ? m0 : 0;
-      dj += dj < 0 ? m1 : 0;
-      sum += kernel[di * m1 + dj] * values[b];
-    }
-    out[a] = sum;
-  }
+  const std::ptrdiff_t* rows = row.data();
+  const std::ptrdiff_t* cols = col.data();
+  const double* v = value.data();
+  const std::size_t* starts = group_start.data();
+  const std::size_t* sorted = order.data(); // thread_local: the workers must not name it
+  in_parallel(m, _fft->workers, [&](std::size_t begin, std::size_t end, int)
+              {
+                for (std::size_t s = begin; s < end; ++s)
+                {
+                  double sum = 0.0;
+                  for (std::size_t g = 0; g < groups; ++g)
+                  {
+                    std::ptrdiff_t di = rows[s] - rows[starts[g]]; // wrapped row offset
+                    di += di < 0 ? m0 : 0;
+                    const double* krow = kernel + di * m1;
+                    for (std::size_t b = starts[g]; b < starts[g + 1]; ++b)
+                    {
+                      std::ptrdiff_t dj = cols[s] - cols[b];
+                      dj += dj < 0 ? m1 : 0;
+                      sum += krow[dj] * v[b];
+                    }
+                  }
+                  out[sorted[s]] = sum;
+                }
+              });
 }
 
-void HalfSpace::add_point_loads(std::span<const std::size_t> nodes, std::span<const double> values,
-                                std::span<double> displacement) const
+void HalfSpace::carry_displacement(double scale, double step, std::span<const double> response,
+                                   std::span<const std::size_t> nodes,
+                                   std::span<const double> values,
+                                   std::span<double> displacement) const
 {
   const std::size_t m0 = _fft->m0, m1 = _fft->m1;
   const double* kernel = _kernel_real.data();
-  for (std::size_t b = 0; b < nodes.size(); ++b)
+  // Serial, like the solver's scan: on the shared bench machine two threads lost more waiting
+  // for a core than they gained on a pass of a few ms.
+  for (std::size_t i = 0; i < _rows; ++i)
   {
-    const std::size_t ib = nodes[b] / _cols, jb = nodes[b] % _cols;
-    const double c = values[b];
-    for (std::size_t i = 0; i < _rows; ++i)
+    double* u = displacement.data() + i * _cols;
+    const double* r = response.data() + i * _cols;
+    for (std::size_t j = 0; j < _cols; ++j)
+      u[j] = scale * (u[j] - step * r[j]);
+    for (std::size_t b = 0; b < nodes.size(); ++b)
     {
+      const std::size_t ib = nodes[b] / _cols, jb = nodes[b] % _cols;
+      const double c = values[b];
       // Row offset i - ib wrapped onto the transform grid; columns j < jb read the kernel's
       // wrapped tail m1 - (jb - j), columns j >= jb its head j - jb.
       const double* row = kernel + (i >= ib ? i - ib : i + m0 - ib) * m1;
-      double* u = displacement.data() + i * _cols;
       const double* tail = row + (m1 - jb);
       for (std::size_t j = 0; j < jb; ++j)
         u[j] += c * tail[j];

@@ -56,17 +56,26 @@ public:
   /// u = K p restricted to a node set: out[a] = Σ_b K(node_a - node_b) values[b], by direct
   /// summation over the real-space kernel (|nodes|² operations): cheaper than the FFT while the
   /// set is small (a contact set of a few per cent at most). Same K as displacement().
+  /// Summed pair of rows by pair of rows (nodes sorted), so that each offset is read from one
+  /// kernel row held in the core's cache, on the transforms' threads.
   void displacement_on(std::span<const std::size_t> nodes, std::span<const double> values,
                        std::span<double> out) const;
 
-  /// displacement += K c for a sparse load c (values at nodes) on the whole grid, by direct
-  /// summation (|nodes| · rows·cols operations, two contiguous kernel segments per row): cheaper
-  /// than a transform for a few dozen nodes. Same K as displacement().
-  void add_point_loads(std::span<const std::size_t> nodes, std::span<const double> values,
-                       std::span<double> displacement) const;
+  /// displacement ← scale · (displacement - step · response) + K c for a sparse load c (values
+  /// at nodes) on the whole grid: K c by direct summation (|nodes| · rows·cols operations, two
+  /// contiguous kernel segments per row), cheaper than a transform for a few dozen nodes. One
+  /// pass over the grid, row by row (the row stays in the cache while every node adds to it).
+  /// Same K as displacement().
+  void carry_displacement(double scale, double step, std::span<const double> response,
+                          std::span<const std::size_t> nodes, std::span<const double> values,
+                          std::span<double> displacement) const;
 
   /// Points of the transform grid (rows·cols periodic, 4·rows·cols zero-padded).
   std::size_t transform_size() const;
+  /// Wall time FFTW's planning of this operator's transforms took [s] (FFTW_MEASURE times
+  /// candidate algorithms: seconds at 1024² on the first plan of a size in a process, then
+  /// milliseconds, FFTW remembering what it measured; detail::measure_plans).
+  double planning_seconds() const;
 
   /// Grid rows.
   std::size_t rows() const { return _rows; }

@@ -68,13 +68,20 @@ class ClosureCurve:
     mechanical_aperture: Optional[np.ndarray] = None
     initial_flow: Optional[Transmissivity] = None         # of the aperture at first contact (Δ = 0)
     flow_results: Optional[List[Transmissivity]] = None   # the whole flow answer per load
+    # profile=True (elastic walls): where each load's time went (ContactProfile [s]), the shortest
+    # of 5 u = K p calls after the curve (one FFT pair: the limit per iteration), the solver's
+    # set-up and the FFTW planning inside it [s]
+    profile: Optional[list] = None
+    transform_pair: Optional[float] = None
+    setup_seconds: Optional[float] = None
+    planning_seconds: Optional[float] = None
     _states: list = dataclasses.field(default_factory=list, repr=False)
 
 
 def closure_curve(aperture: Surface, composite_modulus: float, stresses: Sequence[float], *,
                   periodic: bool = True, tolerance: float = 1e-8, maximum_iterations: int = 2000,
                   keep_fields: bool = False, hardness: float = float("inf"), flow: bool = False,
-                  flow_solver: Optional[str] = None) -> ClosureCurve:
+                  flow_solver: Optional[str] = None, profile: bool = False) -> ClosureCurve:
     """Solve the contact of `aperture` (e [m], NaN = masked, min e is taken as first contact)
     against a half-space of modulus E* [Pa] at each nominal stress in `stresses` [Pa] (> 0;
     increasing order warm-starts best). `periodic`: the grid is one period of a periodic
@@ -87,6 +94,8 @@ def closure_curve(aperture: Surface, composite_modulus: float, stresses: Sequenc
     or elastic-plastic walls: the gap is exactly 0 on each load's contact set; the same boundary
     as the kernel: periodic, or sealed sides for an isolated scan; `flow_solver` as
     rockjoint.flow.transmissivity's `solver`; docs/flow.md).
+    `profile` (elastic walls): time each load's phases and the solver's FFT pair (the columns
+    profile, transform_pair, setup_seconds, planning_seconds; bench/bench_contact.py).
     Raises ValueError for bad input, RuntimeError if a load does not converge."""
     stresses = np.asarray(stresses, dtype=float).ravel()
     if stresses.size == 0 or not np.all(np.isfinite(stresses)) or np.any(stresses <= 0):
@@ -95,7 +104,9 @@ def closure_curve(aperture: Surface, composite_modulus: float, stresses: Sequenc
     if not hardness > 0:
         raise ValueError(f"closure_curve: hardness = {hardness} Pa must be > 0 (inf: elastic walls)")
     rows, cols = aperture.shape
-    options = _cpp.ContactOptions(tolerance, maximum_iterations)
+    if profile and np.isfinite(hardness):
+        raise ValueError("closure_curve: profile=True times the elastic solver; hardness must be inf")
+    options = _cpp.ContactOptions(tolerance, maximum_iterations, bool(profile))
     # one flow problem for every load: its symbolic factorisation is made once
     flow_of = ApertureFlow((rows, cols), (aperture.spacing_x, aperture.spacing_y),
                            periodic=periodic, **({} if flow_solver is None else {"solver": flow_solver})
@@ -135,6 +146,10 @@ def closure_curve(aperture: Surface, composite_modulus: float, stresses: Sequenc
                         shape=(rows, cols), periodic=periodic, tolerance=tolerance,
                         hardness=float(hardness), unloaded_closure=0.0,
                         pressure=pressure, gap=gap, _states=states)
+    if profile:
+        curve.profile = [st.profile for st in states]
+        curve.transform_pair = solver.transform_pair_seconds(5)
+        curve.setup_seconds, curve.planning_seconds = solver.setup_seconds, solver.planning_seconds
     return _with_flow(curve, aperture, flow_of, keep_fields) if flow else _fields(curve, keep_fields)
 
 

@@ -37,6 +37,18 @@ void declare_contact(py::module_& m)
       .value("periodic", Kernel::periodic)
       .value("non_periodic", Kernel::non_periodic);
 
+  py::class_<ContactProfile>(m, "ContactProfile",
+                             "Where one load's wall time went [s] (ContactOptions profile=True)")
+      .def_readonly("wall", &ContactProfile::wall, "the whole solve call")
+      .def_readonly("start", &ContactProfile::start, "warm or cold start, the first contact set")
+      .def_readonly("transforms", &ContactProfile::transforms, "u = K p and K t by FFT")
+      .def_readonly("direct_sums", &ContactProfile::direct_sums, "K t on a small contact set, summed directly")
+      .def_readonly("grid_passes", &ContactProfile::grid_passes, "interpenetration scan, carried u update with K c")
+      .def_readonly("contact_set", &ContactProfile::contact_set, "CG algebra on the contact set")
+      .def_readonly("final_state", &ContactProfile::final_state, "gap, contact set, spots, fields")
+      .def_readonly("transform_pairs", &ContactProfile::transform_pairs, "FFT pairs of the load (always counted)")
+      .def_readonly("carried_updates", &ContactProfile::carried_updates, "iterations that carried u = K p without a transform (always counted)");
+
   py::class_<ContactState>(m, "ContactState", "The contact at one nominal stress (SI)")
       .def_readonly("mean_pressure", &ContactState::mean_pressure, "σ [Pa]")
       .def_readonly("approach", &ContactState::approach, "d [m], raw rigid approach")
@@ -47,7 +59,8 @@ void declare_contact(py::module_& m)
       .def_readonly("converged", &ContactState::converged, "the tolerance was met within maximum_iterations")
       .def_readonly("relative_change", &ContactState::relative_change, "last Σ|Δp| / Σ p")
       .def_readonly("complementarity", &ContactState::complementarity, "max p g [Pa m]")
-      .def_readonly("minimum_gap", &ContactState::minimum_gap, "min g off contact [m]");
+      .def_readonly("minimum_gap", &ContactState::minimum_gap, "min g off contact [m]")
+      .def_readonly("profile", &ContactState::profile, "where the load's time went");
 
   py::class_<ElasticContact>(m, "ElasticContact",
                              "Frictionless elastic contact of an aperture field (Polonsky-Keer)")
@@ -67,7 +80,18 @@ void declare_contact(py::module_& m)
           },
           py::arg("mean_pressure"), py::arg("keep_fields"), py::arg("rows"), py::arg("cols"))
       .def_property_readonly("bulk_compliance", &ElasticContact::bulk_compliance, "c = mean over the scanned points of the displacement under unit uniform pressure [m/Pa] (0 for the periodic kernel): the patch's bulk compliance under a uniform load (a check of the kernel against Boussinesq's closed form; the closure subtracts mean(K p) instead).")
-      .def_property_readonly("valid_count", &ElasticContact::valid_count, "Number of scanned (non-NaN) points.");
+      .def_property_readonly("valid_count", &ElasticContact::valid_count, "Number of scanned (non-NaN) points.")
+      .def(
+          "transform_pair_seconds",
+          [](ElasticContact& c, int repeats)
+          {
+            py::gil_scoped_release release;
+            return c.transform_pair_seconds(repeats);
+          },
+          py::arg("repeats"), "shortest of `repeats` u = K p calls on the last pressure [s]")
+      .def_property_readonly("setup_seconds", &ElasticContact::setup_seconds, "wall time of the constructor [s], planning included")
+      .def_property_readonly("planning_seconds", [](const ElasticContact& c) { return c.half_space().planning_seconds(); },
+                             "wall time of FFTW's planning [s]");
 
   py::class_<PlasticContactState>(m, "PlasticContactState", "One load of the elastic-plastic contact (SI)")
       .def_readonly("mean_pressure", &PlasticContactState::mean_pressure, "σ [Pa]")
@@ -109,15 +133,17 @@ void declare_contact(py::module_& m)
 
   py::class_<ContactOptions>(m, "ContactOptions")
       .def(py::init(
-               [](double tol, int its)
+               [](double tol, int its, bool profile)
                {
                  ContactOptions o;
                  o.tolerance = tol;
                  o.maximum_iterations = its;
+                 o.profile = profile;
                  return o;
                }),
            py::arg("tolerance") = ContactOptions{}.tolerance,
-           py::arg("maximum_iterations") = ContactOptions{}.maximum_iterations);
+           py::arg("maximum_iterations") = ContactOptions{}.maximum_iterations,
+           py::arg("profile") = ContactOptions{}.profile);
 
   m.def(
       "exact_elastic_law",

@@ -95,6 +95,64 @@ TEST(PeriodicConvolution, SinusoidalPressureGivesTheExactDisplacement)
   }
 }
 
+/// The direct sums of the contact solver against the transform: K p on a node set
+/// (displacement_on, sorted into row pairs, on two threads from 512² transform points) and the
+/// carried update u ← s (u - τ r) + K c (carry_displacement), both kernels, the 512² grid
+/// threaded, nodes in no order and one repeated (its two loads add).
+TEST(HalfSpaceDirectSums, EqualTheTransform)
+{
+  for (const auto kernel : {Kernel::periodic, Kernel::non_periodic})
+    for (const Grid g : {Grid{40, 30}, Grid{512, 512}})
+    {
+      HalfSpace hs(g.rows, g.cols, 1e-4, 1.2e-4, modulus, kernel);
+      const std::size_t n = g.rows * g.cols;
+      std::mt19937 rng(11);
+      std::uniform_int_distribution<std::size_t> node(0, n - 1);
+      std::uniform_real_distribution<double> value(1e6, 5e7);
+      std::vector<std::size_t> nodes{n - 1, 0, g.cols - 1, (g.rows - 1) * g.cols};
+      for (int k = 0; k < 60; ++k)
+        nodes.push_back(node(rng));
+      nodes.push_back(nodes[5]);
+      std::vector<double> values(nodes.size()), p(n, 0.0), r(n), u(n), v(n), sums(nodes.size());
+      for (std::size_t a = 0; a < nodes.size(); ++a)
+      {
+        values[a] = value(rng);
+        p[nodes[a]] += values[a];
+      }
+      hs.displacement(p, u);
+      hs.displacement_on(nodes, values, sums);
+      double worst = 0.0, scale = 0.0;
+      for (std::size_t a = 0; a < nodes.size(); ++a)
+      {
+        worst = std::max(worst, std::abs(sums[a] - u[nodes[a]]));
+        scale = std::max(scale, std::abs(u[nodes[a]]));
+      }
+      EXPECT_GT(scale, 0.0);
+      EXPECT_LE(worst, 1e-12 * scale) << "displacement_on " << g.rows << " x " << g.cols;
+      // carried: v = K q for a dense q, r = K w; then v ← s (v - τ r) + K c must be K (s (q - τ w) + c)
+      std::vector<double> q(n), w(n), exact(n);
+      for (std::size_t k = 0; k < n; ++k)
+      {
+        q[k] = value(rng);
+        w[k] = value(rng);
+      }
+      hs.displacement(q, v);
+      hs.displacement(w, r);
+      const double s = 0.93, tau = 0.37;
+      hs.carry_displacement(s, tau, r, nodes, values, v);
+      for (std::size_t k = 0; k < n; ++k)
+        q[k] = s * (q[k] - tau * w[k]) + p[k];
+      hs.displacement(q, exact);
+      worst = scale = 0.0;
+      for (std::size_t k = 0; k < n; ++k)
+      {
+        worst = std::max(worst, std::abs(v[k] - exact[k]));
+        scale = std::max(scale, std::abs(exact[k]));
+      }
+      EXPECT_LE(worst, 1e-12 * scale) << "carry_displacement " << g.rows << " x " << g.cols;
+    }
+}
+
 /// A size's first transforms are planned by FFTW_ESTIMATE, those planned after
 /// measure_after_plans plans of the size (and every transform of 1024² points up) by
 /// FFTW_MEASURE (contact/half_space.hpp, detail::measure_plans): the two plans must give the same

@@ -183,3 +183,23 @@ def test_elastic_walls_reload_along_the_same_curve_after_a_deep_unloading():
     ap = topo.composite_topography(upper, lower).aperture
     c = contact.closure_curve(ap, E_STAR, [2e6, 10e6, 0.1e6, 2e6, 10e6])
     np.testing.assert_allclose(c.closure[3:], c.closure[:2], rtol=1e-6)
+
+
+def test_profile_times_the_phases_of_each_load_and_changes_no_answer():
+    """profile=True (bench/bench_contact.py's efficiency report): per load the phases are laps of
+    one clock, so they add up to the load's wall time; the transform pairs are at least one per
+    iteration not carried, plus the final u; the answers are those of the untimed solver, bit for
+    bit; and the elastic-plastic solver, which has no profile, says so."""
+    u, l = topo.mated_pair(topo.SelfAffineSpec(0.8, 1e-3), (128, 128), 0.25e-3, 2.5e-3, seed=4)
+    ap = topo.composite_topography(u, l).aperture
+    for periodic in (True, False):
+        plain = contact.closure_curve(ap, E_STAR, STRESSES, periodic=periodic)
+        timed = contact.closure_curve(ap, E_STAR, STRESSES, periodic=periodic, profile=True)
+        assert np.array_equal(plain.closure, timed.closure) and np.array_equal(plain.iterations, timed.iterations)
+        assert plain.profile is None and timed.transform_pair > 0 and timed.setup_seconds >= timed.planning_seconds >= 0
+        for its, p in zip(timed.iterations, timed.profile):
+            phases = p.start + p.transforms + p.direct_sums + p.grid_passes + p.contact_set + p.final_state
+            assert p.wall > 0 and phases == pytest.approx(p.wall, rel=0.02, abs=2e-5)
+            assert its - p.carried_updates + 1 <= p.transform_pairs <= 2 * its + 1
+    with pytest.raises(ValueError, match="profile"):
+        contact.closure_curve(ap, E_STAR, STRESSES, hardness=5e9, profile=True)

@@ -187,8 +187,6 @@ _HISTORY = "an earlier run, stated with its date or commit on the page (git hist
 _ON_PAGE = "a run stated on the page with its command, not kept as a report row"
 #: numbers of a docs paragraph citing a report that are not the report's: {(page, number): why}
 DOCS_NOT_FROM_THE_REPORT = {
-    ("contact.md", "6.6"): "bench_contact.py on the machine of fft_planning.md, stated as such",
-    ("contact.md", "1.16"): _ON_PAGE, ("contact.md", "0.93"): _ON_PAGE,
     ("equivalent-continuum.md", "9.5"): "derived: 64.7 s (the 2026-11-26 report) / 6.81 s",
     ("equivalent-continuum.md", "2756"): _HISTORY, ("equivalent-continuum.md", "89"): _HISTORY,
     ("fem.md", "78"): "the sum of fem_dolfinx0.11.md's Krylov iterations per Newton step (column, 2 ranks)",
