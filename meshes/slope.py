@@ -126,10 +126,6 @@ class SlopeGeometry:
         return inside
 
 
-#: the boundary groups of a slope section (SlopeGeometry.piece_groups: the group of each piece)
-GROUPS = ("bottom", "right", "top", FACE, TOE, "left")
-
-
 def slope_traces(geometry: SlopeGeometry, joints: list) -> list:
     """The segments ((k, 2, 2) [m]) of each joint inside the section and on the kept side of its
     bounding joints; ValueError naming a joint that misses the section."""

@@ -89,8 +89,7 @@ def wet(text: str) -> str:
     toe: Hoek & Bray's 'crack full' distribution, from the flow."""
     flow = {"plane": "10 mm", "tension_crack": "50 mm"}
     for name, aperture in flow.items():
-        law = ("law: {{model: barton_bandis, parameters: {{initial_normal_stiffness: 10 MPa/mm, "
-               "maximum_closure: 5 mm}}}}").format()
+        law = "law: {model: barton_bandis, parameters: {initial_normal_stiffness: 10 MPa/mm, maximum_closure: 5 mm}}"
         text = text.replace(f"  {name}:\n    {law}", f"  {name}:\n    {law}\n    flow: {{law: cubic_law, "
                             f"initial_aperture: {aperture}}}", 1)
     return text.replace("error_budget:", "water: {heads: {top: 45 m}, pressures: {face: 0 MPa, toe: 0 MPa}, "

@@ -54,7 +54,7 @@ def test_law_with_history_follows_both_branches(specimen):
     rms, hysteresis = fit.branch_rms(), measured_hysteresis(d)
     print(f"\nvd{specimen}: rms log10 T loading {rms['loading']:.3g}, unloading {rms['unloading']:.3g}; "
           f"measured hysteresis {hysteresis:.3g}; not identified: {', '.join(fit.not_identifiable())}")
-    assert rms["loading"] < 0.05                     # a factor 1.12: the pressure gauges' scatter
+    assert rms["loading"] < 0.05                     # within a factor 1.12 on first loading
     if hysteresis > 2 * rms["loading"]:
         assert rms["unloading"] < hysteresis / 3
     assert {"permanent_fraction", "hydraulic_loss"} & set(fit.not_identifiable())
