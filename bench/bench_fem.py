@@ -274,6 +274,23 @@ def find_build(build: str | None) -> str:
     sys.exit("no build with rockjoint._rockjoint_fem_coupling found: build with -DROCKJOINT_FEM=ON and pass --build")
 
 
+def worker_env(build: str | None) -> dict:
+    """The environment of the workers that mpirun starts: this repository's Python package and the
+    build's compiled modules on PYTHONPATH (find_build), Open MPI allowed to run as root."""
+    build = find_build(build)
+    return dict(os.environ, PYTHONPATH=os.pathsep.join([os.path.join(ROOT, "python"), os.path.join(build, "python")]),
+                OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+
+
+def write_report(text: str, path: str) -> None:
+    """Print a report and write it to `path` (its folder made if needed)."""
+    print(text)
+    os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
+    with open(path, "w") as fh:
+        fh.write(text)
+    print(f"wrote {path}")
+
+
 def launch(env, ranks, case, h, repeat, out, cache, variants=()) -> dict:
     cmd = ["mpirun", "-n", str(ranks), "--bind-to", "core", "/usr/bin/python3", os.path.abspath(__file__),
            "--worker", "--case", case, "--mesh-size", str(h), "--repeat", str(repeat), "--json", out,
@@ -477,9 +494,7 @@ def main() -> None:
         return
     if args.quick:
         args.ratio_size, args.scaling_sizes, args.repeat = 0.037, [], 2
-    build = find_build(args.build)
-    env = dict(os.environ, PYTHONPATH=os.pathsep.join([os.path.join(ROOT, "python"), os.path.join(build, "python")]),
-               OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    env = worker_env(args.build)
     load_start = os.getloadavg()
     t0 = time.perf_counter()
     ratio_results, scaling_results = [], []
@@ -511,13 +526,9 @@ def main() -> None:
         json.dump({"ratio": ratio_results, "scaling": scaling_results, "variants": {
             f"{c}_{n}": v for (c, n), v in _VARIANTS.items()}}, fh)   # raw numbers, if the report fails
     text = report(ratio_results, scaling_results, args, time.perf_counter() - t0, load_start)
-    print(text)
-    os.makedirs(os.path.dirname(args.output), exist_ok=True)
-    with open(args.output, "w") as fh:
-        fh.write(text)
+    write_report(text, args.output)
     if scaling_results:
         plot(scaling_results, os.path.join(os.path.dirname(args.output), "fem_scaling.png"))
-    print(f"wrote {args.output}")
 
 
 if __name__ == "__main__":

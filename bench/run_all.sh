@@ -14,6 +14,13 @@ echo "== tabulation"; /usr/bin/python3 bench/bench_tabulation.py --build "$build
 echo "== topography"; /usr/bin/python3 bench/bench_topography.py
 echo "== FE coupling"; /usr/bin/python3 bench/bench_fem.py --build "$build" --repeat 5 --ranks 1 2 \
     --ratio-size 0.0235 --scaling-sizes 0.0174 0.0135 --scaling-repeat 3 --scaling-ranks 1
+echo "== FE coupling at 1M dofs (about 25 min)"; /usr/bin/python3 bench/bench_fem.py --build "$build" --repeat 3 \
+    --ranks 1 2 --ratio-size 0.0137 --scaling-sizes --no-variants --mesh-dir .scratch/fem_1m --output bench/results/fem_1m.md
+echo "== levers on the jointed Newton"; /usr/bin/python3 bench/bench_newton_levers.py --build "$build"
+echo "== largest model (4M dofs, 2 ranks, ~15 GiB, about 25 min with the mesh)"
+/usr/bin/python3 bench/bench_fem_large.py --build "$build" --mesh-size 0.0083 --ranks 2 --mesh-dir .scratch/fem_4m
+/usr/bin/python3 bench/bench_fem_large.py --build "$build" --mesh-size 0.0137 --ranks 2 --mesh-dir .scratch/fem_1m \
+    --output bench/results/fem_large_1m.md
 echo "== direct vs iterative"; /usr/bin/python3 bench/bench_direct_vs_iterative.py
 echo "== Kirsch"; /usr/bin/python3 bench/bench_kirsch.py
 echo "== FE speed against error"; /usr/bin/python3 bench/bench_fe_speed_vs_error.py
