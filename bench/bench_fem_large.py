@@ -17,7 +17,7 @@ One launch per model (intact, jointed) so that each peak is its own: the column 
 3. A weak-scaling projection from those per-rank costs (projection(): an alpha-beta model whose
    assumptions are printed in the report beside its numbers).
 
-Usage (2 ranks, ~4M dofs; ~40 min on the 2-core machine, ~15 GiB):
+Usage (2 ranks, ~4M dofs; about 20 min on the 2-core machine, 11 of them the mesh; ~13 GiB):
   /usr/bin/python3 bench/bench_fem_large.py --mesh-size 0.0083 --ranks 2 --mesh-dir .scratch/fem_4m
 A cluster user measures the per-rank costs on the machine to be projected with the same command
 (--ranks P, a mesh size giving the dofs per rank of interest) and reads the projection's inputs

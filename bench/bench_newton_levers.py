@@ -13,7 +13,10 @@ the times are not (read them only beside each other, from one run):
   than η = 1e-3 (the last Newton steps, where the lagged hierarchy of the first Jacobian costs
   iterations);
 - fresh_every_step: the hierarchy rebuilt (Galerkin only) before every solve: the floor of what
-  a better preconditioner can save.
+  a better preconditioner can save;
+- own / deflated PCG: a Krylov space carried across the Newton steps (deflated_cg.py: Ritz
+  vectors of the earlier solves deflated from the later ones), against the same PCG without
+  deflation (the lagged GAMG in both; PETSc's CG gives the default row).
 
 Usage: /usr/bin/python3 bench/bench_newton_levers.py [--mesh-size 0.0235] [--mesh-dir .scratch/fem_200k]
 (runs itself under `mpirun -n 1`); writes bench/results/newton_levers.md.
@@ -32,15 +35,20 @@ import time
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import bench_fem as bf  # noqa: E402
+from deflated_cg import use_deflated_cg  # noqa: E402
 
-#: name -> (NewtonOptions overrides, Galerkin refresh below this η (None: off; 1.0: every solve))
+#: name -> (NewtonOptions overrides, Galerkin refresh below this η (None: off; 1.0: every solve),
+#: deflated CG (kept, new Ritz vectors per solve; None: PETSc's CG))
 SETTINGS = {
-    "default": ({}, None),
-    "forcing_initial 0.3": ({"forcing_initial": 0.3}, None),
-    "forcing_initial 0.5": ({"forcing_initial": 0.5}, None),
-    "line_search": ({"line_search": True}, None),
-    "galerkin_refresh (η < 1e-3)": ({}, 1e-3),
-    "fresh_every_step (Galerkin)": ({}, 1.0),
+    "default": ({}, None, None),
+    "forcing_initial 0.3": ({"forcing_initial": 0.3}, None, None),
+    "forcing_initial 0.5": ({"forcing_initial": 0.5}, None, None),
+    "line_search": ({"line_search": True}, None, None),
+    "galerkin_refresh (η < 1e-3)": ({}, 1e-3, None),
+    "fresh_every_step (Galerkin)": ({}, 1.0, None),
+    "own PCG, lagged GAMG (reference of the next rows)": ({}, None, (0, 0)),
+    "deflated PCG, 5 Ritz vectors per solve, 10 kept": ({}, None, (10, 5)),
+    "deflated PCG, 10 Ritz vectors per solve, 30 kept": ({}, None, (30, 10)),
 }
 
 
@@ -79,11 +87,13 @@ def worker(args) -> None:
                     pickle.dump((jm, 0.0), fh)
         corner = comm.bcast(bf.corner_block(jm) if comm.rank == 0 else None)
         dmesh = bf.distribute_cached({"jointed": jm}, comm, cache)["jointed"]
-        for name, (newton, tight) in SETTINGS.items():
+        for name, (newton, tight, deflation) in SETTINGS.items():
             model, law = bf.build_model(case, dmesh, corner, "default")
             model.newton_options = NewtonOptions(verbose=False, **newton)
             if tight is not None:
                 _refresh_below(model, tight)
+            if deflation is not None:
+                use_deflated_cg(model, *deflation)
             t0 = time.perf_counter()
             sol = model.solve(load_steps=1)
             dt = time.perf_counter() - t0
