@@ -60,7 +60,7 @@ BLOCKY_STRESS = (2e6, 2e6, 5e6)   #: principal stresses (compression) along x, y
 BLOCKY_SIZE_FACTOR = 1.0
 
 
-def _stack_versions() -> str:
+def stack_versions() -> str:
     """'0.11.0.post0, PETSc 3.25.5' of the DOLFINx and PETSc the workers import."""
     from petsc4py import PETSc
     from rockjoint.fem.compat import DOLFINX_RELEASE
@@ -341,7 +341,7 @@ def report(ratio_results, scaling_results, args, wall, load_start) -> str:
               "the others made here and kept there." if args.mesh_dir and reused else
               "Meshes made by gmsh and partitioned by DOLFINx's partitioner in this run.")
     L = [
-        f"# A jointed analysis at the cost of an intact linear solve (DOLFINx {_stack_versions()}, 3D)",
+        f"# A jointed analysis at the cost of an intact linear solve (DOLFINx {stack_versions()}, 3D)",
         "",
         f"Produced by `bench/bench_fem.py` on {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}, "
         f"{platform.machine()}, {os.cpu_count()} CPUs; whole run {wall:.0f} s. Machine load average "

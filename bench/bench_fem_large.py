@@ -189,7 +189,7 @@ def report(res: dict, proj: list, gamma: float, args, wall: float, t_mesh: float
     i, j = res["intact"], res["jointed"]
     cmd = (f"/usr/bin/python3 bench/bench_fem_large.py --mesh-size {args.mesh_size} --ranks {args.ranks}"
            + (f" --mesh-dir {args.mesh_dir}" if args.mesh_dir else ""))
-    L = [f"# The largest jointed model on this machine (DOLFINx {bf._stack_versions()}, 3D column)", "",
+    L = [f"# The largest jointed model on this machine (DOLFINx {bf.stack_versions()}, 3D column)", "",
          f"Produced by `bench/bench_fem_large.py` on {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}, "
          f"{os.cpu_count()} CPUs, {os.sysconf('SC_PAGE_SIZE') * os.sysconf('SC_PHYS_PAGES') / GiB:.1f} GiB; "
          f"whole run {wall:.0f} s; load average at the start {load[0]:.2f}, at the end {load[1]:.2f}.", "",

@@ -54,18 +54,21 @@ SETTINGS = {
 
 def _refresh_below(model, tight: float) -> None:
     """Make the lagged GAMG rebuild (Galerkin operators only, its prolongators kept) before every
-    solve with rtol below `tight`."""
+    solve with rtol below `tight`: that solve runs with reuse_preconditioner off."""
     from petsc4py import PETSc
     ls = model.linear_solver
-    PETSc.Options()[ls._prefix + "pc_gamg_reuse_interpolation"] = 1
+    key = ls.ksp.getOptionsPrefix() + "pc_gamg_reuse_interpolation"
+    PETSc.Options()[key] = 1
     ls.ksp.setFromOptions()
-    PETSc.Options().delValue(ls._prefix + "pc_gamg_reuse_interpolation")
+    PETSc.Options().delValue(key)
     solve = ls.solve
 
     def refreshing(A, b, x, rtol=None):
-        if ls.setups and (rtol is None or rtol < tight):
-            ls._fresh_rate = None   # rebuild at this solve (linear_solver.LinearSolver.solve)
-        return solve(A, b, x, rtol=rtol)
+        ls.reuse_preconditioner = not (ls.setups and (rtol is None or rtol < tight))
+        try:
+            return solve(A, b, x, rtol=rtol)
+        finally:
+            ls.reuse_preconditioner = True
     ls.solve = refreshing
 
 
@@ -132,7 +135,7 @@ def main() -> None:
         with open(out) as fh:
             rows = json.load(fh)
     cmd = f"/usr/bin/python3 bench/bench_newton_levers.py --mesh-size {args.mesh_size}"
-    L = [f"# What the levers on the jointed Newton buy (DOLFINx {bf._stack_versions()}, 3D, 1 rank)", "",
+    L = [f"# What the levers on the jointed Newton buy (DOLFINx {bf.stack_versions()}, 3D, 1 rank)", "",
          f"Produced by `{cmd}` on {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}; load average "
          f"{os.getloadavg()[0]:.2f} at the end. One run per setting: the iterations and set-ups are "
          "deterministic, the times are one run's (noisy). Settings: module docstring.", "",
