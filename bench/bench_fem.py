@@ -78,6 +78,34 @@ def make_mesh(case: str, h: float):
     return meshes.jointed_block((1.0, 1.0, 1.0), joints, dim=3, mesh_size=h * BLOCKY_SIZE_FACTOR)
 
 
+def cached_mesh(case: str, h: float, cache: str | None) -> tuple:
+    """(JointedMesh, seconds gmsh took) of `case` at size h: read from the pickle `cache` if it
+    exists, else made (make_mesh) and kept there (cache None: made, not kept). One process."""
+    if cache and os.path.exists(cache):
+        with open(cache, "rb") as fh:
+            return pickle.load(fh)
+    t0 = time.perf_counter()
+    jm = make_mesh(case, h)
+    made = (jm, time.perf_counter() - t0)
+    if cache:
+        with open(cache, "wb") as fh:
+            pickle.dump(made, fh)
+    return made
+
+
+def reset_peak_rss() -> None:
+    """Reset this process's peak resident set (VmHWM, which ru_maxrss reads) to its current value (Linux)."""
+    with open("/proc/self/clear_refs", "w") as fh:
+        fh.write("5")
+
+
+def peak_rss(comm) -> int:
+    """The peak resident set [B] since reset_peak_rss(), summed over the ranks of comm (collective)."""
+    import resource
+    from mpi4py import MPI
+    return comm.allreduce(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024, op=MPI.SUM)
+
+
 def glued(jm):
     """The intact mesh: the jointed one with its split nodes glued back (no joints)."""
     from rockjoint.scenes.geometry import glued as glue
@@ -156,12 +184,10 @@ def _max():
 
 def run_one(case, label, dmesh, corner, variant="default") -> dict:
     import gc
-    import resource
     from mpi4py import MPI
     comm = MPI.COMM_WORLD
     gc.collect()
-    with open("/proc/self/clear_refs", "w") as fh:   # reset the peak RSS (Linux)
-        fh.write("5")
+    reset_peak_rss()
     comm.barrier()
     t0 = time.perf_counter()
     model, law = build_model(case, dmesh, corner, variant)
@@ -182,7 +208,7 @@ def run_one(case, label, dmesh, corner, variant="default") -> dict:
     c2 = time.process_time()
     comm.barrier()
     t2 = time.perf_counter()
-    peak = comm.allreduce(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024, op=MPI.SUM)
+    peak = peak_rss(comm)
     tm = {k: comm.allreduce(v, op=MPI.MAX) for k, v in model.timings.items()}
     krylov = list(model.linear_solver.iterations)
     out = {
@@ -206,21 +232,11 @@ def run_one(case, label, dmesh, corner, variant="default") -> dict:
 def worker(args) -> None:
     logging.basicConfig(level=logging.INFO, format="%(message)s")  # Newton progress (rank 0)
     from mpi4py import MPI
-    from rockjoint.fem.mesh.distributed_mesh import distribute
     comm = MPI.COMM_WORLD
     load0 = os.getloadavg()
     jm, t_mesh = None, 0.0
     if comm.rank == 0:
-        if args.mesh_cache and os.path.exists(args.mesh_cache):
-            with open(args.mesh_cache, "rb") as fh:
-                jm, t_mesh = pickle.load(fh)
-        else:
-            t0 = time.perf_counter()
-            jm = make_mesh(args.case, args.mesh_size)
-            t_mesh = time.perf_counter() - t0
-            if args.mesh_cache:
-                with open(args.mesh_cache, "wb") as fh:
-                    pickle.dump((jm, t_mesh), fh)
+        jm, t_mesh = cached_mesh(args.case, args.mesh_size, args.mesh_cache)
     corner = comm.bcast(corner_block(jm) if comm.rank == 0 else None)
     meshes = distribute_cached({"intact": glued(jm) if comm.rank == 0 else None, "jointed": jm}, comm,
                                args.mesh_cache)

@@ -30,7 +30,6 @@ import argparse
 import json
 import math
 import os
-import pickle
 import subprocess
 import sys
 import tempfile
@@ -48,12 +47,10 @@ MEASURED_ITERATIONS = ((203250, 58), (472542, 71), (976536, 81))
 
 # ---------------------------------------------------------------------------------------------
 # worker (inside mpirun): one model
-def _status(key: str) -> int:
+def _resident() -> int:
+    """This process's resident set now [B] (VmRSS)."""
     with open("/proc/self/status") as fh:
-        for line in fh:
-            if line.startswith(key):
-                return int(line.split()[1]) * 1024
-    return 0
+        return next(int(line.split()[1]) * 1024 for line in fh if line.startswith("VmRSS"))
 
 
 def worker(args) -> None:
@@ -61,10 +58,7 @@ def worker(args) -> None:
     from mpi4py import MPI
     from petsc4py import PETSc
     comm = MPI.COMM_WORLD
-    jm = None
-    if comm.rank == 0:
-        with open(args.mesh_cache, "rb") as fh:
-            jm, _ = pickle.load(fh)
+    jm = bf.cached_mesh("column", args.mesh_size, args.mesh_cache)[0] if comm.rank == 0 else None
     corner = comm.bcast(bf.corner_block(jm) if comm.rank == 0 else None)
     source = bf.glued(jm) if (args.label == "intact" and comm.rank == 0) else jm
     t0 = time.perf_counter()
@@ -72,9 +66,8 @@ def worker(args) -> None:
     t_distribute = time.perf_counter() - t0
     del jm, source
     gc.collect()
-    baseline = comm.allreduce(_status("VmRSS"))
-    with open("/proc/self/clear_refs", "w") as fh:   # reset the peak (VmHWM)
-        fh.write("5")
+    baseline = comm.allreduce(_resident())
+    bf.reset_peak_rss()
     PETSc.Log.begin()
     comm.barrier()
     t1 = time.perf_counter()
@@ -84,12 +77,12 @@ def worker(args) -> None:
     sol = model.solve(load_steps=1)
     comm.barrier()
     t3 = time.perf_counter()
-    peak = comm.allreduce(_status("VmHWM"))
+    peak = bf.peak_rss(comm)
     ranks_max = {k: comm.allreduce(v, op=MPI.MAX) for k, v in model.timings.items()}
     events = {}
     # PETSc does not count the Krylov method's own allreduces in numReductions: they are the
     # calls of VecTDot, VecNorm, VecDot and VecMDot (each one allreduce), counted here
-    for name in ("KSPSolve", "PCSetUp", "MatMult", "PCApply", "VecTDot", "VecNorm", "VecDot", "VecMDot"):
+    for name in ("KSPSolve", "PCSetUp", "VecTDot", "VecNorm", "VecDot", "VecMDot"):
         info = PETSc.Log.Event(name).getPerfInfo()
         events[name] = {k: comm.allreduce(float(info[k]), op=MPI.MAX)
                         for k in ("count", "time", "numMessages", "messageLength", "numReductions")}
@@ -171,20 +164,7 @@ def launch(env, ranks, label, h, cache, out) -> dict:
         return json.load(fh)
 
 
-def make_mesh(h: float, cache: str) -> float:
-    """The column mesh at size h into the cache (one process); returns the seconds it took."""
-    if os.path.exists(cache):
-        with open(cache, "rb") as fh:
-            return pickle.load(fh)[1]
-    t0 = time.perf_counter()
-    jm = bf.make_mesh("column", h)
-    dt = time.perf_counter() - t0
-    with open(cache, "wb") as fh:
-        pickle.dump((jm, dt), fh)
-    return dt
-
-
-def report(res: dict, proj: list, gamma: float, args, wall: float, t_mesh: float, load) -> str:
+def report(res: dict, proj: list, gamma: float, args, wall: float, t_mesh: float, load, cache: str) -> str:
     GiB = 2.0**30
     i, j = res["intact"], res["jointed"]
     cmd = (f"/usr/bin/python3 bench/bench_fem_large.py --mesh-size {args.mesh_size} --ranks {args.ranks}"
@@ -236,7 +216,7 @@ def report(res: dict, proj: list, gamma: float, args, wall: float, t_mesh: float
           f"here per iteration (PETSc gathers them on fewer ranks; not modelled). Not modelled: the mesh "
           f"input, which rockjoint reads on rank 0 and distributes (distribute()): rank 0 holds the whole "
           f"JointedMesh, so the global size is capped by one node's memory (the mesh cache here: "
-          f"{os.path.getsize(res['cache']) / j['dofs'] * 1e6 / 2**20:.0f} MiB per million dofs).", "",
+          f"{os.path.getsize(cache) / j['dofs'] * 1e6 / 2**20:.0f} MiB per million dofs).", "",
           "| ranks | dofs | Krylov its | compute per it [ms] | communication per it [ms] | GAMG set-up [s] "
           "| solve [s] | weak-scaling efficiency | of it per Krylov iteration |",
           "|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
@@ -274,13 +254,12 @@ def main() -> None:
         os.makedirs(mesh_dir, exist_ok=True)
         cache = os.path.join(mesh_dir, f"column_{args.mesh_size}.pkl")
         print(f"== mesh (gmsh, one process) into {cache}", flush=True)
-        t_mesh = make_mesh(args.mesh_size, cache)
+        t_mesh = bf.cached_mesh("column", args.mesh_size, cache)[1]
         res = {label: launch(env, args.ranks, label, args.mesh_size, cache, os.path.join(tmp, f"{label}.json"))
                for label in ("intact", "jointed")}
-        res["cache"] = cache
         proj, gamma = projection(res["jointed"], res["intact"], args.project, args.alpha, args.beta,
                                  args.neighbours, args.reduction_alpha)
-        text = report(res, proj, gamma, args, time.perf_counter() - t0, t_mesh, (load0, os.getloadavg()[0]))
+        text = report(res, proj, gamma, args, time.perf_counter() - t0, t_mesh, (load0, os.getloadavg()[0]), cache)
     bf.write_report(text, args.output)
 
 

@@ -26,7 +26,6 @@ from __future__ import annotations
 import argparse
 import json
 import os
-import pickle
 import subprocess
 import sys
 import tempfile
@@ -79,15 +78,7 @@ def worker(args) -> None:
     rows = []
     for case in ("column", "blocky"):
         cache = os.path.join(args.mesh_dir, f"{case}_{args.mesh_size}.pkl")
-        jm = None
-        if comm.rank == 0:
-            if os.path.exists(cache):
-                with open(cache, "rb") as fh:
-                    jm, _ = pickle.load(fh)
-            else:
-                jm = bf.make_mesh(case, args.mesh_size)
-                with open(cache, "wb") as fh:
-                    pickle.dump((jm, 0.0), fh)
+        jm = bf.cached_mesh(case, args.mesh_size, cache)[0] if comm.rank == 0 else None
         corner = comm.bcast(bf.corner_block(jm) if comm.rank == 0 else None)
         dmesh = bf.distribute_cached({"jointed": jm}, comm, cache)["jointed"]
         for name, (newton, tight, deflation) in SETTINGS.items():
